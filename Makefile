@@ -1,0 +1,51 @@
+# RayCore + VTU model. `make run` and `make test` are the two commands a user types on a fresh
+# machine: both install the Debian packages they need (deps) and build first.
+BUILD      ?= build
+ASAN_BUILD ?= build-asan
+JOBS       ?= $(shell nproc)
+GEN        := $(shell command -v ninja >/dev/null 2>&1 && echo "-G Ninja")
+CTEST      := ctest --output-on-failure -j $(JOBS)
+RAYCORE    := $(BUILD)/bin/raycore
+export SYSTEMC_DISABLE_COPYRIGHT_MESSAGE := 1
+
+.PHONY: all deps configure build run test test-release test-asan lint bench area fuzz clean
+
+all: build
+
+deps:
+	@./scripts/deps.sh
+
+$(BUILD)/CMakeCache.txt:
+	cmake -S . -B $(BUILD) $(GEN) -DCMAKE_BUILD_TYPE=Release
+
+configure: deps $(BUILD)/CMakeCache.txt
+
+build: configure
+	cmake --build $(BUILD) -j $(JOBS)
+
+run: build
+	./scripts/run.sh $(RAYCORE)
+
+# The unit tests in Release (all of them), then once more under ASan + UBSan (the C++ unit
+# tests; Verilated models are left out of the sanitizer build, see README).
+test: test-release test-asan
+
+test-release: build
+	cd $(BUILD) && $(CTEST)
+
+test-asan: deps
+	cmake -S . -B $(ASAN_BUILD) $(GEN) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRAYCORE_SANITIZE=ON -DRAYCORE_RTL=OFF
+	cmake --build $(ASAN_BUILD) -j $(JOBS)
+	cd $(ASAN_BUILD) && ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 RAYCORE_FP_RANDOM=200000 $(CTEST) -L unit
+
+lint: deps
+	./scripts/lint.sh
+
+area: deps
+	./scripts/area.sh
+
+bench: build
+	./scripts/bench.sh $(BUILD)
+
+clean:
+	rm -rf $(BUILD) $(ASAN_BUILD) build-*

@@ -1,0 +1,446 @@
+// hls/fp.h - the one definition of the hardware's floating-point numbers.
+//
+// A format is a template on (exponent bits, mantissa bits); FP24 = Format<7, 16> (RayCore's,
+// bias 63) and FP32 = Format<8, 23>. Numbers travel as bit patterns in a uint32_t (sign in bit
+// E+M, exponent field above the mantissa field), exactly the wires of the hardware.
+//
+// Semantics, for every operation: the exact result, rounded once to M+1 significant bits with the
+// rounding policy (rtz: toward zero, RayCore's; rne: to nearest, ties to even) at unbounded
+// exponent range, then
+//   - flushed to a signed zero if its exponent is below the smallest normal (no denormals), and
+//   - saturated to the largest magnitude with its sign if above the largest (no Inf/NaN).
+// Inputs whose exponent field is 0 are zeros, whatever their mantissa field holds (flush on input).
+// The top exponent field is an ordinary binade (there is no Inf/NaN encoding). An exact zero sum
+// is +0 unless every addend is -0 (IEEE 754's rule for rtz and rne).
+//
+// Written in the synthesizable style: fixed-width integer arithmetic on bit patterns, no host
+// floating point inside the operations, no allocation. The same functions are the datapath of the
+// golden tracer and of the SystemC models; the RTL in rtl/ produces the same bits.
+#pragma once
+
+#include <cstdint>
+#include <cstring>
+#include <type_traits>
+
+namespace raycore::hls {
+
+enum class Rounding : uint8_t { rtz, rne };
+
+template <int E, int M>
+struct Format {
+  static_assert(E >= 2 && E <= 11, "exponent width must fit an IEEE double's range");
+  static_assert(M >= 2 && 1 + E + M <= 32, "a number must fit in 32 bits");
+  static constexpr int exp_bits = E;
+  static constexpr int man_bits = M;
+  static constexpr int width = 1 + E + M;
+  static constexpr int bias = (1 << (E - 1)) - 1;
+  static constexpr int exp_field_max = (1 << E) - 1;  // an ordinary binade: no Inf/NaN
+  static constexpr int emin = 1 - bias;               // unbiased exponent of the smallest normal
+  static constexpr int emax = exp_field_max - bias;   // unbiased exponent of the largest binade
+  static constexpr uint32_t sign_mask = 1u << (E + M);
+  static constexpr uint32_t exp_mask = uint32_t(exp_field_max) << M;
+  static constexpr uint32_t man_mask = (1u << M) - 1u;
+  static constexpr uint32_t mask = sign_mask | exp_mask | man_mask;
+  static constexpr uint32_t max_mag = exp_mask | man_mask;  // largest magnitude
+  static constexpr uint32_t min_mag = 1u << M;              // smallest normal magnitude
+  static constexpr uint32_t one = uint32_t(bias) << M;      // 1.0
+};
+
+using FP24 = Format<7, 16>;
+using FP32 = Format<8, 23>;
+
+namespace detail {
+
+__extension__ typedef unsigned __int128 u128;
+__extension__ typedef __int128 i128;
+
+constexpr int msb(uint64_t v) { return 63 - __builtin_clzll(v); }
+constexpr int msb(u128 v) {
+  const uint64_t hi = uint64_t(v >> 64);
+  return hi ? 64 + msb(hi) : msb(uint64_t(v));
+}
+
+// The significand of a nonzero number with its hidden one (M+1 bits) and its unbiased exponent:
+// value = sig * 2^(exp - M).
+template <class F>
+struct Unpacked {
+  bool sign;
+  int exp;
+  uint32_t sig;
+};
+
+template <class F>
+constexpr Unpacked<F> unpack(uint32_t a) {
+  return {(a & F::sign_mask) != 0, int((a >> F::man_bits) & uint32_t(F::exp_field_max)) - F::bias,
+          (a & F::man_mask) | (1u << F::man_bits)};
+}
+
+}  // namespace detail
+
+template <class F>
+constexpr bool is_zero(uint32_t a) {
+  return (a & F::exp_mask) == 0;
+}
+template <class F>
+constexpr bool sign_of(uint32_t a) {
+  return (a & F::sign_mask) != 0;
+}
+template <class F>
+constexpr uint32_t signed_zero(bool sign) {
+  return sign ? F::sign_mask : 0u;
+}
+
+// The shared rounding step. The exact value is (-1)^sign * (mag + s) * 2^lsb_exp, where s = 0 if
+// !sticky and 0 < s < 1 otherwise. Precondition: mag != 0, and if sticky then mag has at least
+// M+2 significant bits (so the dropped part holds a guard bit above the sticky one).
+template <class F, Rounding R, class U>
+constexpr uint32_t round_pack(bool sign, int lsb_exp, U mag, bool sticky) {
+  constexpr int M = F::man_bits;
+  const int p = detail::msb(mag);
+  int e = lsb_exp + p;
+  const int sh = p - M;
+  uint64_t kept;
+  if (sh > 0) {
+    kept = uint64_t(mag >> sh);
+    if constexpr (R == Rounding::rne) {
+      const U rem = mag & ((U(1) << sh) - 1);
+      const U half = U(1) << (sh - 1);
+      if (rem > half || (rem == half && (sticky || (kept & 1u)))) {
+        ++kept;
+        if (kept >> (M + 1)) {
+          kept >>= 1;
+          ++e;
+        }
+      }
+    }
+  } else {
+    kept = uint64_t(mag) << (-sh);
+  }
+  const int biased = e + F::bias;
+  if (biased < 1) return signed_zero<F>(sign);  // flush: no denormals
+  if (biased > F::exp_field_max) return signed_zero<F>(sign) | F::max_mag;  // saturate
+  return signed_zero<F>(sign) | (uint32_t(biased) << M) | (uint32_t(kept) & F::man_mask);
+}
+
+// ---- sign operations --------------------------------------------------------------------------
+
+template <class F>
+constexpr uint32_t neg(uint32_t a) {
+  return a ^ F::sign_mask;
+}
+template <class F>
+constexpr uint32_t abs(uint32_t a) {
+  return a & ~F::sign_mask;
+}
+
+// ---- comparison ---------------------------------------------------------------------------------
+
+// A key that orders numbers like their values (+0 and -0 and unflushed zeros all map to 0).
+template <class F>
+constexpr int64_t order_key(uint32_t a) {
+  if (is_zero<F>(a)) return 0;
+  const int64_t m = int64_t(a & F::max_mag);
+  return sign_of<F>(a) ? -m : m;
+}
+template <class F>
+constexpr bool lt(uint32_t a, uint32_t b) {
+  return order_key<F>(a) < order_key<F>(b);
+}
+template <class F>
+constexpr bool le(uint32_t a, uint32_t b) {
+  return order_key<F>(a) <= order_key<F>(b);
+}
+template <class F>
+constexpr bool eq(uint32_t a, uint32_t b) {
+  return order_key<F>(a) == order_key<F>(b);
+}
+// Three-way compare: -1, 0, +1.
+template <class F>
+constexpr int cmp(uint32_t a, uint32_t b) {
+  const int64_t ka = order_key<F>(a), kb = order_key<F>(b);
+  return (ka > kb) - (ka < kb);
+}
+// min/max return one of their operands; on equal values, the first.
+template <class F>
+constexpr uint32_t min(uint32_t a, uint32_t b) {
+  return lt<F>(b, a) ? b : a;
+}
+template <class F>
+constexpr uint32_t max(uint32_t a, uint32_t b) {
+  return lt<F>(a, b) ? b : a;
+}
+
+// ---- arithmetic ---------------------------------------------------------------------------------
+
+// Two-input adder: align the smaller operand to the larger with three extra bits (the smaller is
+// jammed into a sticky bit below them), add or subtract, round once.
+template <class F, Rounding R>
+constexpr uint32_t add(uint32_t a, uint32_t b) {
+  constexpr int M = F::man_bits;
+  constexpr int G = 3;  // guard bits: with a jammed operand the result is rounded at >= 2^(ea-M-2)
+  const bool za = is_zero<F>(a), zb = is_zero<F>(b);
+  if (za || zb) {
+    if (za && zb) return signed_zero<F>(sign_of<F>(a) && sign_of<F>(b));
+    return za ? b : a;
+  }
+  if ((a & F::max_mag) < (b & F::max_mag)) {
+    const uint32_t t = a;
+    a = b;
+    b = t;
+  }
+  const auto ua = detail::unpack<F>(a), ub = detail::unpack<F>(b);
+  const int d = ua.exp - ub.exp;
+  const uint64_t ma = uint64_t(ua.sig) << G;
+  uint64_t mb;
+  if (d <= G) {
+    mb = uint64_t(ub.sig) << (G - d);
+  } else if (d <= M + 1 + G) {
+    const int s = d - G;
+    mb = (uint64_t(ub.sig) >> s) | ((ub.sig & ((1u << s) - 1u)) != 0);
+  } else {
+    mb = 1;  // entirely below the window: a sticky bit only
+  }
+  const uint64_t mag = ua.sign == ub.sign ? ma + mb : ma - mb;  // |a| >= |b|, so no borrow
+  if (mag == 0) return 0;  // exact cancellation: +0
+  return round_pack<F, R>(ua.sign, ua.exp - M - G, mag, false);
+}
+
+template <class F, Rounding R>
+constexpr uint32_t sub(uint32_t a, uint32_t b) {
+  return add<F, R>(a, neg<F>(b));
+}
+
+// Three-input adder (RayCore's datapath has them): a + b + c exactly, rounded once.
+//
+// Sort by magnitude (|a| >= |b| >= |c|) and place a's leading bit at position W = 3M+6 of a signed
+// accumulator whose lsb is u = 2^(ea - W). Why this is exact after rounding:
+//  - An exact pair cancellation (x + -x) returns the third operand: no window needed.
+//  - If b's lsb is >= 2u it is exact in the window, and a + b is a multiple of 2u. If c does not
+//    fit, it is jammed (its lost bits ORed into bit 0), which keeps it in the same open interval
+//    (2ku, 2(k+1)u) as its true value. The jam happens only if |c| < 2^(ea-2M-6); then either
+//    ea - eb >= 2 and |sum| > 2^(ea-2), or a + b is a nonzero multiple of 2^(ea-M-1) and
+//    |sum| > 2^(ea-M-2). Either way every rounding boundary near the sum is a multiple of
+//    2^(ea-2M-3), so of 2u, and the jammed sum rounds like the exact one.
+//  - Otherwise |b|, |c| < 2^(ea-2M-5), well below a quarter ulp of a: the rounding depends only on
+//    a and the sign of b + c (which is b's, since |b| > |c| or they are equal with equal signs), so
+//    b + c is replaced by one signed lsb.
+template <class F, Rounding R>
+constexpr uint32_t add3(uint32_t a, uint32_t b, uint32_t c) {
+  constexpr int M = F::man_bits;
+  constexpr int W = 3 * M + 6;
+  using S = typename std::conditional<W + 4 <= 63, int64_t, detail::i128>::type;
+  using U = typename std::conditional<W + 4 <= 63, uint64_t, detail::u128>::type;
+
+  const bool za = is_zero<F>(a), zb = is_zero<F>(b), zc = is_zero<F>(c);
+  if (za + zb + zc >= 2) {
+    if (za && zb && zc) return signed_zero<F>(sign_of<F>(a) && sign_of<F>(b) && sign_of<F>(c));
+    return !za ? a : (!zb ? b : c);
+  }
+  if (za) return add<F, R>(b, c);
+  if (zb) return add<F, R>(a, c);
+  if (zc) return add<F, R>(a, b);
+
+  // Sort by magnitude, descending.
+  auto swap_if_less = [](uint32_t& x, uint32_t& y) {
+    if ((x & F::max_mag) < (y & F::max_mag)) {
+      const uint32_t t = x;
+      x = y;
+      y = t;
+    }
+  };
+  swap_if_less(a, b);
+  swap_if_less(b, c);
+  swap_if_less(a, b);
+
+  // Exact pair cancellations.
+  if (a == neg<F>(b)) return c;
+  if (b == neg<F>(c)) return a;
+  if (a == neg<F>(c)) return b;
+
+  const auto ua = detail::unpack<F>(a), ub = detail::unpack<F>(b), uc = detail::unpack<F>(c);
+  const S ma = S(U(ua.sig) << (W - M));
+  S mb, mc;
+  const int db = ua.exp - ub.exp;
+  if (W - M - db >= 1) {
+    mb = S(U(ub.sig) << (W - M - db));
+    const int sc = W - M - (ua.exp - uc.exp);  // left shift of c's significand
+    if (sc >= 0) {
+      mc = S(U(uc.sig) << sc);
+    } else if (-sc <= M + 1) {
+      const int s = -sc;
+      mc = S((uc.sig >> s) | ((uc.sig & ((1u << s) - 1u)) != 0));
+    } else {
+      mc = 1;
+    }
+    if (uc.sign) mc = -mc;
+  } else {
+    mb = 1;  // b + c, both tiny: one lsb with b's sign
+    mc = 0;
+  }
+  const S sum = (ua.sign ? -ma : ma) + (ub.sign ? -mb : mb) + mc;
+  if (sum == 0) return 0;  // exact zero: +0
+  const bool sign = sum < 0;
+  return round_pack<F, R>(sign, ua.exp - W, U(sign ? -sum : sum), false);
+}
+
+template <class F, Rounding R>
+constexpr uint32_t mul(uint32_t a, uint32_t b) {
+  constexpr int M = F::man_bits;
+  const bool sign = sign_of<F>(a) != sign_of<F>(b);
+  if (is_zero<F>(a) || is_zero<F>(b)) return signed_zero<F>(sign);
+  const auto ua = detail::unpack<F>(a), ub = detail::unpack<F>(b);
+  const uint64_t prod = uint64_t(ua.sig) * uint64_t(ub.sig);  // exact, 2M+2 bits
+  return round_pack<F, R>(sign, ua.exp + ub.exp - 2 * M, prod, false);
+}
+
+// Division: the quotient of the significands to M+3 bits plus a sticky remainder bit, rounded
+// once. x / 0 saturates with the sign of the quotient; 0 / 0 is +0 (there is no NaN).
+template <class F, Rounding R>
+constexpr uint32_t div(uint32_t a, uint32_t b) {
+  constexpr int M = F::man_bits;
+  constexpr int K = M + 3;  // quotient has M+3 or M+4 bits: guard bits for the sticky
+  const bool sign = sign_of<F>(a) != sign_of<F>(b);
+  if (is_zero<F>(b)) return is_zero<F>(a) ? 0u : (signed_zero<F>(sign) | F::max_mag);
+  if (is_zero<F>(a)) return signed_zero<F>(sign);
+  const auto ua = detail::unpack<F>(a), ub = detail::unpack<F>(b);
+  const uint64_t num = uint64_t(ua.sig) << K;
+  const uint64_t q = num / ub.sig, r = num % ub.sig;
+  return round_pack<F, R>(sign, ua.exp - ub.exp - K, q, r != 0);
+}
+
+template <class F, Rounding R>
+constexpr uint32_t rcp(uint32_t a) {
+  return div<F, R>(F::one, a);
+}
+
+// ---- conversions --------------------------------------------------------------------------------
+
+// From an IEEE binary64 given by its bits. Subnormal doubles flush to zero; Inf and NaN saturate
+// with their sign bit (callers that must reject NaN check before converting).
+template <class F, Rounding R>
+constexpr uint32_t from_double_bits(uint64_t d) {
+  const bool sign = (d >> 63) != 0;
+  const int ef = int((d >> 52) & 0x7FF);
+  if (ef == 0) return signed_zero<F>(sign);
+  if (ef == 0x7FF) return signed_zero<F>(sign) | F::max_mag;
+  const uint64_t sig = (d & ((uint64_t(1) << 52) - 1)) | (uint64_t(1) << 52);
+  return round_pack<F, R>(sign, ef - 1023 - 52, sig, false);
+}
+template <class F, Rounding R>
+inline uint32_t from_double(double x) {
+  uint64_t d;
+  std::memcpy(&d, &x, sizeof d);
+  return from_double_bits<F, R>(d);
+}
+template <class F, Rounding R>
+constexpr uint32_t from_float_bits(uint32_t f) {
+  const bool sign = (f >> 31) != 0;
+  const int ef = int((f >> 23) & 0xFF);
+  if (ef == 0) return signed_zero<F>(sign);
+  if (ef == 0xFF) return signed_zero<F>(sign) | F::max_mag;
+  const uint64_t sig = (f & 0x7FFFFFu) | 0x800000u;
+  return round_pack<F, R>(sign, ef - 127 - 23, sig, false);
+}
+template <class F, Rounding R>
+inline uint32_t from_float(float x) {
+  uint32_t f;
+  std::memcpy(&f, &x, sizeof f);
+  return from_float_bits<F, R>(f);
+}
+
+// To binary64: exact for every format here (E <= 11, M <= 31).
+template <class F>
+constexpr uint64_t to_double_bits(uint32_t a) {
+  const uint64_t sign = uint64_t(sign_of<F>(a)) << 63;
+  if (is_zero<F>(a)) return sign;
+  const auto u = detail::unpack<F>(a);
+  return sign | (uint64_t(u.exp + 1023) << 52) | (uint64_t(a & F::man_mask) << (52 - F::man_bits));
+}
+template <class F>
+inline double to_double(uint32_t a) {
+  const uint64_t d = to_double_bits<F>(a);
+  double x;
+  std::memcpy(&x, &d, sizeof x);
+  return x;
+}
+// To binary32 under the policy (exact for FP24). Beyond binary32's range: saturate to +-FLT_MAX
+// (binary32's top exponent field is Inf/NaN, ours is an ordinary binade); below: flush to zero.
+template <class F, Rounding R>
+constexpr uint32_t to_float_bits(uint32_t a) {
+  if (is_zero<F>(a)) return sign_of<F>(a) ? 0x80000000u : 0u;
+  const auto u = detail::unpack<F>(a);
+  const uint32_t r = round_pack<FP32, R>(u.sign, u.exp - F::man_bits, uint64_t(u.sig), false);
+  if ((r & FP32::exp_mask) == FP32::exp_mask) return (r & FP32::sign_mask) | 0x7F7FFFFFu;
+  return r;
+}
+template <class F, Rounding R>
+inline float to_float(uint32_t a) {
+  const uint32_t b = to_float_bits<F, R>(a);
+  float x;
+  std::memcpy(&x, &b, sizeof x);
+  return x;
+}
+
+// ---- neighbours and ulp -------------------------------------------------------------------------
+
+// The next representable number above a (the largest magnitude stays put: it is saturated).
+template <class F>
+constexpr uint32_t next_up(uint32_t a) {
+  if (is_zero<F>(a)) return F::min_mag;
+  const uint32_t m = a & F::max_mag;
+  if (!sign_of<F>(a)) return m == F::max_mag ? a : a + 1u;
+  return m == F::min_mag ? 0u : a - 1u;
+}
+template <class F>
+constexpr uint32_t next_down(uint32_t a) {
+  return neg<F>(next_up<F>(neg<F>(a)));
+}
+// Exponent of one unit in the last place of a: ulp(a) = 2^ulp_exp(a). For zero, the exponent of
+// the smallest normal (the step from zero to the next number).
+template <class F>
+constexpr int ulp_exp(uint32_t a) {
+  if (is_zero<F>(a)) return F::emin;
+  return detail::unpack<F>(a).exp - F::man_bits;
+}
+// ulp(a) as a number of the format; flushes to zero when it is below the smallest normal.
+template <class F>
+constexpr uint32_t ulp(uint32_t a) {
+  if (is_zero<F>(a)) return F::min_mag;
+  const int biased = ulp_exp<F>(a) + F::bias;
+  return biased < 1 ? 0u : uint32_t(biased) << F::man_bits;
+}
+
+// ---- a typed view for call sites that prefer it -------------------------------------------------
+
+// Arith<F, R> bundles the operations for one format and rounding policy, so a datapath can be
+// written once as a template on it: `using A = Arith<FP24, Rounding::rtz>; A::mul(x, y)`.
+template <class F, Rounding R>
+struct Arith {
+  using Fmt = F;
+  static constexpr Rounding rounding = R;
+  static constexpr uint32_t zero = 0, one = F::one;
+  static constexpr uint32_t add(uint32_t a, uint32_t b) { return hls::add<F, R>(a, b); }
+  static constexpr uint32_t sub(uint32_t a, uint32_t b) { return hls::sub<F, R>(a, b); }
+  static constexpr uint32_t add3(uint32_t a, uint32_t b, uint32_t c) {
+    return hls::add3<F, R>(a, b, c);
+  }
+  static constexpr uint32_t mul(uint32_t a, uint32_t b) { return hls::mul<F, R>(a, b); }
+  static constexpr uint32_t div(uint32_t a, uint32_t b) { return hls::div<F, R>(a, b); }
+  static constexpr uint32_t rcp(uint32_t a) { return hls::rcp<F, R>(a); }
+  static constexpr uint32_t neg(uint32_t a) { return hls::neg<F>(a); }
+  static constexpr uint32_t abs(uint32_t a) { return hls::abs<F>(a); }
+  static constexpr bool lt(uint32_t a, uint32_t b) { return hls::lt<F>(a, b); }
+  static constexpr bool le(uint32_t a, uint32_t b) { return hls::le<F>(a, b); }
+  static constexpr bool eq(uint32_t a, uint32_t b) { return hls::eq<F>(a, b); }
+  static constexpr uint32_t min(uint32_t a, uint32_t b) { return hls::min<F>(a, b); }
+  static constexpr uint32_t max(uint32_t a, uint32_t b) { return hls::max<F>(a, b); }
+  static constexpr bool is_zero(uint32_t a) { return hls::is_zero<F>(a); }
+  static constexpr bool sign(uint32_t a) { return hls::sign_of<F>(a); }
+  static uint32_t from_double(double x) { return hls::from_double<F, R>(x); }
+  static double to_double(uint32_t a) { return hls::to_double<F>(a); }
+  static float to_float(uint32_t a) { return hls::to_float<F, R>(a); }
+  static constexpr uint32_t next_up(uint32_t a) { return hls::next_up<F>(a); }
+  static constexpr uint32_t next_down(uint32_t a) { return hls::next_down<F>(a); }
+};
+
+}  // namespace raycore::hls
