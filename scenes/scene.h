@@ -2,6 +2,7 @@
 // (world space, node transforms applied), a pinhole camera and one point light.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -51,5 +52,16 @@ struct Scene {
     return b;
   }
 };
+
+// The direction of the primary ray through the centre of pixel (px, py) of a w x h image, pixel
+// (0, 0) at the top left, normalised, in double precision. The image's aspect ratio (w / h) is used;
+// yfov is the full vertical field of view. Shared by the golden tracer, the cycle model's ray
+// generation and the double-precision reference, so all three trace the same rays.
+inline Vec3 primary_direction(const Camera& cam, int px, int py, int w, int h) {
+  const double t = std::tan(cam.yfov * 0.5);
+  const double sx = (2.0 * (px + 0.5) / w - 1.0) * t * (double(w) / double(h));
+  const double sy = (1.0 - 2.0 * (py + 0.5) / h) * t;
+  return hls::normalize(cam.forward + cam.right * sx + cam.up * sy);
+}
 
 }  // namespace raycore::scenes
