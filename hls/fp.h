@@ -313,6 +313,45 @@ constexpr uint32_t rcp(uint32_t a) {
   return div<F, R>(F::one, a);
 }
 
+// Square root: the exact root of the significand (digit by digit, M+3 or more bits) plus a sticky
+// remainder bit, rounded once. sqrt of a negative number is +0 (there is no NaN); sqrt(-0) = -0.
+template <class F, Rounding R>
+constexpr uint32_t sqrt(uint32_t a) {
+  constexpr int M = F::man_bits;
+  if (is_zero<F>(a)) return a & F::sign_mask;
+  if (sign_of<F>(a)) return 0u;
+  const auto ua = detail::unpack<F>(a);
+  // x = sig << s with (exp - M - s) even and 2M+5 or 2M+6 bits, so the root has M+3 bits.
+  int s = M + 5;
+  if (((ua.exp - M - s) & 1) != 0) ++s;
+  const uint64_t x = uint64_t(ua.sig) << s;
+  uint64_t rem = x, root = 0;
+  uint64_t bit = uint64_t(1) << ((detail::msb(x) & ~1));
+  while (bit != 0) {
+    if (rem >= root + bit) {
+      rem -= root + bit;
+      root = (root >> 1) + bit;
+    } else {
+      root >>= 1;
+    }
+    bit >>= 2;
+  }
+  return round_pack<F, R>(false, (ua.exp - M - s) / 2, root, rem != 0);
+}
+
+// To a signed integer, rounding toward zero; saturates at +-(2^31 - 1).
+template <class F>
+constexpr int32_t to_int_rtz(uint32_t a) {
+  if (is_zero<F>(a)) return 0;
+  const auto u = detail::unpack<F>(a);
+  if (u.exp < 0) return 0;
+  if (u.exp >= 31) return sign_of<F>(a) ? -2147483647 : 2147483647;
+  const int sh = u.exp - F::man_bits;
+  const uint64_t m = sh >= 0 ? uint64_t(u.sig) << sh : uint64_t(u.sig) >> (-sh);
+  const int32_t v = m > 2147483647u ? 2147483647 : int32_t(m);
+  return sign_of<F>(a) ? -v : v;
+}
+
 // ---- conversions --------------------------------------------------------------------------------
 
 // From an IEEE binary64 given by its bits. Subnormal doubles flush to zero; Inf and NaN saturate
@@ -427,6 +466,7 @@ struct Arith {
   static constexpr uint32_t mul(uint32_t a, uint32_t b) { return hls::mul<F, R>(a, b); }
   static constexpr uint32_t div(uint32_t a, uint32_t b) { return hls::div<F, R>(a, b); }
   static constexpr uint32_t rcp(uint32_t a) { return hls::rcp<F, R>(a); }
+  static constexpr uint32_t sqrt(uint32_t a) { return hls::sqrt<F, R>(a); }
   static constexpr uint32_t neg(uint32_t a) { return hls::neg<F>(a); }
   static constexpr uint32_t abs(uint32_t a) { return hls::abs<F>(a); }
   static constexpr bool lt(uint32_t a, uint32_t b) { return hls::lt<F>(a, b); }
