@@ -1,0 +1,170 @@
+// hls/hit.h - the hit unit's datapath: the hit point, the light test, and the shadow ray with the
+// configured spawn strategy.
+#pragma once
+
+#include <cstdint>
+
+#include "hls/fp.h"
+#include "hls/ist.h"
+#include "hls/ray.h"
+
+namespace raycore::hls {
+
+// How a shadow ray leaves its hit point (the issue's --spawn):
+//   none         t_min only (the paper's baseline)
+//   skip_origin  t_min, and the origin triangle is skipped by its id (RayCore's emulator)
+//   ulp_offset   origin moved along the normal by an integer number of ulps of each coordinate
+//                (Waechter & Binder 2019, adapted to the format; fixed offset near zero)
+//   error_bound  origin moved along the normal just past a conservative bound of the hit point's
+//                distance from the plane, derived from the operations and the rounding mode used
+enum class Spawn : uint8_t { none, skip_origin, ulp_offset, error_bound };
+
+struct SpawnParams {
+  Spawn spawn = Spawn::none;
+  int32_t ulps = 0;  // ulp_offset: offset in ulps of the format for a unit normal component
+};
+
+// What the hit unit needs of the winning triangle.
+struct HitTri {
+  uint32_t id;
+  uint32_t k;
+  uint32_t n_u, n_v, n_d;  // plane: x_k + n_u x_u + n_v x_v = n_d
+  uint32_t den;            // n . d of the primary ray (from the ist)
+};
+
+struct ShadowSetup {
+  uint32_t h[3];     // hit point
+  bool front;        // the light is on the side the primary ray came from (else: shadowed, no ray)
+  uint32_t dens;     // n . (direction to the light)
+  Ray ray;           // the shadow ray: direction normalised, tmax = distance to the light
+  uint32_t skip_id;  // triangle id the shadow ray skips (skip_origin), else ~0u
+};
+
+namespace detail {
+
+// The plane normal (1 at k, n_u at u, n_v at v) as a per-axis array.
+inline void plane_normal(const HitTri& tri, uint32_t one, uint32_t n[3]) {
+  n[tri.k] = one;
+  n[axis_u(tri.k)] = tri.n_u;
+  n[axis_v(tri.k)] = tri.n_v;
+}
+
+// Move p by `ulps` units in the last place of p (toward larger magnitude if ulps and p agree in
+// sign), on the bit pattern; stays within the normal range.
+template <class F>
+inline uint32_t add_ulps(uint32_t p, int32_t ulps) {
+  const bool neg = sign_of<F>(p);
+  const int64_t m = int64_t(p & F::max_mag) + ((ulps < 0) != neg ? -int64_t(ulps < 0 ? -ulps : ulps)
+                                                                   : int64_t(ulps < 0 ? -ulps : ulps));
+  if (m < int64_t(F::min_mag)) return 0u;
+  if (m > int64_t(F::max_mag)) return signed_zero<F>(neg) | F::max_mag;
+  return signed_zero<F>(neg) | uint32_t(m);
+}
+
+}  // namespace detail
+
+// The unit roundoff of the rounding policy as a number of the format: 2^-M (rtz), 2^-(M+1) (rne).
+template <class A>
+constexpr uint32_t unit_roundoff() {
+  using F = typename A::Fmt;
+  constexpr int e = (A::rounding == Rounding::rtz ? -F::man_bits : -F::man_bits - 1) + F::bias;
+  return uint32_t(e) << F::man_bits;
+}
+
+template <class A>
+inline ShadowSetup hit_shadow(const Ray& pr, uint32_t t, const HitTri& tri, const uint32_t light[3],
+                              uint32_t tmin, const SpawnParams& sp) {
+  using F = typename A::Fmt;
+  ShadowSetup s{};
+  // Hit point.
+  for (int i = 0; i < 3; ++i) s.h[i] = A::add(pr.o[i], A::mul(t, pr.d[i]));
+  // Direction to the light, normalised; the distance bounds the shadow ray.
+  uint32_t ld[3];
+  for (int i = 0; i < 3; ++i) ld[i] = A::sub(light[i], s.h[i]);
+  const uint32_t len =
+      A::sqrt(A::add3(A::mul(ld[0], ld[0]), A::mul(ld[1], ld[1]), A::mul(ld[2], ld[2])));
+  const uint32_t rl = A::rcp(len);
+  Ray& r = s.ray;
+  for (int i = 0; i < 3; ++i) {
+    r.d[i] = A::mul(ld[i], rl);
+    r.inv[i] = A::rcp(r.d[i]);
+  }
+  r.tmin = tmin;
+  r.tmax = len;
+  s.skip_id = ~0u;
+  const int u = axis_u(tri.k), v = axis_v(tri.k);
+  // Light in front: the shadow direction and the primary ray leave/arrive on opposite sides, i.e.
+  // n . d_shadow and n . d_primary have opposite signs (the same operations as the ist's den, so the
+  // shadow ray's own test sees the same sign).
+  s.dens = A::add3(r.d[tri.k], A::mul(tri.n_u, r.d[u]), A::mul(tri.n_v, r.d[v]));
+  s.front = !A::is_zero(s.dens) && !A::is_zero(tri.den) && A::sign(s.dens) != A::sign(tri.den);
+  for (int i = 0; i < 3; ++i) r.o[i] = s.h[i];
+  if (!s.front) return s;
+
+  uint32_t n[3];
+  detail::plane_normal(tri, A::one, n);
+  const bool side_neg = A::sign(s.dens);  // offset toward the light's side: along sign(dens) * n
+  switch (sp.spawn) {
+    case Spawn::none:
+      break;
+    case Spawn::skip_origin:
+      s.skip_id = tri.id;
+      break;
+    case Spawn::ulp_offset: {
+      // Waechter & Binder: of_i = int(ulps * n_i) ulps of p_i; near zero (|p_i| < 2^-5) a fixed
+      // offset of ulps * n_i * ulp(2^-5) instead.
+      const uint32_t scale = A::from_double(double(sp.ulps));
+      const uint32_t origin = uint32_t(F::bias - 5) << F::man_bits;  // 2^-5
+      const uint32_t fixed = A::mul(scale, ulp<F>(origin));
+      for (int i = 0; i < 3; ++i) {
+        const uint32_t ni = side_neg ? A::neg(n[i]) : n[i];
+        if (A::lt(A::abs(s.h[i]), origin))
+          r.o[i] = A::add(s.h[i], A::mul(fixed, ni));
+        else
+          r.o[i] = detail::add_ulps<F>(s.h[i], to_int_rtz<F>(A::mul(scale, ni)));
+      }
+      break;
+    }
+    case Spawn::error_bound: {
+      // Bound B on |f(h)| + the shadow test's own numerator error, where f(p) = p_k + n_u p_u +
+      // n_v p_v - n_d (|n| >= 1 since n_k = 1):
+      //   primary numerator   5u (|n_d| + |o_k| + |n_u o_u| + |n_v o_v|)
+      //   primary denominator 3u |t| (|d_k| + |n_u d_u| + |n_v d_v|)
+      //   t = num * rcp(den)  2u |t den|
+      //   hit point           2u sum_i |n_i| (|t d_i| + |h_i|)
+      //   shadow numerator    5u (|n_d| + |h_k| + |n_u h_u| + |n_v h_v|)
+      //   moving the origin   u sum_i |n_i| |h_i| (plus the offset itself, covered by the factor)
+      // The origin moves by 2B along n: f changes by 2B |n|^2 >= 2B; the factor 2 also covers the
+      // rounding of this computation itself (about 30 operations, each within 1 + u).
+      const uint32_t uu = unit_roundoff<A>();
+      auto ab = [](uint32_t x) { return A::abs(x); };
+      const uint32_t nu_ou = ab(A::mul(tri.n_u, pr.o[u])), nv_ov = ab(A::mul(tri.n_v, pr.o[v]));
+      const uint32_t e_num = A::add3(A::add(ab(tri.n_d), ab(pr.o[tri.k])), nu_ou, nv_ov);
+      const uint32_t e_den = A::add3(ab(pr.d[tri.k]), ab(A::mul(tri.n_u, pr.d[u])),
+                                     ab(A::mul(tri.n_v, pr.d[v])));
+      const uint32_t at = ab(t);
+      uint32_t e_hit = A::zero, e_move = A::zero;
+      for (int i = 0; i < 3; ++i) {
+        const uint32_t ani = ab(n[i]), ahi = ab(s.h[i]);
+        e_hit = A::add(e_hit, A::mul(ani, A::add(ab(A::mul(t, pr.d[i])), ahi)));
+        e_move = A::add(e_move, A::mul(ani, ahi));
+      }
+      const uint32_t e_snum =
+          A::add3(A::add(ab(tri.n_d), ab(s.h[tri.k])), ab(A::mul(tri.n_u, s.h[u])),
+                  ab(A::mul(tri.n_v, s.h[v])));
+      const uint32_t c5 = A::from_double(5.0), c3 = A::from_double(3.0), c2 = A::from_double(2.0);
+      uint32_t b = A::add3(A::mul(c5, e_num), A::mul(c3, A::mul(at, e_den)),
+                           A::mul(c2, ab(A::mul(t, tri.den))));
+      b = A::add3(b, A::mul(c2, e_hit), A::add(A::mul(c5, e_snum), e_move));
+      const uint32_t delta = A::mul(c2, A::mul(uu, b));
+      for (int i = 0; i < 3; ++i) {
+        const uint32_t step = A::mul(delta, n[i]);
+        r.o[i] = side_neg ? A::sub(s.h[i], step) : A::add(s.h[i], step);
+      }
+      break;
+    }
+  }
+  return s;
+}
+
+}  // namespace raycore::hls

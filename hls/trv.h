@@ -1,0 +1,61 @@
+// hls/trv.h - the traversal unit's datapath: clip a ray to the scene box, and at an inner node
+// compute the split-plane distance and decide which children to visit (near/far order).
+// The control (stack, leaf lists, looping) is the golden tracer's loop or the trv module's.
+#pragma once
+
+#include <cstdint>
+
+#include "hls/fp.h"
+#include "hls/ray.h"
+
+namespace raycore::hls {
+
+// Slab test against the scene box; on success (tnear <= tfar) narrows [tnear, tfar].
+template <class A>
+inline bool trv_clip_box(const uint32_t lo[3], const uint32_t hi[3], const Ray& r, uint32_t& tnear,
+                         uint32_t& tfar) {
+  uint32_t t0 = r.tmin, t1 = r.tmax;
+  for (int a = 0; a < 3; ++a) {
+    uint32_t tl = A::mul(A::sub(lo[a], r.o[a]), r.inv[a]);
+    uint32_t th = A::mul(A::sub(hi[a], r.o[a]), r.inv[a]);
+    if (A::lt(th, tl)) {
+      const uint32_t x = tl;
+      tl = th;
+      th = x;
+    }
+    t0 = A::max(t0, tl);
+    t1 = A::min(t1, th);
+  }
+  tnear = t0;
+  tfar = t1;
+  return A::le(t0, t1);
+}
+
+enum class Visit : uint8_t { first, second, both };
+
+struct SplitStep {
+  Visit visit;
+  bool below_first;  // the first child to visit is the left (below the plane) one
+  uint32_t tsplit;   // distance to the split plane along the ray
+};
+
+// pbrt's rule: the near child is the one on the origin's side (ties: by direction); visit only it
+// if the plane is beyond tfar or behind the origin, only the far child if the plane is before
+// tnear, else both (far child pushed with [tsplit, tfar]).
+template <class A>
+inline SplitStep trv_split(uint32_t split, uint32_t axis, const Ray& r, uint32_t tnear,
+                           uint32_t tfar) {
+  const uint32_t ts = A::mul(A::sub(split, r.o[axis]), r.inv[axis]);
+  const bool below = A::lt(r.o[axis], split) ||
+                     (A::eq(r.o[axis], split) && (A::sign(r.d[axis]) || A::is_zero(r.d[axis])));
+  Visit v;
+  if (A::lt(tfar, ts) || !A::lt(A::zero, ts))
+    v = Visit::first;
+  else if (A::lt(ts, tnear))
+    v = Visit::second;
+  else
+    v = Visit::both;
+  return {v, below, ts};
+}
+
+}  // namespace raycore::hls
