@@ -1,0 +1,290 @@
+// sim/golden/golden.cpp - the golden tracer (see golden.h).
+#include "sim/golden/golden.h"
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <thread>
+#include <vector>
+
+#include "hls/ist.h"
+#include "hls/rgu.h"
+#include "hls/trv.h"
+#include "hls/vtu.h"
+
+namespace raycore::sim {
+namespace {
+
+constexpr int kStackDepth = 64;  // pbrt's fixed kd-tree stack; the image's depth is checked
+
+struct NodeD {
+  uint32_t split_or_count, index, axis;
+};
+
+template <class A>
+class Tracer {
+  using F = typename A::Fmt;
+
+ public:
+  Tracer(const hls::Image& img) {
+    const auto h = img.header();
+    nodes_.resize(h.node_count);
+    for (uint32_t i = 0; i < h.node_count; ++i) {
+      const hls::Node n = hls::decode_node(img.node(i));
+      nodes_[i] = {n.split_or_count, n.index, n.axis};
+    }
+    lists_.resize(h.list_count);
+    for (uint32_t i = 0; i < h.list_count; ++i) lists_[i] = img.list(i);
+    tris_.resize(h.tri_count);
+    for (uint32_t i = 0; i < h.tri_count; ++i) tris_[i] = hls::decode_tri<F>(img.tri(i));
+    for (int a = 0; a < 3; ++a) {
+      lo_[a] = h.box[a];
+      hi_[a] = h.box[3 + a];
+    }
+    if (depth() >= kStackDepth)
+      throw std::runtime_error("kd-tree deeper than the traversal stack (" +
+                               std::to_string(kStackDepth) + ")");
+  }
+
+  struct Hit {
+    bool found = false;
+    uint32_t t = 0;
+    uint32_t tri = 0;  // index into the triangle array
+    uint32_t den = 0;
+  };
+
+  // Closest hit in (r.tmin, r.tmax), skipping triangle id skip_id.
+  Hit trace(const hls::Ray& r, uint32_t skip_id, TraceStats& st) const {
+    Hit best;
+    uint32_t tnear, tfar;
+    if (nodes_.empty() || !hls::trv_clip_box<A>(lo_, hi_, r, tnear, tfar)) return best;
+    struct Entry {
+      uint32_t node, tnear, tfar;
+    };
+    std::array<Entry, kStackDepth> stack;
+    int sp = 0;
+    uint32_t tmax = r.tmax;
+    uint32_t node = 0;
+    for (;;) {
+      const NodeD& nd = nodes_[node];
+      if (nd.axis != 3) {
+        ++st.inner_steps;
+        const hls::SplitStep s = hls::trv_split<A>(nd.split_or_count, nd.axis, r, tnear, tfar);
+        const uint32_t first = s.below_first ? node + 1 : nd.index;
+        const uint32_t second = s.below_first ? nd.index : node + 1;
+        if (s.visit == hls::Visit::first) {
+          node = first;
+        } else if (s.visit == hls::Visit::second) {
+          node = second;
+        } else {
+          stack[size_t(sp++)] = {second, s.tsplit, tfar};
+          node = first;
+          tfar = s.tsplit;
+        }
+        continue;
+      }
+      ++st.leaf_visits;
+      for (uint32_t i = 0; i < nd.split_or_count; ++i) {
+        const uint32_t ti = lists_[nd.index + i];
+        const auto& tri = tris_[ti];
+        if (tri.id == skip_id) continue;
+        ++st.tri_tests;
+        const hls::IstOut o = hls::ist_wald<A>(tri.k, tri.c, r.o, r.d, r.tmin, tmax);
+        if (o.exit == hls::IstExit::hit) {
+          best = {true, o.t, ti, o.den};
+          tmax = o.t;
+        }
+      }
+      if (best.found && !A::lt(tfar, best.t)) break;  // the hit lies in this cell
+      for (;;) {
+        if (sp == 0) return best;
+        const Entry e = stack[size_t(--sp)];
+        if (best.found && A::lt(best.t, e.tnear)) continue;  // beyond the hit: skip
+        node = e.node;
+        tnear = e.tnear;
+        tfar = e.tfar;
+        break;
+      }
+    }
+    return best;
+  }
+
+  const hls::WaldTri<F>& tri(uint32_t i) const { return tris_[i]; }
+
+ private:
+  int depth() const {
+    int maxd = 0;
+    std::vector<std::pair<uint32_t, int>> todo{{0u, 0}};
+    if (nodes_.empty()) return 0;
+    while (!todo.empty()) {
+      const auto [n, d] = todo.back();
+      todo.pop_back();
+      maxd = std::max(maxd, d);
+      if (nodes_[n].axis != 3) {
+        todo.push_back({n + 1, d + 1});
+        todo.push_back({nodes_[n].index, d + 1});
+      }
+    }
+    return maxd;
+  }
+
+  std::vector<NodeD> nodes_;
+  std::vector<uint32_t> lists_;
+  std::vector<hls::WaldTri<F>> tris_;
+  uint32_t lo_[3], hi_[3];
+};
+
+template <class A>
+Frame trace_t(const hls::Image& image_in, const scenes::Camera& cam, const scenes::Light& light,
+              const TraceConfig& cfg, TraceStats* stats_out) {
+  using F = typename A::Fmt;
+  constexpr hls::Rounding R = A::rounding;
+  const auto t0 = std::chrono::steady_clock::now();
+  uint32_t c[3];
+  for (int i = 0; i < 3; ++i) c[i] = A::from_double(cam.position[i]);
+  uint32_t l[3];
+  for (int i = 0; i < 3; ++i) l[i] = A::from_double(light.position[i]);
+  uint32_t origin[3] = {c[0], c[1], c[2]};
+  double offset[3] = {0, 0, 0};  // added back to hit points for world-space output
+  const hls::Image* img = &image_in;
+  hls::Image moved;
+  if (cfg.vtu) {
+    const hls::Vtu<F, R> vtu{{c[0], c[1], c[2]}};
+    moved = hls::transform_image(image_in, vtu);
+    img = &moved;
+    vtu.point(l);
+    for (int i = 0; i < 3; ++i) {
+      origin[i] = A::zero;
+      offset[i] = A::to_double(c[i]);
+    }
+  }
+  const Tracer<A> tracer(*img);
+  const uint32_t tmin = A::from_double(cfg.tmin);
+  hls::SpawnParams sp = cfg.spawn;
+  if (sp.spawn == hls::Spawn::ulp_offset && sp.ulps == 0) sp.ulps = default_spawn_ulps(cfg.format);
+
+  Frame f;
+  f.width = cfg.width;
+  f.height = cfg.height;
+  f.px.resize(size_t(cfg.width) * size_t(cfg.height));
+  int nthreads = cfg.threads > 0 ? cfg.threads : int(std::max(1u, std::thread::hardware_concurrency()));
+  nthreads = std::min(nthreads, cfg.height);
+  std::vector<TraceStats> st(size_t(nthreads));
+
+  auto work = [&](int tid) {
+    TraceStats& s = st[size_t(tid)];
+    for (int y = tid; y < cfg.height; y += nthreads) {
+      for (int x = 0; x < cfg.width; ++x) {
+        const hls::Vec3 dv = scenes::primary_direction(cam, x, y, cfg.width, cfg.height);
+        const double dir[3] = {dv.x, dv.y, dv.z};
+        const hls::Ray pr = hls::rgu_primary<A>(origin, dir, tmin);
+        ++s.primary_rays;
+        PixelResult& p = f.px[size_t(y) * size_t(cfg.width) + size_t(x)];
+        const auto h = tracer.trace(pr, ~0u, s);
+        if (!h.found) {
+          p.shade = shade_pixel(false, false, 0);
+          continue;
+        }
+        ++s.primary_hits;
+        const auto& tri = tracer.tri(h.tri);
+        p.tri = int32_t(tri.id);
+        p.t_bits = h.t;
+        p.t = A::to_double(h.t);
+        const hls::HitTri ht{tri.id, tri.k, tri.c[hls::kNU], tri.c[hls::kNV], tri.c[hls::kND], h.den};
+        const hls::ShadowSetup ss = hls::hit_shadow<A>(pr, h.t, ht, l, tmin, sp);
+        p.hit = {A::to_double(ss.h[0]) + offset[0], A::to_double(ss.h[1]) + offset[1],
+                 A::to_double(ss.h[2]) + offset[2]};
+        double cosl = 0;
+        if (ss.front) {
+          ++s.shadow_rays;
+          p.shadow_ray = true;
+          const auto sh = tracer.trace(ss.ray, ss.skip_id, s);
+          p.lit = !sh.found;
+          p.shadow_tri = sh.found ? int32_t(tracer.tri(sh.tri).id) : -1;
+          const double nu = A::to_double(tri.c[hls::kNU]), nv = A::to_double(tri.c[hls::kNV]);
+          cosl = std::fabs(A::to_double(ss.dens)) / std::sqrt(1 + nu * nu + nv * nv);
+        }
+        p.shade = shade_pixel(true, p.lit, cosl);
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int t = 1; t < nthreads; ++t) pool.emplace_back(work, t);
+  work(0);
+  for (auto& th : pool) th.join();
+  if (stats_out) {
+    TraceStats tot;
+    for (const auto& s : st) {
+      tot.primary_rays += s.primary_rays;
+      tot.shadow_rays += s.shadow_rays;
+      tot.inner_steps += s.inner_steps;
+      tot.leaf_visits += s.leaf_visits;
+      tot.tri_tests += s.tri_tests;
+      tot.primary_hits += s.primary_hits;
+    }
+    tot.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    *stats_out = tot;
+  }
+  return f;
+}
+
+}  // namespace
+
+void camera_in_format(const TraceConfig& cfg, const hls::Vec3& pos, uint32_t out[3]) {
+  for (int i = 0; i < 3; ++i) {
+    if (cfg.format == hls::FormatId::fp24)
+      out[i] = cfg.rounding == hls::Rounding::rtz ? hls::from_double<hls::FP24, hls::Rounding::rtz>(pos[i])
+                                                  : hls::from_double<hls::FP24, hls::Rounding::rne>(pos[i]);
+    else
+      out[i] = cfg.rounding == hls::Rounding::rtz ? hls::from_double<hls::FP32, hls::Rounding::rtz>(pos[i])
+                                                  : hls::from_double<hls::FP32, hls::Rounding::rne>(pos[i]);
+  }
+}
+
+int32_t default_spawn_ulps(hls::FormatId f) {
+  // 256 FP32 ulps = 256 * 2^-23 relative = 2 * 2^-16: two FP24 ulps.
+  return f == hls::FormatId::fp24 ? 2 : 256;
+}
+
+uint8_t shade_pixel(bool hit, bool lit, double cos_light) {
+  if (!hit) return 0;
+  const double v = 0.15 + (lit ? 0.85 * std::clamp(cos_light, 0.0, 1.0) : 0.0);
+  return uint8_t(std::lround(v * 255.0));
+}
+
+std::string to_string(hls::Spawn s) {
+  switch (s) {
+    case hls::Spawn::none: return "none";
+    case hls::Spawn::skip_origin: return "skip-origin";
+    case hls::Spawn::ulp_offset: return "ulp-offset";
+    case hls::Spawn::error_bound: return "error-bound";
+  }
+  return "?";
+}
+
+hls::Spawn spawn_from_string(const std::string& s) {
+  if (s == "none") return hls::Spawn::none;
+  if (s == "skip-origin") return hls::Spawn::skip_origin;
+  if (s == "ulp-offset") return hls::Spawn::ulp_offset;
+  if (s == "error-bound") return hls::Spawn::error_bound;
+  throw std::invalid_argument("unknown spawn strategy '" + s +
+                              "' (none, skip-origin, ulp-offset, error-bound)");
+}
+
+Frame trace_golden(const hls::Image& image, const scenes::Camera& cam, const scenes::Light& light,
+                   const TraceConfig& cfg, TraceStats* stats) {
+  using R = hls::Rounding;
+  if (cfg.width <= 0 || cfg.height <= 0) throw std::invalid_argument("image size must be positive");
+  if (image.format() != cfg.format || image.rounding() != cfg.rounding)
+    throw std::invalid_argument("memory image format/rounding differ from the trace configuration");
+  if (cfg.format == hls::FormatId::fp24) {
+    if (cfg.rounding == R::rtz) return trace_t<hls::Arith<hls::FP24, R::rtz>>(image, cam, light, cfg, stats);
+    return trace_t<hls::Arith<hls::FP24, R::rne>>(image, cam, light, cfg, stats);
+  }
+  if (cfg.rounding == R::rtz) return trace_t<hls::Arith<hls::FP32, R::rtz>>(image, cam, light, cfg, stats);
+  return trace_t<hls::Arith<hls::FP32, R::rne>>(image, cam, light, cfg, stats);
+}
+
+}  // namespace raycore::sim

@@ -1,0 +1,54 @@
+// sim/golden/golden.h - the golden tracer: the untimed reference for the hardware, bit for bit.
+//
+// It reads only the memory image plus camera and light, and computes only through the hls/ unit
+// datapaths (rgu, trv, ist, hit, vtu), so the cycle model (systemc/) must produce the same frame.
+#pragma once
+
+#include <cstdint>
+#include <string>
+
+#include "hls/fp.h"
+#include "hls/hit.h"
+#include "hls/image.h"
+#include "scenes/scene.h"
+#include "sim/frame.h"
+
+namespace raycore::sim {
+
+struct TraceConfig {
+  hls::FormatId format = hls::FormatId::fp24;
+  hls::Rounding rounding = hls::Rounding::rtz;
+  bool vtu = false;
+  hls::SpawnParams spawn;     // strategy and (ulp_offset) its ulps
+  double tmin = 1.0 / 4096;   // 2^-12, RayCore's
+  int width = 800, height = 480;
+  int threads = 0;            // 0: all hardware threads
+};
+
+// Work done, for comparison with the cycle model and for the report.
+struct TraceStats {
+  uint64_t primary_rays = 0, shadow_rays = 0;
+  uint64_t inner_steps = 0;  // inner-node traversal steps
+  uint64_t leaf_visits = 0;
+  uint64_t tri_tests = 0;
+  uint64_t primary_hits = 0;
+  double seconds = 0;
+};
+
+// The camera position as the hardware holds it (the VTU's register), in the run's format.
+void camera_in_format(const TraceConfig& cfg, const hls::Vec3& pos, uint32_t out[3]);
+
+// Default ulps for ulp_offset when SpawnParams::ulps is 0: Waechter & Binder's 256 FP32 ulps,
+// scaled to the format's precision (2 ulps for FP24).
+int32_t default_spawn_ulps(hls::FormatId f);
+
+Frame trace_golden(const hls::Image& image, const scenes::Camera& cam, const scenes::Light& light,
+                   const TraceConfig& cfg, TraceStats* stats = nullptr);
+
+// Grey level of a pixel: ambient + Lambert for a lit surface; shared with the cycle model.
+uint8_t shade_pixel(bool hit, bool lit, double cos_light);
+
+std::string to_string(hls::Spawn s);
+hls::Spawn spawn_from_string(const std::string& s);  // throws std::invalid_argument
+
+}  // namespace raycore::sim
