@@ -1,0 +1,31 @@
+// sim/output.cpp - PNG (stb_image_write) and JSON output.
+#include "sim/output.h"
+
+#include <fstream>
+#include <stdexcept>
+#include <vector>
+
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wconversion"
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#include <stb/stb_image_write.h>
+#pragma GCC diagnostic pop
+
+namespace raycore::sim {
+
+void write_png(const Frame& f, const std::string& path) {
+  std::vector<unsigned char> g(f.px.size());
+  for (size_t i = 0; i < f.px.size(); ++i) g[i] = f.px[i].shade;
+  if (!stbi_write_png(path.c_str(), f.width, f.height, 1, g.data(), f.width))
+    throw std::runtime_error("cannot write PNG '" + path + "'");
+}
+
+void write_json(const nlohmann::json& j, const std::string& path) {
+  std::ofstream os(path);
+  if (!os) throw std::runtime_error("cannot write '" + path + "'");
+  os << j.dump(2) << "\n";
+  if (!os) throw std::runtime_error("error writing '" + path + "'");
+}
+
+}  // namespace raycore::sim
