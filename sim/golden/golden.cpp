@@ -39,10 +39,7 @@ class Tracer {
     for (uint32_t i = 0; i < h.list_count; ++i) lists_[i] = img.list(i);
     tris_.resize(h.tri_count);
     for (uint32_t i = 0; i < h.tri_count; ++i) tris_[i] = hls::decode_tri<F>(img.tri(i));
-    for (int a = 0; a < 3; ++a) {
-      lo_[a] = h.box[a];
-      hi_[a] = h.box[3 + a];
-    }
+    img.box(lo_, hi_);
     if (depth() >= kStackDepth)
       throw std::runtime_error("kd-tree deeper than the traversal stack (" +
                                std::to_string(kStackDepth) + ")");
@@ -171,7 +168,7 @@ Frame trace_t(const hls::Image& image_in, const scenes::Camera& cam, const scene
   f.px.resize(size_t(cfg.width) * size_t(cfg.height));
   int nthreads = cfg.threads > 0 ? cfg.threads : int(std::max(1u, std::thread::hardware_concurrency()));
   nthreads = std::min(nthreads, cfg.height);
-  std::vector<TraceStats> st(size_t(nthreads));
+  std::vector<TraceStats> st(static_cast<size_t>(nthreads));
 
   auto work = [&](int tid) {
     TraceStats& s = st[size_t(tid)];
@@ -249,9 +246,10 @@ int32_t default_spawn_ulps(hls::FormatId f) {
 }
 
 uint8_t shade_pixel(bool hit, bool lit, double cos_light) {
+  // The reference's shading (sim/reference/reference.h), so images compare by eye.
   if (!hit) return 0;
-  const double v = 0.15 + (lit ? 0.85 * std::clamp(cos_light, 0.0, 1.0) : 0.0);
-  return uint8_t(std::lround(v * 255.0));
+  if (!lit) return 40;
+  return uint8_t(40 + std::lround(215.0 * std::clamp(cos_light, 0.0, 1.0)));
 }
 
 std::string to_string(hls::Spawn s) {

@@ -1,0 +1,91 @@
+// `raycore render`: the golden tracer on one frame, with the double-precision reference and the
+// error metrics; writes a PNG and the JSON report of design.md.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+
+#include "sim/cli.h"
+#include "sim/output.h"
+#include "sim/reference/metrics.h"
+#include "sim/reference/reference.h"
+#include "sim/run.h"
+
+namespace raycore::cli {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+void run_render(const sim::RunOptions& o) {
+  const sim::TraceConfig cfg = sim::trace_config(o);
+  sim::Prepared p = sim::prepare(o, cfg);
+  const std::string tag = p.scene.name + "-" + sim::config_tag(cfg);
+  const std::string png = o.png.empty() ? o.out_dir + "/" + tag + ".png" : o.png;
+  const std::string rep = o.report.empty() ? o.out_dir + "/" + tag + ".json" : o.report;
+
+  sim::TraceStats st;
+  const sim::Frame f = sim::trace_golden(p.image, p.scene.camera, p.scene.light, cfg, &st);
+
+  nlohmann::json j;
+  j["tool"] = "raycore render";
+  j["tracer"] = "golden";
+  j["scene"] = sim::scene_json(p.scene);
+  j["config"] = sim::config_json(cfg);
+  j["image"] = sim::tree_json(p.tree, p.image);
+  j["rays"] = {{"primary", st.primary_rays}, {"shadow", st.shadow_rays}};
+  j["work"] = {{"inner_steps", st.inner_steps},
+               {"leaf_visits", st.leaf_visits},
+               {"tri_tests", st.tri_tests},
+               {"primary_hits", st.primary_hits}};
+  const double rays = double(st.primary_rays + st.shadow_rays);
+  j["sim"] = {{"wall_seconds", st.seconds},
+              {"rays_per_second", st.seconds > 0 ? rays / st.seconds : 0.0},
+              {"threads", cfg.threads}};
+  reference::ErrorMetrics m;
+  const bool have_ref = o.reference && !p.scene.tris.empty();
+  if (have_ref) {
+    const auto t0 = Clock::now();
+    const sim::Frame ref = reference::render(p.scene, cfg.width, cfg.height, cfg.threads);
+    const double rs = std::chrono::duration<double>(Clock::now() - t0).count();
+    m = reference::compute_errors(f, ref, p.scene.tris);
+    j["errors"] = reference::to_json(m);
+    j["reference"] = {{"wall_seconds", rs}};
+  }
+  std::filesystem::create_directories(std::filesystem::path(png).parent_path().empty()
+                                          ? std::filesystem::path(".")
+                                          : std::filesystem::path(png).parent_path());
+  std::filesystem::create_directories(std::filesystem::path(rep).parent_path().empty()
+                                          ? std::filesystem::path(".")
+                                          : std::filesystem::path(rep).parent_path());
+  sim::write_png(f, png);
+  sim::write_json(j, rep);
+  if (o.quiet) return;
+  std::printf("scene     %s: %zu triangles, image %zu bytes (%llu nodes, depth %d), built in %.2f s\n",
+              p.scene.name.c_str(), p.scene.tris.size(), p.image.bytes.size(),
+              (unsigned long long)p.tree.nodes, p.tree.max_depth, p.tree.build_seconds);
+  std::printf("config    %s, t_min %g, %dx%d\n", sim::config_tag(cfg).c_str(), cfg.tmin, cfg.width,
+              cfg.height);
+  std::printf("golden    %llu primary + %llu shadow rays in %.2f s (%.0f rays/s)\n",
+              (unsigned long long)st.primary_rays, (unsigned long long)st.shadow_rays, st.seconds,
+              st.seconds > 0 ? rays / st.seconds : 0.0);
+  if (have_ref)
+    std::printf("errors    self-intersections %llu (%.3f%%), shadow errors %llu (false shadow %llu, "
+                "light leak %llu), primary errors %llu\n",
+                (unsigned long long)m.self_intersections, m.self_intersection_pct,
+                (unsigned long long)m.shadow_errors, (unsigned long long)m.false_shadow,
+                (unsigned long long)m.light_leak, (unsigned long long)m.primary_errors);
+  else
+    std::printf("errors    (no reference: %s)\n", o.reference ? "no scene triangles" : "--no-reference");
+  std::printf("wrote     %s\n          %s\n", png.c_str(), rep.c_str());
+}
+
+void register_render(CLI::App& app) {
+  auto o = std::make_shared<sim::RunOptions>();
+  auto* c = app.add_subcommand("render", "Golden tracer: one frame, PNG + JSON report with error metrics");
+  sim::add_run_options(*c, *o);
+  c->callback([o] { run_render(*o); });
+}
+
+}  // namespace
+RAYCORE_COMMAND(register_render);
+}  // namespace raycore::cli

@@ -1,0 +1,156 @@
+// sim/run.cpp - shared options and preparation of frame commands (see run.h).
+#include "sim/run.h"
+
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+
+#include <CLI/CLI.hpp>
+
+#include "scenes/gltf.h"
+#include "sim/cli.h"
+
+namespace raycore::sim {
+
+void add_run_options(CLI::App& c, RunOptions& o) {
+  c.add_option("scene", o.scene,
+               "scene: a built-in generator name (corridor, far, grazing, slivers, coplanar, "
+               "origin-far-camera) or a .gltf/.glb file");
+  scenes::add_scene_options(c, o.overrides);
+  c.add_option("--format", o.format, "number format: fp24 or fp32")
+      ->check(CLI::IsMember({"fp24", "fp32"}))
+      ->capture_default_str();
+  c.add_option("--rounding", o.rounding, "rounding: rtz (RayCore's) or rne")
+      ->check(CLI::IsMember({"rtz", "rne"}))
+      ->capture_default_str();
+  c.add_option("--vtu", o.vtu, "viewport transfer unit: on or off")
+      ->check(CLI::IsMember({"on", "off"}))
+      ->capture_default_str();
+  c.add_option("--spawn", o.spawn, "shadow-ray spawn: none, skip-origin, ulp-offset, error-bound")
+      ->check(CLI::IsMember({"none", "skip-origin", "ulp-offset", "error-bound"}))
+      ->capture_default_str();
+  c.add_option("--spawn-ulps", o.spawn_ulps,
+               "ulp-offset: ulps for a unit normal component (0: 2 for fp24, 256 for fp32)")
+      ->check(CLI::Range(0, 1 << 20));
+  c.add_option("--tmin", o.tmin, "ray t_min (default 2^-12, RayCore's)")
+      ->check(CLI::Range(0.0, 1e6));
+  c.add_option("--width", o.width, "image width")->check(CLI::Range(1, 16384))->capture_default_str();
+  c.add_option("--height", o.height, "image height")->check(CLI::Range(1, 16384))->capture_default_str();
+  c.add_option("--threads", o.threads, "host threads (0: all cores)")->check(CLI::Range(0, 1024));
+  c.add_option("--leaf-size", o.leaf_size, "kd-tree leaf size")->check(CLI::Range(1, 255))
+      ->capture_default_str();
+  c.add_option("--image", o.image_in, "run from a dumped memory image (camera/light from the scene or options)");
+  c.add_option("--dump-image", o.dump_image, "write the memory image to this file");
+  c.add_option("--out-dir", o.out_dir, "directory for the image and report")->capture_default_str();
+  c.add_option("--png", o.png, "PNG path (default <out-dir>/<scene>-<config>.png)");
+  c.add_option("--report", o.report, "JSON report path (default <out-dir>/<scene>-<config>.json)");
+  c.add_flag("!--no-reference", o.reference, "skip the double-precision reference and error metrics");
+  c.add_flag("-q,--quiet", o.quiet, "print nothing but errors");
+}
+
+TraceConfig trace_config(const RunOptions& o) {
+  TraceConfig c;
+  c.format = hls::format_from_string(o.format);
+  c.rounding = hls::rounding_from_string(o.rounding);
+  c.vtu = o.vtu == "on";
+  c.spawn.spawn = spawn_from_string(o.spawn);
+  c.spawn.ulps = o.spawn_ulps > 0 ? o.spawn_ulps : default_spawn_ulps(c.format);
+  if (!std::isfinite(o.tmin) || o.tmin < 0) throw cli::UserError("--tmin must be a finite number >= 0");
+  c.tmin = o.tmin;
+  c.width = o.width;
+  c.height = o.height;
+  c.threads = o.threads;
+  return c;
+}
+
+double max_coordinate(hls::FormatId f) {
+  const int emax = f == hls::FormatId::fp24 ? hls::FP24::emax : hls::FP32::emax;
+  return std::ldexp(1.0, emax / 2 - 2);
+}
+
+Prepared prepare(const RunOptions& o, const TraceConfig& cfg) {
+  Prepared p;
+  if (o.scene.empty()) {
+    if (o.image_in.empty()) throw cli::UserError("no scene given (a generator name or a .gltf/.glb file)");
+    // From a dumped image alone: camera and light come from the options.
+    p.scene.name = "image";
+    p.scene.source = o.image_in;
+    scenes::apply_overrides(p.scene, o.overrides);
+  } else {
+    p.scene = scenes::load_scene(o.scene, o.overrides);
+  }
+  scenes::require_camera_and_light(p.scene);
+  scenes::check_range(p.scene, max_coordinate(cfg.format), hls::format_name(cfg.format));
+  if (!o.image_in.empty()) {
+    p.image = hls::Image::load(o.image_in);
+    if (p.image.format() != cfg.format || p.image.rounding() != cfg.rounding)
+      throw cli::UserError("image '" + o.image_in + "' is " + hls::format_name(p.image.format()) +
+                           "/" + hls::rounding_name(p.image.rounding()) + ", the run asks for " +
+                           hls::format_name(cfg.format) + "/" + hls::rounding_name(cfg.rounding));
+    if (p.image.vtu_applied())
+      throw cli::UserError("image '" + o.image_in + "' is already VTU-translated; dump images with the VTU off");
+    p.tree = hls::analyze_image(p.image);
+    if (!p.scene.tris.empty() && p.scene.tris.size() != p.image.tri_count())
+      throw cli::UserError("image '" + o.image_in + "' has " + std::to_string(p.image.tri_count()) +
+                           " triangles, the scene " + std::to_string(p.scene.tris.size()));
+  } else {
+    hls::BuildOptions bo;
+    bo.leaf_size = o.leaf_size;
+    p.image = hls::build_image(p.scene.tris, cfg.format, cfg.rounding, bo, &p.tree);
+    p.built = true;
+  }
+  if (!o.dump_image.empty()) p.image.save(o.dump_image);
+  return p;
+}
+
+std::string config_tag(const TraceConfig& c) {
+  return std::string(hls::format_name(c.format)) + "-" + hls::rounding_name(c.rounding) +
+         (c.vtu ? "-vtu-" : "-novtu-") + to_string(c.spawn.spawn);
+}
+
+static nlohmann::json vec(const hls::Vec3& v) { return {v.x, v.y, v.z}; }
+
+nlohmann::json scene_json(const scenes::Scene& s) {
+  const hls::Box b = s.bounds();
+  nlohmann::json j = {{"name", s.name},
+                      {"source", s.source},
+                      {"triangles", s.tris.size()},
+                      {"degenerate", s.stats.degenerate_triangles},
+                      {"skipped_primitives", s.stats.skipped_primitives},
+                      {"camera", {{"position", vec(s.camera.position)},
+                                  {"forward", vec(s.camera.forward)},
+                                  {"yfov_deg", s.camera.yfov * 180.0 / M_PI}}},
+                      {"light", vec(s.light.position)}};
+  if (!s.tris.empty()) j["bounds"] = {vec(b.lo), vec(b.hi)};
+  return j;
+}
+
+nlohmann::json config_json(const TraceConfig& c) {
+  nlohmann::json j = {{"format", hls::format_name(c.format)},
+                      {"rounding", hls::rounding_name(c.rounding)},
+                      {"vtu", c.vtu},
+                      {"spawn", to_string(c.spawn.spawn)},
+                      {"t_min", c.tmin},
+                      {"width", c.width},
+                      {"height", c.height}};
+  if (c.spawn.spawn == hls::Spawn::ulp_offset) j["spawn_ulps"] = c.spawn.ulps;
+  return j;
+}
+
+nlohmann::json tree_json(const hls::TreeStats& t, const hls::Image& img) {
+  return {{"image_bytes", img.bytes.size()},
+          {"nodes", t.nodes},
+          {"inner", t.inner},
+          {"leaves", t.leaves},
+          {"empty_leaves", t.empty_leaves},
+          {"max_depth", t.max_depth},
+          {"refs", t.refs},
+          {"refs_per_tri", t.refs_per_tri},
+          {"sah_cost", t.sah_cost},
+          {"build_seconds", t.build_seconds},
+          {"degenerate", t.degenerate},
+          {"saturated_constants", t.saturated_constants},
+          {"flushed_constants", t.flushed_constants}};
+}
+
+}  // namespace raycore::sim

@@ -1,0 +1,65 @@
+// sim/run.h - what every frame command (render, simulate, compare, table3, sweep) shares: the
+// scene and configuration options, loading/building the memory image, and the report's parts.
+#pragma once
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "hls/image.h"
+#include "hls/kdtree.h"
+#include "scenes/options.h"
+#include "scenes/scene.h"
+#include "sim/golden/golden.h"
+
+namespace CLI {
+class App;
+}
+
+namespace raycore::sim {
+
+struct RunOptions {
+  std::string scene;  // generator name or .gltf/.glb path
+  scenes::SceneOverrides overrides;
+  std::string format = "fp24", rounding = "rtz", vtu = "off", spawn = "none";
+  int spawn_ulps = 0;  // 0: default_spawn_ulps(format)
+  double tmin = 1.0 / 4096;
+  int width = 800, height = 480, threads = 0;
+  int leaf_size = 8;
+  std::string image_in;    // --image: run from a dumped memory image
+  std::string dump_image;  // --dump-image
+  std::string out_dir = "out";
+  std::string png, report;  // default: <out_dir>/<scene>-<config>.png/.json
+  bool reference = true;
+  bool quiet = false;
+};
+
+// Adds the scene, format, rounding, VTU, spawn, t_min, size, threads and image options.
+void add_run_options(CLI::App& cmd, RunOptions& o);
+
+// Validates the options (clear messages) and makes the tracer configuration.
+TraceConfig trace_config(const RunOptions& o);
+
+// The largest coordinate magnitude accepted for a format: squared distances (the hit unit's
+// light distance) must stay below the format's largest number, so 2^(emax/2 - 2).
+double max_coordinate(hls::FormatId f);
+
+struct Prepared {
+  scenes::Scene scene;
+  hls::Image image;
+  hls::TreeStats tree;
+  bool built = false;  // false: loaded with --image
+};
+
+// Loads or generates the scene, applies overrides, checks camera, light and range, then builds
+// the memory image (or loads --image, which must match format and rounding) and dumps it if asked.
+Prepared prepare(const RunOptions& o, const TraceConfig& cfg);
+
+// A short name of the configuration, e.g. "fp24-rtz-vtu-none".
+std::string config_tag(const TraceConfig& cfg);
+
+nlohmann::json scene_json(const scenes::Scene& s);
+nlohmann::json config_json(const TraceConfig& cfg);
+nlohmann::json tree_json(const hls::TreeStats& t, const hls::Image& img);
+
+}  // namespace raycore::sim
