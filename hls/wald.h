@@ -1,0 +1,191 @@
+// hls/wald.h - the triangle record of the memory image: Wald's projection form, the nine constants
+// computed in double precision from the scene's vertices and rounded once to the format.
+//
+// Convention (the project's, NOT Wald's original naming; see docs/image.md):
+//   k = dominant axis of n = (B-A) x (C-A), u = (k+1) % 3, v = (k+2) % 3
+//   t     = (n_d - o_k - n_u o_u - n_v o_v) / (d_k + n_u d_u + n_v d_v)
+//   beta  = b_nu h_u + b_nv h_v + b_d     weight of vertex B  (b_nu multiplies h_u)
+//   gamma = c_nu h_u + c_nv h_v + c_d     weight of vertex C
+//   alpha = 1 - beta - gamma              weight of vertex A
+// with n_u = n_u/n_k, n_v = n_v/n_k, n_d = dot(n, A)/n_k, and (Cramer's rule in the (u, v) plane,
+// e1 = B - A, e2 = C - A, n_k = e1_u e2_v - e1_v e2_u):
+//   b_nu =  e2_v / n_k   b_nv = -e2_u / n_k   b_d = (e2_u A_v - e2_v A_u) / n_k
+//   c_nu = -e1_v / n_k   c_nv =  e1_u / n_k   c_d = (e1_v A_u - e1_u A_v) / n_k
+//
+// Record layout (little endian):
+//   FP24, 32 bytes: nine 3-byte constants at 0, 3, ..., 24; byte 27 = k (bits 1:0) | flags;
+//                   bytes 28..31 = scene index (uint32).
+//   FP32, 48 bytes: nine 4-byte constants at 0, 4, ..., 32; byte 36 = k | flags; 37..39 zero;
+//                   bytes 40..43 = scene index; 44..47 zero. (Nine 4-byte constants are 36 bytes:
+//                   they cannot fit in 32, so FP32 records are 48 bytes, a multiple of 16.)
+// Flags: bit 2 = degenerate (zero area in double, or constants beyond the format's range). A
+// degenerate record holds n_u=n_v=n_d=0, b_nu=b_nv=0, b_d=-1, c_nu=c_nv=c_d=0: finite, and
+// beta = -1 < 0 for every hit point, before and after the VTU transform (b_d' = -1 + 0 + 0).
+#pragma once
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include "hls/fp.h"
+#include "hls/geom.h"
+
+namespace raycore::hls {
+
+constexpr uint32_t tri_flag_degenerate = 1u << 2;  // in byte 27 (FP24) / 36 (FP32), above k
+constexpr uint32_t tri_flags_known = tri_flag_degenerate;
+
+template <class F>
+struct WaldTri {
+  enum { NU = 0, NV, ND, BNU, BNV, BD, CNU, CNV, CD };
+  uint32_t k = 0;      // projection axis 0/1/2
+  uint32_t flags = 0;  // tri_flag_* bits (bit positions as in the record byte; bits 1:0 are k's)
+  uint32_t c[9] = {};  // the nine constants, format bit patterns, in the order above
+  uint32_t id = 0;     // the triangle's index in the scene
+  bool degenerate() const { return (flags & tri_flag_degenerate) != 0; }
+};
+
+template <class F>
+constexpr bool operator==(const WaldTri<F>& a, const WaldTri<F>& b) {
+  for (int i = 0; i < 9; ++i)
+    if (a.c[i] != b.c[i]) return false;
+  return a.k == b.k && a.flags == b.flags && a.id == b.id;
+}
+
+// Bytes per constant, and the offsets inside a record.
+template <class F>
+constexpr size_t tri_const_bytes() {
+  return F::width <= 24 ? 3 : 4;
+}
+template <class F>
+constexpr size_t tri_kflags_offset() {
+  return 9 * tri_const_bytes<F>();
+}
+template <class F>
+constexpr size_t tri_id_offset() {
+  return (tri_kflags_offset<F>() + 1 + 3) & ~size_t(3);
+}
+template <class F>
+constexpr size_t tri_record_bytes() {
+  return (tri_id_offset<F>() + 4 + 15) & ~size_t(15);
+}
+static_assert(tri_record_bytes<FP24>() == 32 && tri_id_offset<FP24>() == 28, "FP24 layout");
+static_assert(tri_record_bytes<FP32>() == 48 && tri_id_offset<FP32>() == 40, "FP32 layout");
+
+namespace detail {
+inline void put_le(uint8_t* p, uint64_t v, size_t n) {
+  for (size_t i = 0; i < n; ++i) p[i] = uint8_t(v >> (8 * i));
+}
+inline uint64_t get_le(const uint8_t* p, size_t n) {
+  uint64_t v = 0;
+  for (size_t i = 0; i < n; ++i) v |= uint64_t(p[i]) << (8 * i);
+  return v;
+}
+}  // namespace detail
+
+// Writes the whole record (tri_record_bytes<F>() bytes, padding zeroed).
+template <class F>
+void encode_tri(const WaldTri<F>& t, uint8_t* out) {
+  constexpr size_t cb = tri_const_bytes<F>();
+  for (size_t i = 0; i < tri_record_bytes<F>(); ++i) out[i] = 0;
+  for (size_t i = 0; i < 9; ++i) detail::put_le(out + i * cb, t.c[i] & F::mask, cb);
+  out[tri_kflags_offset<F>()] = uint8_t((t.k & 3u) | (t.flags & ~3u));
+  detail::put_le(out + tri_id_offset<F>(), t.id, 4);
+}
+
+template <class F>
+WaldTri<F> decode_tri(const uint8_t* in) {
+  constexpr size_t cb = tri_const_bytes<F>();
+  WaldTri<F> t;
+  for (size_t i = 0; i < 9; ++i) t.c[i] = uint32_t(detail::get_le(in + i * cb, cb)) & F::mask;
+  const uint32_t kf = in[tri_kflags_offset<F>()];
+  t.k = kf & 3u;
+  t.flags = kf & ~3u;
+  t.id = uint32_t(detail::get_le(in + tri_id_offset<F>(), 4));
+  return t;
+}
+
+// The nine constants in double precision before rounding (the reference for tests and tools).
+struct WaldDouble {
+  uint32_t k = 0;
+  bool degenerate = false;  // zero area (n_k == 0) or a non-finite constant
+  double c[9] = {};
+};
+
+inline WaldDouble wald_double(const Tri& t) {
+  WaldDouble w;
+  const Vec3 a = t[0];
+  const Vec3 e1 = t[1] - t[0], e2 = t[2] - t[0];
+  const Vec3 n = cross(e1, e2);
+  int k = 0;
+  if (std::fabs(n.y) > std::fabs(n[k])) k = 1;
+  if (std::fabs(n.z) > std::fabs(n[k])) k = 2;
+  const int u = (k + 1) % 3, v = (k + 2) % 3;
+  w.k = uint32_t(k);
+  const double nk = n[k];
+  if (!(nk != 0) || !std::isfinite(nk)) {
+    w.degenerate = true;
+    return w;
+  }
+  w.c[0] = n[u] / nk;
+  w.c[1] = n[v] / nk;
+  w.c[2] = dot(n, a) / nk;
+  w.c[3] = e2[v] / nk;
+  w.c[4] = -e2[u] / nk;
+  w.c[5] = (e2[u] * a[v] - e2[v] * a[u]) / nk;
+  w.c[6] = -e1[v] / nk;
+  w.c[7] = e1[u] / nk;
+  w.c[8] = (e1[v] * a[u] - e1[u] * a[v]) / nk;
+  for (double x : w.c)
+    if (!std::isfinite(x)) w.degenerate = true;
+  return w;
+}
+
+// Per-triangle rounding facts, for the build statistics.
+struct WaldInfo {
+  bool degenerate = false;
+  int saturated = 0;  // constants that rounded to the format's largest magnitude
+  int flushed = 0;    // nonzero constants that flushed to zero (below the smallest normal)
+};
+
+// The degenerate record: never hits (beta = -1), finite, unchanged in meaning by the VTU.
+template <class F>
+WaldTri<F> degenerate_wald(uint32_t k, uint32_t id) {
+  WaldTri<F> w;
+  w.k = k;
+  w.flags = tri_flag_degenerate;
+  w.c[WaldTri<F>::BD] = neg<F>(F::one);
+  w.id = id;
+  return w;
+}
+
+// The record of triangle t with scene index id: the constants computed in double and rounded once
+// with policy R. A constant whose magnitude exceeds the format's largest number makes the triangle
+// degenerate (it could only saturate to a meaningless value); a constant that rounds up to the
+// largest magnitude (rne, within half an ulp of it) keeps that value and is counted as saturated.
+template <class F, Rounding R>
+WaldTri<F> make_wald(const Tri& t, uint32_t id, WaldInfo* info = nullptr) {
+  const WaldDouble d = wald_double(t);
+  const double maxv = to_double<F>(F::max_mag);
+  bool degenerate = d.degenerate;
+  for (double x : d.c)
+    if (!(std::fabs(x) <= maxv)) degenerate = true;
+  WaldInfo local;
+  WaldTri<F> w;
+  if (degenerate) {
+    w = degenerate_wald<F>(d.k, id);
+    local.degenerate = true;
+  } else {
+    w.k = d.k;
+    w.id = id;
+    for (int i = 0; i < 9; ++i) {
+      w.c[i] = from_double<F, R>(d.c[i]);
+      if ((w.c[i] & F::max_mag) == F::max_mag) ++local.saturated;
+      if (is_zero<F>(w.c[i]) && d.c[i] != 0) ++local.flushed;
+    }
+  }
+  if (info) *info = local;
+  return w;
+}
+
+}  // namespace raycore::hls

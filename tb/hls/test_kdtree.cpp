@@ -1,0 +1,269 @@
+// tb/hls/test_kdtree.cpp - the SAH kd-tree builder: the reference invariant on random scenes, the
+// tree's structure and statistics, determinism, and the build time on a 60k-triangle scene.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <set>
+#include <string>
+
+#include "hls/image.h"
+#include "tb/hls/test_util.h"
+
+#if defined(RAYCORE_HAVE_SCENES)
+#include "scenes/gltf.h"
+#endif
+
+#if defined(__SANITIZE_ADDRESS__)
+#define RAYCORE_SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define RAYCORE_SANITIZED 1
+#endif
+#endif
+
+namespace raycore::hls {
+namespace {
+
+void print_stats(const char* name, const TreeStats& s) {
+  std::printf(
+      "%s: %llu tris (%llu degenerate), %llu nodes (%llu inner, %llu leaves, %llu empty), depth %d, "
+      "refs %llu (%.3f per tri), max leaf %llu, mean leaf %.2f, SAH cost %.3f, build %.3f s\n",
+      name, (unsigned long long)s.tris, (unsigned long long)s.degenerate,
+      (unsigned long long)s.nodes, (unsigned long long)s.inner, (unsigned long long)s.leaves,
+      (unsigned long long)s.empty_leaves, s.max_depth, (unsigned long long)s.refs, s.refs_per_tri,
+      (unsigned long long)s.max_leaf, s.mean_leaf, s.sah_cost, s.build_seconds);
+}
+
+// The structure every built tree must have, and stats that agree with the image.
+void check_structure(const Image& img, const TreeStats& st, const BuildOptions& opt) {
+  ASSERT_NO_THROW(img.check("built image"));
+  EXPECT_EQ(st.nodes, st.inner + st.leaves);
+  EXPECT_EQ(st.leaves, st.inner + 1);
+  EXPECT_LE(st.max_depth, max_tree_depth);
+  const TreeStats a = analyze_image(img, opt);
+  EXPECT_EQ(a.nodes, st.nodes);
+  EXPECT_EQ(a.inner, st.inner);
+  EXPECT_EQ(a.leaves, st.leaves);
+  EXPECT_EQ(a.empty_leaves, st.empty_leaves);
+  EXPECT_EQ(a.max_depth, st.max_depth);
+  EXPECT_EQ(a.refs, st.refs);
+  EXPECT_EQ(a.max_leaf, st.max_leaf);
+  EXPECT_EQ(a.degenerate, st.degenerate);
+  EXPECT_EQ(a.saturated_constants, st.saturated_constants);
+  EXPECT_NEAR(a.sah_cost, st.sah_cost, 1e-9 * st.sah_cost);
+  uint64_t sum = 0;
+  for (const LeafInfo& l : image_leaves(img)) {
+    sum += l.count;
+    for (uint32_t j = 1; j < l.count; ++j)
+      ASSERT_LT(img.list(l.first + j - 1), img.list(l.first + j)) << "leaf list not sorted/unique";
+  }
+  EXPECT_EQ(sum, st.refs);
+}
+
+// Every leaf references every triangle that meets its cell (vertex inside the closed cell: exact;
+// or overlapping the cell shrunk by a hair: separating-axis test), and only triangles that meet
+// the cell grown by a hair. Degenerate triangles are in no leaf.
+// *checked receives the number of (leaf, unreferenced triangle) pairs checked.
+template <class F>
+void check_references(const Image& img, const std::vector<Tri>& tris, const char* what,
+                      uint64_t* checked = nullptr) {
+  Box scene;
+  for (const Tri& t : tris)
+    for (const Vec3& v : t) scene.extend(v);
+  double scale = 1;
+  for (int a = 0; a < 3; ++a) scale = std::max({scale, std::fabs(scene.lo[a]), std::fabs(scene.hi[a])});
+  const double hair = 1e-9 * scale;
+  std::vector<uint8_t> deg(tris.size());
+  for (size_t i = 0; i < tris.size(); ++i) deg[i] = img.wald<F>(uint32_t(i)).degenerate();
+  std::vector<uint64_t> seen(tris.size(), 0);
+  uint64_t checked_vertex = 0, checked_sat = 0;
+  for (const LeafInfo& l : image_leaves(img)) {
+    std::set<uint32_t> refs;
+    for (uint32_t j = 0; j < l.count; ++j) refs.insert(img.list(l.first + j));
+    Box shrunk = l.cell, grown = l.cell;
+    for (int a = 0; a < 3; ++a) {
+      if (l.cell.hi[a] - l.cell.lo[a] > 4 * hair) {
+        shrunk.lo[a] += hair;
+        shrunk.hi[a] -= hair;
+      }
+      grown.lo[a] -= hair;
+      grown.hi[a] += hair;
+    }
+    for (uint32_t t = 0; t < tris.size(); ++t) {
+      const bool in = refs.count(t) != 0;
+      if (in) {
+        ++seen[t];
+        ASSERT_FALSE(deg[t]) << what << ": degenerate triangle " << t << " in leaf " << l.node;
+        ASSERT_TRUE(test::tri_box_overlap(tris[t], grown))
+            << what << ": leaf " << l.node << " references triangle " << t
+            << " which does not touch its cell";
+        continue;
+      }
+      if (deg[t]) continue;
+      for (const Vec3& v : tris[t]) {
+        ++checked_vertex;
+        ASSERT_FALSE(test::point_in_closed_box(v, l.cell))
+            << what << ": leaf " << l.node << " (depth " << l.depth << ") misses triangle " << t
+            << " whose vertex (" << v.x << ", " << v.y << ", " << v.z << ") is in its cell";
+      }
+      ++checked_sat;
+      ASSERT_FALSE(test::tri_box_overlap(tris[t], shrunk))
+          << what << ": leaf " << l.node << " (depth " << l.depth << ") misses triangle " << t
+          << " which overlaps its cell";
+    }
+  }
+  for (size_t t = 0; t < tris.size(); ++t) {
+    if (deg[t]) continue;
+    EXPECT_GE(seen[t], 1u) << what << ": triangle " << t << " is in no leaf";
+  }
+  (void)checked_vertex;
+  if (checked) *checked = checked_sat;
+}
+
+TEST(KdTree, ReferencesRandomScenes) {
+  for (uint64_t seed = 1; seed <= 6; ++seed) {
+    const auto tris = test::random_scene(seed, 1500, seed % 2 ? 100.0 : 3000.0);
+    for (FormatId f : {FormatId::fp24, FormatId::fp32}) {
+      const Rounding r = seed % 3 == 0 ? Rounding::rne : Rounding::rtz;
+      BuildOptions opt;
+      TreeStats st;
+      const Image img = build_image(tris, f, r, opt, &st);
+      const std::string what = "seed " + std::to_string(seed) + " " + format_name(f);
+      check_structure(img, st, opt);
+      uint64_t checked = 0;
+      if (f == FormatId::fp24) check_references<FP24>(img, tris, what.c_str(), &checked);
+      else check_references<FP32>(img, tris, what.c_str(), &checked);
+      EXPECT_GT(checked, 100000u) << what;
+      EXPECT_GT(st.leaves, 50u) << what;
+      EXPECT_GE(st.refs_per_tri, 1.0) << what;
+      EXPECT_LT(st.refs_per_tri, 8.0) << what;
+    }
+  }
+}
+
+TEST(KdTree, SmallLeavesAndDeepTrees) {
+  // leaf_size 1 and a forced depth exercise deep recursion and the max_depth stop.
+  const auto tris = test::random_scene(11, 800);
+  for (int leaf : {1, 2, 20}) {
+    BuildOptions opt;
+    opt.leaf_size = leaf;
+    opt.max_depth = 40;
+    TreeStats st;
+    const Image img = build_image(tris, FormatId::fp24, Rounding::rtz, opt, &st);
+    check_structure(img, st, opt);
+    check_references<FP24>(img, tris, ("leaf_size " + std::to_string(leaf)).c_str());
+    EXPECT_LE(st.max_depth, 40);
+  }
+}
+
+TEST(KdTree, SplitsAreFormatNumbersInsideTheirCell) {
+  const auto tris = test::random_scene(12, 2000);
+  const Image img = build_image(tris, FormatId::fp24, Rounding::rtz);
+  // Walk: every split strictly inside its cell.
+  struct It {
+    uint32_t n;
+    Box c;
+  };
+  uint32_t lo[3], hi[3];
+  img.box(lo, hi);
+  Box root;
+  for (int a = 0; a < 3; ++a) root.lo[a] = to_double<FP24>(lo[a]), root.hi[a] = to_double<FP24>(hi[a]);
+  std::vector<It> st{{0, root}};
+  int inner = 0;
+  while (!st.empty()) {
+    const It it = st.back();
+    st.pop_back();
+    const Node n = decode_node(img.node(it.n));
+    if (n.leaf()) continue;
+    ++inner;
+    ASSERT_EQ(n.split_or_count & ~FP24::mask, 0u);
+    const double s = to_double<FP24>(n.split_or_count);
+    ASSERT_GT(s, it.c.lo[n.axis]) << "node " << it.n;
+    ASSERT_LT(s, it.c.hi[n.axis]) << "node " << it.n;
+    Box l = it.c, r = it.c;
+    l.hi[n.axis] = r.lo[n.axis] = s;
+    st.push_back({n.index, r});
+    st.push_back({it.n + 1, l});
+  }
+  EXPECT_GT(inner, 100);
+}
+
+TEST(KdTree, Deterministic) {
+  const auto tris = test::random_scene(13, 3000);
+  for (FormatId f : {FormatId::fp24, FormatId::fp32}) {
+    const Image a = build_image(tris, f, Rounding::rtz);
+    const Image b = build_image(tris, f, Rounding::rtz);
+    EXPECT_EQ(a.bytes, b.bytes) << format_name(f);
+  }
+}
+
+TEST(KdTree, EdgeCases) {
+  const Tri quad0{Vec3{0, 0, 0}, Vec3{10, 0, 0}, Vec3{10, 10, 0}};
+  const Tri quad1{Vec3{0, 0, 0}, Vec3{10, 10, 0}, Vec3{0, 10, 0}};
+  const Tri point{Vec3{1, 1, 1}, Vec3{1, 1, 1}, Vec3{1, 1, 1}};
+  struct Case {
+    const char* name;
+    std::vector<Tri> tris;
+  };
+  std::vector<Case> cases = {
+      {"one triangle", {quad0}},
+      {"flat quad", {quad0, quad1}},
+      {"only degenerate", {point, point}},
+      {"100 identical", std::vector<Tri>(100, quad0)},
+  };
+  // A flat scene of many small triangles: the cell has zero extent in z.
+  std::vector<Tri> flat;
+  for (int i = 0; i < 30; ++i)
+    for (int j = 0; j < 30; ++j)
+      flat.push_back({Vec3{double(i), double(j), 5}, Vec3{i + 1.0, double(j), 5}, Vec3{double(i), j + 1.0, 5}});
+  cases.push_back({"flat grid", flat});
+  for (const Case& c : cases) {
+    TreeStats st;
+    BuildOptions opt;
+    const Image img = build_image(c.tris, FormatId::fp24, Rounding::rtz, opt, &st);
+    check_structure(img, st, opt);
+    check_references<FP24>(img, c.tris, c.name);
+  }
+}
+
+// Build time and statistics on a synthetic interior of 60k triangles (and Sponza if the loader is
+// built). The time limit is generous (the machine is shared); it is not checked under sanitizers.
+TEST(KdTree, BuildTime60k) {
+  const auto tris = test::synthetic_scene(60000);
+  for (FormatId f : {FormatId::fp24, FormatId::fp32}) {
+    TreeStats st;
+    BuildOptions opt;
+    const Image img = build_image(tris, f, Rounding::rtz, opt, &st);
+    print_stats((std::string("synthetic 60k ") + format_name(f)).c_str(), st);
+    check_structure(img, st, opt);
+    EXPECT_LT(st.refs_per_tri, 4.0);
+#if !defined(RAYCORE_SANITIZED)
+    EXPECT_LT(st.build_seconds, 10.0);
+#endif
+  }
+}
+
+TEST(KdTree, Sponza) {
+#if defined(RAYCORE_HAVE_SCENES)
+  const char* dir = std::getenv("RAYCORE_SHARED_SCENES");
+  const std::string path = std::string(dir ? dir : RAYCORE_SHARED_SCENES_DEFAULT) + "/sponza-paper.glb";
+  std::ifstream probe(path);
+  if (!probe) GTEST_SKIP() << path << " not found";
+  const auto scene = scenes::load_gltf(path);
+  for (FormatId f : {FormatId::fp24, FormatId::fp32}) {
+    TreeStats st;
+    BuildOptions opt;
+    const Image img = build_image(scene.tris, f, Rounding::rtz, opt, &st);
+    print_stats((std::string("sponza-paper ") + format_name(f)).c_str(), st);
+    check_structure(img, st, opt);
+  }
+#else
+  GTEST_SKIP() << "the glTF loader (raycore_scenes with scenes/gltf.h) was not built";
+#endif
+}
+
+}  // namespace
+}  // namespace raycore::hls
