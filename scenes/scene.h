@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -36,6 +37,22 @@ struct Light {
 struct LoadStats {
   uint64_t skipped_primitives = 0;  // non-TRIANGLES primitives (skipped, warned)
   uint64_t degenerate_triangles = 0;  // zero-area triangles (kept)
+  std::vector<std::string> warnings;  // one line each (also printed to stderr by load_gltf)
+};
+
+// Bad input (file, glTF content, scene options, generator name): the message names the file and
+// the mesh / primitive / node / triangle concerned. The CLI turns it into a clear non-zero exit.
+struct SceneError : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// A named run of consecutive triangles: one glTF mesh instance (mesh + the node that places it),
+// or one part of a generated scene. Used in error messages and by the glTF writer.
+struct MeshRange {
+  std::string name;  // mesh name, or "mesh <index>" when unnamed
+  std::string node;  // node name, or "node <index>" when unnamed ("" for generated parts)
+  size_t first = 0;  // index of the first triangle in Scene::tris
+  size_t count = 0;
 };
 
 struct Scene {
@@ -45,11 +62,25 @@ struct Scene {
   Camera camera;
   Light light;
   LoadStats stats;
+  std::vector<MeshRange> meshes;  // in triangle order; may be empty (then: one unnamed mesh)
+  std::string extras;             // glTF asset.extras as JSON text ("" if none): generator notes
   Box bounds() const {
     Box b;
     for (const Tri& t : tris)
       for (const Vec3& v : t) b.extend(v);
     return b;
+  }
+  // "mesh 'x' (node 'y')" for the mesh holding triangle `tri`, for messages.
+  std::string describe_triangle(size_t tri) const {
+    std::string d = "triangle " + std::to_string(tri);
+    for (const MeshRange& m : meshes)
+      if (tri >= m.first && tri - m.first < m.count) {
+        d += " (mesh '" + m.name + "'";
+        if (!m.node.empty()) d += ", node '" + m.node + "'";
+        d += ")";
+        break;
+      }
+    return d;
   }
 };
 
