@@ -98,9 +98,10 @@ void apply_overrides(Scene& scene, const SceneOverrides& o) {
     } else if (scene.camera.present) {
       scene.camera.position = eye;
     } else {
+      // No direction anywhere: look at the centre of the geometry (down -Z if there is none).
       const Box b = scene.bounds();
       const Vec3 centre = (b.lo + b.hi) * 0.5;
-      if (hls::length(centre - eye) > 0) scene.camera = look_at(eye, centre, yfov, scene.camera.aspect);
+      if (!b.empty() && hls::length(centre - eye) > 0) scene.camera = look_at(eye, centre, yfov, scene.camera.aspect);
       else scene.camera = look_at(eye, eye + Vec3{0, 0, -1}, yfov, scene.camera.aspect);
     }
   }
