@@ -22,6 +22,7 @@ enum class Spawn : uint8_t { none, skip_origin, ulp_offset, error_bound };
 struct SpawnParams {
   Spawn spawn = Spawn::none;
   int32_t ulps = 0;  // ulp_offset: offset in ulps of the format for a unit normal component
+  bool segment = false;  // shadow ray as the segment h + t (light - h), t < 1; else unit direction
 };
 
 // What the hit unit needs of the winning triangle.
@@ -36,7 +37,7 @@ struct ShadowSetup {
   uint32_t h[3];     // hit point
   bool front;        // the light is on the side the primary ray came from (else: shadowed, no ray)
   uint32_t dens;     // n . (direction to the light)
-  Ray ray;           // the shadow ray: direction normalised, tmax = distance to the light
+  Ray ray;           // the shadow ray (see SpawnParams::segment)
   uint32_t skip_id;  // triangle id the shadow ray skips (skip_origin), else ~0u
 };
 
@@ -78,19 +79,24 @@ inline ShadowSetup hit_shadow(const Ray& pr, uint32_t t, const HitTri& tri, cons
   ShadowSetup s{};
   // Hit point.
   for (int i = 0; i < 3; ++i) s.h[i] = A::add(pr.o[i], A::mul(t, pr.d[i]));
-  // Direction to the light, normalised; the distance bounds the shadow ray.
+  // Direction to the light. unit (default): normalised, t in (tmin, distance to the light), so
+  // t_min is in world units; segment: light - h unnormalised, t in (tmin, 1), so t_min is a
+  // fraction of the distance to the light and no square root is needed.
+  Ray& r = s.ray;
   uint32_t ld[3];
   for (int i = 0; i < 3; ++i) ld[i] = A::sub(light[i], s.h[i]);
-  const uint32_t len =
-      A::sqrt(A::add3(A::mul(ld[0], ld[0]), A::mul(ld[1], ld[1]), A::mul(ld[2], ld[2])));
-  const uint32_t rl = A::rcp(len);
-  Ray& r = s.ray;
-  for (int i = 0; i < 3; ++i) {
-    r.d[i] = A::mul(ld[i], rl);
-    r.inv[i] = A::rcp(r.d[i]);
+  if (sp.segment) {
+    for (int i = 0; i < 3; ++i) r.d[i] = ld[i];
+    r.tmax = A::one;
+  } else {
+    const uint32_t len =
+        A::sqrt(A::add3(A::mul(ld[0], ld[0]), A::mul(ld[1], ld[1]), A::mul(ld[2], ld[2])));
+    const uint32_t rl = A::rcp(len);
+    for (int i = 0; i < 3; ++i) r.d[i] = A::mul(ld[i], rl);
+    r.tmax = len;
   }
+  for (int i = 0; i < 3; ++i) r.inv[i] = A::rcp(r.d[i]);
   r.tmin = tmin;
-  r.tmax = len;
   s.skip_id = ~0u;
   const int u = axis_u(tri.k), v = axis_v(tri.k);
   // Light in front: the shadow direction and the primary ray leave/arrive on opposite sides, i.e.

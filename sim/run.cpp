@@ -32,6 +32,11 @@ void add_run_options(CLI::App& c, RunOptions& o) {
   c.add_option("--spawn-ulps", o.spawn_ulps,
                "ulp-offset: ulps for a unit normal component (0: 2 for fp24, 256 for fp32)")
       ->check(CLI::Range(0, 1 << 20));
+  c.add_option("--shadow-ray", o.shadow_ray,
+               "shadow-ray direction: unit (normalised; t_min in world units) or segment "
+               "(light - hit; t_min a fraction of the light distance)")
+      ->check(CLI::IsMember({"unit", "segment"}))
+      ->capture_default_str();
   c.add_option("--tmin", o.tmin, "ray t_min (default 2^-12, RayCore's)")
       ->check(CLI::Range(0.0, 1e6));
   c.add_option("--width", o.width, "image width")->check(CLI::Range(1, 16384))->capture_default_str();
@@ -55,6 +60,7 @@ TraceConfig trace_config(const RunOptions& o) {
   c.vtu = o.vtu == "on";
   c.spawn.spawn = spawn_from_string(o.spawn);
   c.spawn.ulps = o.spawn_ulps > 0 ? o.spawn_ulps : default_spawn_ulps(c.format);
+  c.spawn.segment = o.shadow_ray == "segment";
   if (!std::isfinite(o.tmin) || o.tmin < 0) throw cli::UserError("--tmin must be a finite number >= 0");
   c.tmin = o.tmin;
   c.width = o.width;
@@ -131,6 +137,7 @@ nlohmann::json config_json(const TraceConfig& c) {
                       {"vtu", c.vtu},
                       {"spawn", to_string(c.spawn.spawn)},
                       {"t_min", c.tmin},
+                      {"shadow_ray", c.spawn.segment ? "segment" : "unit"},
                       {"width", c.width},
                       {"height", c.height}};
   if (c.spawn.spawn == hls::Spawn::ulp_offset) j["spawn_ulps"] = c.spawn.ulps;

@@ -23,6 +23,7 @@ struct RunOptions {
   scenes::SceneOverrides overrides;
   std::string format = "fp24", rounding = "rtz", vtu = "off", spawn = "none";
   int spawn_ulps = 0;  // 0: default_spawn_ulps(format)
+  std::string shadow_ray = "unit";  // unit: normalised direction, t_min in world units; segment
   double tmin = 1.0 / 4096;
   int width = 800, height = 480, threads = 0;
   int leaf_size = 8;

@@ -201,7 +201,9 @@ Frame trace_t(const hls::Image& image_in, const scenes::Camera& cam, const scene
           p.lit = !sh.found;
           p.shadow_tri = sh.found ? int32_t(tracer.tri(sh.tri).id) : -1;
           const double nu = A::to_double(tri.c[hls::kNU]), nv = A::to_double(tri.c[hls::kNV]);
-          cosl = std::fabs(A::to_double(ss.dens)) / std::sqrt(1 + nu * nu + nv * nv);
+          double l2 = 0;
+          for (int i = 0; i < 3; ++i) l2 += A::to_double(ss.ray.d[i]) * A::to_double(ss.ray.d[i]);
+          cosl = std::fabs(A::to_double(ss.dens)) / std::sqrt((1 + nu * nu + nv * nv) * l2);
         }
         p.shade = shade_pixel(true, p.lit, cosl);
       }
