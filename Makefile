@@ -8,7 +8,7 @@ CTEST      := ctest --output-on-failure -j $(JOBS)
 RAYCORE    := $(BUILD)/bin/raycore
 export SYSTEMC_DISABLE_COPYRIGHT_MESSAGE := 1
 
-.PHONY: all deps configure build run test test-release test-asan lint bench area fuzz clean
+.PHONY: all deps configure build run test test-release test-asan lint bench area fuzz table3 clean
 
 all: build
 
@@ -46,6 +46,14 @@ area: deps
 
 bench: build
 	./scripts/bench.sh $(BUILD)
+
+# The paper's Table 3 (three scenes x 24/32-bit x VTU off/on, 800 x 480) into docs/results.md.
+table3: build
+	$(RAYCORE) table3
+
+# libFuzzer on the glTF loader (clang), bounded time: FUZZ_SECONDS (default 60).
+fuzz: deps
+	./scripts/fuzz.sh
 
 clean:
 	rm -rf $(BUILD) $(ASAN_BUILD) build-*
