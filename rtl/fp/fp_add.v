@@ -42,21 +42,21 @@ module fp_add #(
   localparam integer S_C   = STAGES - (2 * STAGES) / 3;
 
   // ---- A: unpack, order by magnitude, align ---------------------------------------------------
-  wire [W-1:0]   b_eff = {in_b_i[W-1] ^ in_sub_i, in_b_i[W-2:0]};
-  wire           za    = ~|in_a_i[W-2:M];
-  wire           zb    = ~|b_eff[W-2:M];
-  wire           swap  = in_a_i[W-2:0] < b_eff[W-2:0];
-  wire [W-1:0]   hi    = swap ? b_eff : in_a_i;
-  wire [W-1:0]   lo = swap ? in_a_i : b_eff;
-  wire [E-1:0]   diff  = hi[W-2:M] - lo[W-2:M];          // >= 0: |hi| >= |lo|
-  wire [M+G:0]   mb_x  = {1'b1, lo[M-1:0], {G{1'b0}}};    // smaller significand, guard bits
-  wire [M+G:0]   lost  = mb_x & ~({(M+G+1){1'b1}} << diff);  // bits shifted out
-  wire [M+G:0]   a_mb  = (mb_x >> diff) | {{(M+G){1'b0}}, |lost};
+  wire [W-1:0] b_eff = {in_b_i[W-1] ^ in_sub_i, in_b_i[W-2:0]};
+  wire         za    = ~|in_a_i[W-2:M];
+  wire         zb    = ~|b_eff[W-2:M];
+  wire         swap  = in_a_i[W-2:0] < b_eff[W-2:0];
+  wire [W-1:0] hi    = swap ? b_eff : in_a_i;                // the larger magnitude
+  wire [W-1:0] lo    = swap ? in_a_i : b_eff;
+  wire [E-1:0] diff  = hi[W-2:M] - lo[W-2:M];                // >= 0
+  wire [M+G:0] mb_x  = {1'b1, lo[M-1:0], {G{1'b0}}};         // smaller significand, guard bits
+  wire [M+G:0] lost  = mb_x & ~({(M+G+1){1'b1}} << diff);    // the bits shifted out
+  wire [M+G:0] a_mb  = (mb_x >> diff) | {{(M+G){1'b0}}, |lost};  // aligned and jammed
 
   // Special results (a zero operand): the other operand, or a zero signed like IEEE's.
-  wire           a_spec     = za | zb;
-  wire [W-1:0]   a_spec_res = (za && zb) ? {in_a_i[W-1] & b_eff[W-1], {(W-1){1'b0}}}
-                                         : (za ? b_eff : in_a_i);
+  wire         a_spec     = za | zb;
+  wire [W-1:0] a_spec_res = (za && zb) ? {in_a_i[W-1] & b_eff[W-1], {(W-1){1'b0}}}
+                                       : (za ? b_eff : in_a_i);
 
   localparam integer PA_W = TAG_BITS + W + 1 + 1 + 1 + E + M + (M + G + 1);
   wire [PA_W-1:0] pa_in = {in_tag_i, a_spec_res, a_spec, hi[W-1], hi[W-1] ^ lo[W-1],

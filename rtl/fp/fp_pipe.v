@@ -33,18 +33,20 @@ module fp_pipe #(
       assign unused_clk_rst = clk_i ^ rst_ni;
     end else begin : g_regs
       // Index i: after i register stages.
-      wire [STAGES:0]           valid;
-      reg  [STAGES:0]           ready;
+      wire [STAGES:0]             valid;
+      reg  [STAGES:0]             ready;
       wire [(STAGES+1)*WIDTH-1:0] data;
-      reg  [STAGES-1:0]         valid_d, valid_q;
-      reg  [STAGES*WIDTH-1:0]   data_d, data_q;
-      integer i;
+      reg  [STAGES-1:0]           valid_d, valid_q;
+      reg  [STAGES*WIDTH-1:0]     data_d, data_q;
+      integer i, j;
 
-      assign valid[0]                 = in_valid_i;
-      assign data[WIDTH-1:0]          = in_data_i;
-      assign valid[STAGES:1]          = valid_q;
+      assign valid[0]                       = in_valid_i;
+      assign valid[STAGES:1]                = valid_q;
+      assign data[WIDTH-1:0]                = in_data_i;
       assign data[(STAGES+1)*WIDTH-1:WIDTH] = data_q;
-      // The stall rule, evaluated from the output back to the input.
+
+      // The stall rule, from the output back to the input: register i (which holds index i+1)
+      // takes a new item if it is empty or its item leaves. ready[i] is what index i sees.
       always @* begin
         ready[STAGES] = out_ready_i;
         for (i = STAGES - 1; i >= 0; i = i - 1) ready[i] = !valid_q[i] || ready[i+1];
@@ -53,10 +55,10 @@ module fp_pipe #(
       always @* begin
         valid_d = valid_q;
         data_d  = data_q;
-        for (i = 0; i < STAGES; i = i + 1) begin
-          if (ready[i]) begin
-            valid_d[i] = valid[i];
-            if (valid[i]) data_d[i*WIDTH +: WIDTH] = data[i*WIDTH +: WIDTH];
+        for (j = 0; j < STAGES; j = j + 1) begin
+          if (ready[j]) begin
+            valid_d[j] = valid[j];
+            if (valid[j]) data_d[j*WIDTH +: WIDTH] = data[j*WIDTH +: WIDTH];
           end
         end
       end

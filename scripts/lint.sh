@@ -1,0 +1,75 @@
+#!/usr/bin/env bash
+# make lint: every Verilog module under rtl/ through
+#   1. `verilator --lint-only -Wall` (top = the module) for the FP24 and FP32 parameter sets, both
+#      rounding modes and STAGES 0, 1, 2, 4 (parameters a module does not declare are skipped);
+#      zero warnings allowed, waivers only in rtl/lint/waivers.vlt;
+#   2. a yosys synthesis (`synth -flatten -top <module>`, FP24 and FP32) that must infer no latch
+#      ($dlatch/$_DLATCH_* cells or "Latch inferred" in the log) and pass `check -assert`.
+# Exits non-zero on any problem. One dialect everywhere: Verilog-2005 (verilator
+# --default-language 1364-2005, yosys read_verilog without -sv, iverilog -g2005).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+command -v verilator >/dev/null && command -v yosys >/dev/null ||
+  { echo "lint: verilator and yosys are needed (make deps)" >&2; exit 1; }
+
+mapfile -t SRCS < <(find rtl -name '*.v' | sort)
+[ ${#SRCS[@]} -gt 0 ] || { echo "lint: no Verilog files under rtl/" >&2; exit 1; }
+WAIVERS=rtl/lint/waivers.vlt
+LOG=$(mktemp -d "${TMPDIR:-/tmp}/raycore-lint.XXXXXX")
+trap 'rm -rf "$LOG"' EXIT
+
+# Parameter sets: name -> "PARAM=value ..." (only the parameters a module declares are used).
+declare -A FMT=([FP24]="EXP_BITS=7 MAN_BITS=16 WIDTH=24" [FP32]="EXP_BITS=8 MAN_BITS=23 WIDTH=32")
+
+has_param() { grep -Eq "parameter +(integer +)?$2\b" "$1"; }
+# Prints the -G flags (verilator) or "-set P V" pairs (yosys chparam) a module accepts.
+params_for() {  # file style assignments...
+  local file=$1 style=$2; shift 2
+  local out=() kv
+  for kv in "$@"; do
+    if has_param "$file" "${kv%%=*}"; then
+      if [ "$style" = G ]; then out+=("-G$kv"); else out+=("-set" "${kv%%=*}" "${kv#*=}"); fi
+    fi
+  done
+  echo "${out[@]}"
+}
+
+fail=0 runs=0
+for src in "${SRCS[@]}"; do
+  top=$(basename "$src" .v)
+  grep -Eq "^\s*module\s+$top\b" "$src" || { echo "lint: $src does not define module $top" >&2; fail=1; continue; }
+  # ---- verilator -Wall ----
+  declare -A seen=()
+  for fmt in FP24 FP32; do
+    for rne in 0 1; do
+      for st in 0 1 2 4; do
+        g=$(params_for "$src" G ${FMT[$fmt]} RNE=$rne STAGES=$st)
+        [ -n "${seen[$g]:-}" ] && continue  # same parameters as an earlier run
+        seen[$g]=1
+        runs=$((runs + 1))
+        if ! verilator --lint-only -Wall --default-language 1364-2005 --top-module "$top" \
+             $g "$WAIVERS" "${SRCS[@]}" >"$LOG/v.txt" 2>&1; then
+          echo "lint: FAIL verilator $top $g" >&2; cat "$LOG/v.txt" >&2; fail=1
+        fi
+      done
+    done
+  done
+  unset seen
+  # ---- yosys synthesis: no latches ----
+  for fmt in FP24 FP32; do
+    set_args=$(params_for "$src" set ${FMT[$fmt]})
+    chparam=""
+    [ -n "$set_args" ] && chparam="chparam $set_args $top;"
+    if ! yosys -q -l "$LOG/y.txt" -p "read_verilog ${SRCS[*]}; $chparam synth -flatten -top $top; \
+         select -assert-none t:\$dlatch t:\$adlatch t:\$dlatchsr t:\$_DLATCH_* t:\$_DLATCHSR_* t:\$_SR_*; \
+         check -assert" >/dev/null 2>&1; then
+      echo "lint: FAIL yosys $top $fmt ($set_args)" >&2; grep -iE "error|latch|warning" "$LOG/y.txt" >&2 || true; fail=1
+    elif grep -q "^Latch inferred" "$LOG/y.txt"; then
+      echo "lint: FAIL yosys $top $fmt: latch inferred" >&2; grep "^Latch inferred" "$LOG/y.txt" >&2; fail=1
+    fi
+    runs=$((runs + 1))
+  done
+  echo "lint: $top ok"
+done
+if [ $fail -ne 0 ]; then echo "lint: FAILED" >&2; exit 1; fi
+echo "lint: all ${#SRCS[@]} modules clean ($runs verilator -Wall and yosys runs, 0 warnings, no latches)"
