@@ -12,6 +12,7 @@
 
 #include "hls/image.h"
 #include "sim/cli.h"
+#include "sim/analysis.h"
 #include "sim/golden/golden.h"
 #include "sim/output.h"
 #include "sim/reference/metrics.h"
@@ -41,6 +42,7 @@ struct Cell {
   reference::ErrorMetrics m;
   double median_coord = 0;  // median over hit pixels of max |h_i| in the datapath's frame
   double seconds = 0;
+  sim::HitSideStats side;
 };
 
 std::string pct(uint64_t n, uint64_t d) {
@@ -102,7 +104,9 @@ void run_table3(const Table3Args& a) {
   t3 << "| scene | 24-bit original | 24-bit VTU | reduction | 32-bit original | 32-bit VTU | reduction |\n"
         "|---|---|---|---|---|---|---|\n";
   err << "| scene | config | shadow rays | self-intersections | shadow errors (false shadow / light leak) | "
-         "primary errors | median max-abs hit coordinate in the datapath |\n|---|---|---|---|---|---|---|\n";
+         "primary errors | median max-abs hit coordinate in the datapath | hit points behind their plane | "
+         "self-intersections with the hit point behind | median distance of hit point from its plane (ulps) |\n"
+         "|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& sp : specs) {
     sim::RunOptions ro;
     ro.scene = sp.what;
@@ -129,12 +133,14 @@ void run_table3(const Table3Args& a) {
       cells[i].m = reference::compute_errors(f, ref, scene.tris);
       cells[i].median_coord = median_coord(f, scene.camera.position, c.vtu);
       cells[i].seconds = st.seconds;
+      cells[i].side = sim::hit_side_stats(f, img, scene.camera, scene.light, c);
       std::fprintf(stderr, "table3: %s %s: %llu self-intersections\n", sp.what.c_str(),
                    sim::config_tag(c).c_str(), (unsigned long long)cells[i].m.self_intersections);
       nlohmann::json j = {{"scene", scene.name}, {"config", sim::config_json(c)},
                           {"errors", reference::to_json(cells[i].m)},
                           {"median_max_abs_hit_coordinate", cells[i].median_coord},
-                          {"golden_seconds", st.seconds}};
+                          {"golden_seconds", st.seconds},
+                          {"hit_side", sim::to_json(cells[i].side)}};
       out.push_back(j);
     }
     const uint64_t px = cells[0].m.pixels;
@@ -155,7 +161,9 @@ void run_table3(const Table3Args& a) {
       std::snprintf(coord, sizeof coord, "%.0f", cells[i].median_coord);
       err << "| " << scene.name << " | " << names[i] << " | " << m.shadow_rays << " | "
           << m.self_intersections << " | " << m.shadow_errors << " (" << m.false_shadow << " / "
-          << m.light_leak << ") | " << m.primary_errors << " | " << coord << " |\n";
+          << m.light_leak << ") | " << m.primary_errors << " | " << coord << " | "
+          << pct(cells[i].side.behind, cells[i].side.shadow_rays) << " | " << cells[i].side.self_behind
+          << " | " << cells[i].side.median_plane_distance_ulps << " |\n";
     }
   }
   md << "### Self-intersections (the paper's Table 3 layout)\n\n" << t3.str()
