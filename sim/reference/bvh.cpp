@@ -17,6 +17,10 @@ constexpr double gamma(int n) { return n * kEps / (1 - n * kEps); }
 constexpr int kBins = 32;
 constexpr int kLeafSize = 4;
 constexpr int kStackSize = 256;
+// Early split clipping: triangles whose box area exceeds this fraction of the scene box's are
+// split, at most kMaxSplitDepth times (up to 2^kMaxSplitDepth references).
+constexpr double kSplitAreaFraction = 0x1p-12;
+constexpr int kMaxSplitDepth = 6;
 // A node is pruned only if its entry distance exceeds the best hit by this relative margin, which
 // covers the rounding of both the slab test and the triangle test's t (a few ulps each).
 constexpr double kPruneSlack = 1.0 + 0x1p-30;
@@ -65,26 +69,121 @@ bool intersect_triangle(const ShearedRay& ray, const Tri& tri, double t_min, dou
   return true;
 }
 
+namespace {
+
+using Polygon = std::vector<Vec3>;
+
+// The part of a convex polygon with coordinate[axis] <= pos (keep_below) or >= pos. Intersection
+// points get exactly `pos` on the axis; their other coordinates are rounded (a few ulps).
+Polygon clip(const Polygon& poly, int axis, double pos, bool keep_below) {
+  Polygon out;
+  auto inside = [&](const Vec3& p) { return keep_below ? p[axis] <= pos : p[axis] >= pos; };
+  for (size_t i = 0; i < poly.size(); ++i) {
+    const Vec3& a = poly[i];
+    const Vec3& b = poly[(i + 1) % poly.size()];
+    const bool ia = inside(a), ib = inside(b);
+    if (ia) out.push_back(a);
+    if (ia != ib && a[axis] != b[axis]) {
+      const double f = (pos - a[axis]) / (b[axis] - a[axis]);
+      Vec3 x = a + (b - a) * f;
+      x[axis] = pos;
+      out.push_back(x);
+    }
+  }
+  return out;
+}
+
+hls::Box widened(hls::Box b, double margin) {
+  b.lo = b.lo - Vec3{margin, margin, margin};
+  b.hi = b.hi + Vec3{margin, margin, margin};
+  return b;
+}
+
+hls::Box intersect(const hls::Box& a, const hls::Box& b) {
+  hls::Box r;
+  for (int k = 0; k < 3; ++k) {
+    r.lo[k] = std::max(a.lo[k], b.lo[k]);
+    r.hi[k] = std::min(a.hi[k], b.hi[k]);
+  }
+  return r;
+}
+
+}  // namespace
+
+// Early split clipping (Ernst & Greiner 2007): a triangle whose box is large is referenced by
+// several smaller boxes that together cover it, so that large triangles (Sponza's floors and
+// walls) do not inflate every node above them. The pieces are the triangle clipped at box
+// midplanes; since the clipped coordinates are rounded, every piece's box is its polygon's bounds
+// widened by a margin (2^-40 of the largest coordinate, far above the few ulps of error) and
+// clipped to its half-box widened by the same margin: together they cover the exact triangle.
+void Bvh::add_references(int32_t tri, double split_area, std::vector<hls::Box>& boxes) {
+  struct Piece {
+    Polygon poly;
+    hls::Box box;
+    int depth;
+  };
+  const Tri& t = tris_[size_t(tri)];
+  hls::Box tb;
+  for (const Vec3& p : t) tb.extend(p);
+  std::vector<Piece> work{{Polygon{t[0], t[1], t[2]}, tb, 0}};
+  while (!work.empty()) {
+    Piece pc = std::move(work.back());
+    work.pop_back();
+    const Vec3 ext = pc.box.hi - pc.box.lo;
+    if (pc.depth >= kMaxSplitDepth || pc.box.area() <= split_area) {
+      boxes.push_back(pc.box);
+      ref_tri_.push_back(tri);
+      continue;
+    }
+    const int axis = ext.x >= ext.y ? (ext.x >= ext.z ? 0 : 2) : (ext.y >= ext.z ? 1 : 2);
+    const double pos = 0.5 * (pc.box.lo[axis] + pc.box.hi[axis]);
+    double mag = 0;
+    for (int k = 0; k < 3; ++k) mag = std::max({mag, std::fabs(pc.box.lo[k]), std::fabs(pc.box.hi[k])});
+    const double margin = mag * 0x1p-40 + 0x1p-1000;
+    for (int side = 0; side < 2; ++side) {
+      Polygon q = clip(pc.poly, axis, pos, side == 0);
+      if (q.empty()) continue;
+      hls::Box qb, half = pc.box;
+      for (const Vec3& p : q) qb.extend(p);
+      (side == 0 ? half.hi : half.lo)[axis] = pos;
+      const hls::Box b = intersect(widened(qb, margin), widened(half, margin));
+      if (b.empty()) continue;
+      work.push_back({std::move(q), b, pc.depth + 1});
+    }
+  }
+}
+
 Bvh::Bvh(const std::vector<Tri>& tris) : tris_(tris) {
-  if (tris_.size() > size_t(INT32_MAX)) throw std::runtime_error("reference: too many triangles");
-  std::vector<Vec3> centroid(tris_.size());
-  std::vector<hls::Box> box(tris_.size());
+  if (tris_.size() > size_t(INT32_MAX / 64)) throw std::runtime_error("reference: too many triangles");
+  hls::Box scene;
   for (size_t i = 0; i < tris_.size(); ++i) {
-    const Tri& t = tris_[i];
-    for (const Vec3& p : t)
+    for (const Vec3& p : tris_[i]) {
       if (!hls::is_finite(p))
         throw std::runtime_error("reference: triangle " + std::to_string(i) +
                                  " has a coordinate that is not finite");
+      scene.extend(p);
+    }
+  }
+  const double split_area = scene.area() * kSplitAreaFraction;
+  std::vector<hls::Box> box;
+  for (size_t i = 0; i < tris_.size(); ++i) {
+    const Tri& t = tris_[i];
     if (is_degenerate(t[0], t[1], t[2])) {
       ++stats_.degenerate;
       continue;
     }
-    order_.push_back(int32_t(i));
-    for (const Vec3& p : t) box[i].extend(p);
-    centroid[i] = (box[i].lo + box[i].hi) * 0.5;
+    add_references(int32_t(i), split_area, box);
   }
-  if (order_.empty()) return;
+  stats_.references = ref_tri_.size();
+  if (ref_tri_.empty()) return;
+  std::vector<Vec3> centroid(box.size());
+  for (size_t r = 0; r < box.size(); ++r) centroid[r] = (box[r].lo + box[r].hi) * 0.5;
+  order_.resize(ref_tri_.size());
+  for (size_t r = 0; r < order_.size(); ++r) order_[r] = int32_t(r);
   build(centroid, box);
+  for (int32_t& e : order_) e = ref_tri_[size_t(e)];  // leaf entries: scene indices
+  ref_tri_.clear();
+  ref_tri_.shrink_to_fit();
 }
 
 // Top-down binned SAH build with an explicit work list (no recursion), depth first: a node's two
@@ -103,7 +202,7 @@ void Bvh::build(const std::vector<Vec3>& centroid, const std::vector<hls::Box>& 
     stats_.depth = std::max(stats_.depth, wk.depth);
     hls::Box bounds, cbounds;
     for (int32_t i = wk.begin; i < wk.end; ++i) {
-      bounds.extend(box[size_t(order_[size_t(i)])]);
+      bounds.extend(box[size_t(order_[size_t(i)])]);  // order_ holds reference indices here
       cbounds.extend(centroid[size_t(order_[size_t(i)])]);
     }
     Node& n = nodes_[size_t(wk.node)];

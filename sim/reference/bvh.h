@@ -10,8 +10,9 @@
 //   precision when an edge function is 0"). A ray through a shared edge or vertex of a closed mesh
 //   therefore hits at least one of the triangles around it. Triangles with exactly collinear
 //   vertices (zero area) are never hit.
-// - BVH: binned SAH (32 bins, leaves of at most 4 triangles), boxes exact (min/max of the
-//   vertices). Traversal is conservative (Ize 2013, "Robust BVH ray traversal", JCGT 2(2)): the
+// - BVH: binned SAH (32 bins, leaves of at most 4 references) over references: a large triangle
+//   is split into several references with smaller boxes (early split clipping, conservative
+//   boxes: see add_references), so a triangle may sit in several leaves. Traversal is conservative (Ize 2013, "Robust BVH ray traversal", JCGT 2(2)): the
 //   slab exit distance is widened by 2 gamma(3) relative (pbrt's form), and a node is pruned
 //   only when its entry distance exceeds the best hit so far by a relative 2^-30.
 // - Closest hit: the smallest t in (t_min, t_max), ties at exactly equal t broken by the lowest
@@ -62,6 +63,7 @@ struct HitFilter {
 
 struct BvhStats {
   uint64_t nodes = 0, leaves = 0, depth = 0, degenerate = 0;
+  uint64_t references = 0;  // leaf entries (a large triangle is split into several)
 };
 
 class Bvh {
@@ -84,10 +86,12 @@ class Bvh {
     int32_t count = 0;  // leaf: number of triangles (> 0); inner: 0
     int32_t axis = 0;   // inner: split axis (visit order)
   };
+  void add_references(int32_t tri, double split_area, std::vector<hls::Box>& boxes);
   void build(const std::vector<Vec3>& centroid, const std::vector<hls::Box>& box);
 
   std::vector<Tri> tris_;           // scene order
   std::vector<int32_t> order_;      // leaf entries -> scene index
+  std::vector<int32_t> ref_tri_;    // during the build: reference -> scene index
   std::vector<Node> nodes_;
   BvhStats stats_;
 };
