@@ -27,6 +27,13 @@
 namespace raycore::hls {
 namespace {
 
+// The large builds run for both formats, or only fp24 under the (10x slower) sanitizers.
+#if defined(RAYCORE_SANITIZED)
+constexpr FormatId kFormats[] = {FormatId::fp24};
+#else
+constexpr FormatId kFormats[] = {FormatId::fp24, FormatId::fp32};
+#endif
+
 void print_stats(const char* name, const TreeStats& s) {
   std::printf(
       "%s: %llu tris (%llu degenerate), %llu nodes (%llu inner, %llu leaves, %llu empty), depth %d, "
@@ -233,7 +240,7 @@ TEST(KdTree, EdgeCases) {
 // built). The time limit is generous (the machine is shared); it is not checked under sanitizers.
 TEST(KdTree, BuildTime60k) {
   const auto tris = test::synthetic_scene(60000);
-  for (FormatId f : {FormatId::fp24, FormatId::fp32}) {
+  for (FormatId f : kFormats) {
     TreeStats st;
     BuildOptions opt;
     const Image img = build_image(tris, f, Rounding::rtz, opt, &st);
@@ -253,7 +260,7 @@ TEST(KdTree, Sponza) {
   std::ifstream probe(path);
   if (!probe) GTEST_SKIP() << path << " not found";
   const auto scene = scenes::load_gltf(path);
-  for (FormatId f : {FormatId::fp24, FormatId::fp32}) {
+  for (FormatId f : kFormats) {
     TreeStats st;
     BuildOptions opt;
     const Image img = build_image(scene.tris, f, Rounding::rtz, opt, &st);
@@ -264,6 +271,105 @@ TEST(KdTree, Sponza) {
   GTEST_SKIP() << "the glTF loader (raycore_scenes with scenes/gltf.h) was not built";
 #endif
 }
+
+#if defined(RAYCORE_HAVE_SCENES)
+// The experiment behind the default costs (docs/image.md), not run by default:
+//   build/bin/test_hls_image --gtest_also_run_disabled_tests --gtest_filter='*CostSweep*'
+// Builds sponza-paper (fp32, rne) with several cost ratios and leaf sizes and traces 200 x 120
+// primary rays from the scene's camera through the tree (double-precision traversal of the image's
+// splits, Wald test on its constants), counting inner-node steps, leaf visits and triangle tests.
+TEST(KdTree, DISABLED_CostSweepSponza) {
+  const char* dir = std::getenv("RAYCORE_SHARED_SCENES");
+  const std::string path = std::string(dir ? dir : RAYCORE_SHARED_SCENES_DEFAULT) + "/sponza-paper.glb";
+  std::ifstream probe(path);
+  if (!probe) GTEST_SKIP() << path << " not found";
+  const auto sc = scenes::load_gltf(path, false);
+  struct Cfg {
+    double ki, eb;
+    int leaf, depth;
+  };
+  for (const Cfg c : {Cfg{1, 0.2, 8, 0}, Cfg{1.5, 0.2, 8, 0}, Cfg{3, 0.2, 8, 0}, Cfg{10, 0.2, 8, 0},
+                      Cfg{80, 0.5, 8, 0}, Cfg{1.5, 0.0, 8, 0}, Cfg{1.5, 0.5, 8, 0},
+                      Cfg{1.5, 0.2, 8, 40}, Cfg{1.5, 0.2, 2, 0}, Cfg{1.5, 0.2, 1, 0}}) {
+    BuildOptions o;
+    o.cost_intersect = c.ki;
+    o.empty_bonus = c.eb;
+    o.leaf_size = c.leaf;
+    o.max_depth = c.depth;
+    TreeStats st;
+    const Image img = build_image(sc.tris, FormatId::fp32, Rounding::rne, o, &st);
+    uint32_t lo[3], hi[3];
+    img.box(lo, hi);
+    double steps = 0, leaves = 0, tests = 0;
+    const int W = 200, H = 120;
+    for (int py = 0; py < H; ++py)
+      for (int px = 0; px < W; ++px) {
+        const Vec3 d = scenes::primary_direction(sc.camera, px, py, W, H), org = sc.camera.position;
+        const double inv[3] = {1 / d.x, 1 / d.y, 1 / d.z};
+        double tmin = 0, tmax = HUGE_VAL, best = HUGE_VAL;
+        for (int a = 0; a < 3; ++a) {
+          double ta = (to_double<FP32>(lo[a]) - org[a]) * inv[a], tb = (to_double<FP32>(hi[a]) - org[a]) * inv[a];
+          if (ta > tb) std::swap(ta, tb);
+          tmin = std::max(tmin, ta);
+          tmax = std::min(tmax, tb);
+        }
+        if (tmin > tmax) continue;
+        struct E {
+          uint32_t n;
+          double a, b;
+        };
+        std::vector<E> stack;
+        uint32_t n = 0;
+        for (;;) {
+          const Node nd = decode_node(img.node(n));
+          if (!nd.leaf()) {
+            ++steps;
+            const int a = int(nd.axis);
+            const double sp = to_double<FP32>(nd.split_or_count), ts = (sp - org[a]) * inv[a];
+            const bool below = org[a] < sp || (org[a] == sp && d[a] <= 0);
+            const uint32_t first = below ? n + 1 : nd.index, second = below ? nd.index : n + 1;
+            if (ts > tmax || ts <= 0) {
+              n = first;
+            } else if (ts < tmin) {
+              n = second;
+            } else {
+              stack.push_back({second, ts, tmax});
+              n = first;
+              tmax = ts;
+            }
+            continue;
+          }
+          ++leaves;
+          for (uint32_t j = 0; j < nd.split_or_count; ++j) {
+            ++tests;
+            const WaldTri<FP32> w = img.wald<FP32>(img.list(nd.index + j));
+            double k[9];
+            for (int q = 0; q < 9; ++q) k[q] = to_double<FP32>(w.c[q]);
+            const int K = int(w.k), U = (K + 1) % 3, V = (K + 2) % 3;
+            const double den = d[K] + k[0] * d[U] + k[1] * d[V];
+            const double t = (k[2] - org[K] - k[0] * org[U] - k[1] * org[V]) / den;
+            if (!(t > 1e-6 && t < best)) continue;
+            const double hu = org[U] + t * d[U], hv = org[V] + t * d[V];
+            const double b = k[3] * hu + k[4] * hv + k[5], g = k[6] * hu + k[7] * hv + k[8];
+            if (b >= 0 && g >= 0 && b + g <= 1) best = t;
+          }
+          if (best <= tmax || stack.empty()) break;
+          n = stack.back().n;
+          tmin = stack.back().a;
+          tmax = stack.back().b;
+          stack.pop_back();
+        }
+      }
+    const double R = W * H;
+    std::printf("K_I/K_T %5.1f empty_bonus %.1f leaf_size %d max_depth %2d: nodes %7llu depth %d "
+                "refs/tri %5.2f build %.2f s | per ray: steps %5.1f leaves %5.1f tests %5.1f, "
+                "bytes %5.0f\n",
+                c.ki, c.eb, c.leaf, c.depth, (unsigned long long)st.nodes, st.max_depth, st.refs_per_tri,
+                st.build_seconds, steps / R, leaves / R, tests / R,
+                (8 * (steps + leaves) + 36 * tests) / R);
+  }
+}
+#endif
 
 }  // namespace
 }  // namespace raycore::hls

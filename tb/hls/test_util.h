@@ -118,13 +118,13 @@ inline std::vector<Tri> synthetic_scene(int n, uint64_t seed = 1) {
   };
   // Floor and two walls as grids: 3 x 2 x 50 x 50 = 15,000 triangles.
   const int g = 50;
-  const double s = 2000.0 / g;
+  const double s = 2000.0 / g, h = 600.0 / g;
   for (int i = 0; i < g; ++i)
     for (int j = 0; j < g; ++j) {
-      const double x = -1000 + i * s, z = -1000 + j * s, y = -300 + i * s * 0.3;
+      const double x = -1000 + i * s, z = -1000 + j * s, y = -300 + j * h;
       quad({x, -300, z}, {x + s, -300, z}, {x + s, -300, z + s}, {x, -300, z + s});
-      quad({x, y, -1000}, {x + s, y, -1000}, {x + s, y + s * 0.3, -1000}, {x, y + s * 0.3, -1000});
-      quad({-1000, y, z}, {-1000, y, z + s}, {-1000, y + s * 0.3, z + s}, {-1000, y + s * 0.3, z});
+      quad({x, y, -1000}, {x + s, y, -1000}, {x + s, y + h, -1000}, {x, y + h, -1000});
+      quad({-1000, y, x}, {-1000, y, x + s}, {-1000, y + h, x + s}, {-1000, y + h, x});
     }
   // Boxes: 12 triangles each.
   auto box = [&](Vec3 lo, Vec3 hi) {
