@@ -80,6 +80,10 @@ class Cosim {
   Cosim(std::string fmt, std::string mode, int stages, uint64_t seed)
       : fmt_(std::move(fmt)), mode_(std::move(mode)), stages_(stages), rng_(seed) {
     ctx_ = std::make_unique<VerilatedContext>();
+    // Registers without reset (the data registers) start with random bits (models are built with
+    // --x-initial unique): a result must never depend on them.
+    ctx_->randReset(2);
+    ctx_->randSeed(int(seed & 0x7fffffffu) | 1);
     m_ = std::make_unique<V>(ctx_.get(), "top");
     setup();
   }
