@@ -84,7 +84,7 @@ template <class F>
 void run_next_zero_sign() {
   using S = Spec<F>;
   Oracle<F> o;
-  Tally t(fmt_name<F>(), "next_up/next_down zero sign", "-", "directed");
+  Tally t(fmt_name<F>(), "next_up/down_zero_sign", "-", "directed");
   const uint32_t pmin = S::make(false, S::emin, 0), nmin = S::make(true, S::emin, 0);
   t.check(Shown<F>{hls::next_up<F>(nmin)}, Shown<F>{o.next_up(nmin)},
           [&] { return "next_up(a), a=" + show<F>(nmin); });

@@ -1,0 +1,128 @@
+#!/usr/bin/env bash
+# `make bench`: the project's measurements, in sections.
+#
+#   scripts/bench.sh BUILD_DIR [SECTION ...]     (default: every section, in order)
+#   scripts/bench.sh BUILD_DIR --list
+#
+# Outputs go to BUILD_DIR/bench/. Each section is a shell function `section_<name>` that prints
+# its own header and results and returns non-zero on failure; the script runs all requested
+# sections, then exits non-zero if any failed. To add a section: define `section_<name>` below
+# and append <name> to SECTIONS (a section whose binary is not built says so and is skipped).
+#
+# Environment:
+#   RAYCORE_FP_RANDOM   random vectors per op/mode/format in the fp_oracle section (default 1e8)
+#   FP_BENCH_ARGS       extra arguments for fp_bench (e.g. --benchmark_filter=FP24)
+#   BENCH_JOBS          parallel test processes (default: nproc)
+set -uo pipefail
+
+SECTIONS=(fp_bench fp_oracle)
+
+usage() { echo "usage: $0 BUILD_DIR [--list | SECTION ...]; sections: ${SECTIONS[*]}" >&2; exit 2; }
+[ $# -ge 1 ] || usage
+BUILD=$(cd "$1" 2>/dev/null && pwd) || { echo "bench: build directory '$1' not found" >&2; exit 2; }
+shift
+OUT="$BUILD/bench"
+mkdir -p "$OUT"
+JOBS=${BENCH_JOBS:-$(nproc)}
+
+header() { printf '\n==== %s ====\n' "$*"; }
+machine() {
+  echo "machine: $(lscpu | sed -n 's/^Model name: *//p' | head -1), $(nproc) CPUs, load $(cut -d' ' -f1-3 /proc/loadavg)"
+}
+
+# ---- fp_bench: software throughput of the hls/fp.h operations --------------------------------
+section_fp_bench() {
+  header "fp_bench: hls/fp.h software throughput (ops/s, one core)"
+  local bin="$BUILD/bin/fp_bench"
+  if [ ! -x "$bin" ]; then
+    echo "fp_bench not built (Google Benchmark missing?): skipped"
+    return 0
+  fi
+  machine
+  echo "command: $bin --benchmark_out=$OUT/fp_bench.json --benchmark_out_format=json ${FP_BENCH_ARGS:-}"
+  # shellcheck disable=SC2086
+  "$bin" --benchmark_out="$OUT/fp_bench.json" --benchmark_out_format=json ${FP_BENCH_ARGS:-} \
+    | tee "$OUT/fp_bench.txt" || return 1
+  echo
+  echo "FP24 summary (items_per_second from CPU time; the full table is above):"
+  awk '
+    /^FP24\// {
+      split($1, p, "/"); op = p[2]; mode = (p[3] == "" ? "-" : p[3]);
+      for (i = 2; i <= NF; i++) if ($i ~ /^items_per_second=/) { v = $i; sub(/items_per_second=/, "", v); sub(/\/s$/, "", v) }
+      if (!(op in seen)) { seen[op] = 1; order[++n] = op }
+      r[op, mode] = v
+    }
+    END {
+      printf "  %-12s %12s %12s\n", "op", "rtz", "rne"
+      for (i = 1; i <= n; i++) {
+        op = order[i]
+        a = ((op, "rtz") in r) ? r[op, "rtz"] : (((op, "-") in r) ? r[op, "-"] " (any)" : "")
+        b = ((op, "rne") in r) ? r[op, "rne"] : ""
+        printf "  %-12s %12s %12s\n", op, a, b
+      }
+    }' "$OUT/fp_bench.txt"
+  echo "JSON: $OUT/fp_bench.json"
+}
+
+# ---- fp_oracle: hls/fp.h against MPFR with many random vectors ---------------------------------
+# Sums the FPSUM lines the tests print (one per format, op, mode and vector set; the exhaustive
+# shards are merged) into a table.
+fp_summary_table() {
+  awk '
+    /^FPSUM / {
+      set = $5; sub(/\[[0-9]+\/[0-9]+\]$/, "", set)
+      key = $2 " " $3 " " $4 " " set
+      v = $6; sub(/vectors=/, "", v); m = $7; sub(/mismatches=/, "", m)
+      if (!(key in vec)) order[++n] = key
+      vec[key] += v; mis[key] += m
+    }
+    END {
+      for (i = 1; i <= n; i++) {
+        split(order[i], k, " ")
+        printf "  %-6s %-24s %-4s %-20s %14.0f %10d\n", k[1], k[2], k[3], k[4], vec[order[i]], mis[order[i]]
+        tv += vec[order[i]]; tm += mis[order[i]]
+      }
+      printf "ZZZZ total: %.0f vectors, %d mismatches\n", tv, tm
+    }' "$1" | LC_ALL=C sort -k1,1 -k2,2 -k4,4 -k3,3 | sed 's/^ZZZZ /  /' |
+    { printf "  %-6s %-24s %-4s %-20s %14s %10s\n" format op mode set vectors mismatches; cat; }
+}
+
+section_fp_oracle() {
+  local n=${RAYCORE_FP_RANDOM:-100000000}
+  header "fp_oracle: hls/fp.h vs MPFR and host float, RAYCORE_FP_RANDOM=$n"
+  if [ ! -x "$BUILD/bin/fp_oracle_test" ]; then
+    echo "fp_oracle_test not built: skipped"
+    return 0
+  fi
+  machine
+  local sum="$OUT/fp_oracle_summary.txt" log="$OUT/fp_oracle.log"
+  rm -f "$sum"
+  echo "command: RAYCORE_FP_RANDOM=$n ctest -R '^fp\\.' -L unit -j $JOBS --timeout 100000 (in $BUILD)"
+  local t0=$SECONDS rc=0
+  (cd "$BUILD" && RAYCORE_FP_RANDOM=$n RAYCORE_FP_SUMMARY="$sum" \
+     ctest -R '^fp\.' -L unit -j "$JOBS" --timeout 100000 --output-on-failure) > "$log" 2>&1 || rc=$?
+  grep -E '^(Total Test time|[0-9]+% tests passed)' "$log"
+  sed -n '/^The following tests FAILED/,/^Errors while running/p' "$log" | head -40
+  echo "wall time: $((SECONDS - t0)) s; log: $log; summary lines: $sum"
+  [ -s "$sum" ] && fp_summary_table "$sum"
+  return $rc
+}
+
+# ---- driver -------------------------------------------------------------------------------------
+if [ "${1:-}" = "--list" ]; then printf '%s\n' "${SECTIONS[@]}"; exit 0; fi
+run=("$@")
+[ ${#run[@]} -gt 0 ] || run=("${SECTIONS[@]}")
+failed=()
+for s in "${run[@]}"; do
+  if ! declare -F "section_$s" >/dev/null; then
+    echo "bench: unknown section '$s' (sections: ${SECTIONS[*]})" >&2
+    exit 2
+  fi
+  "section_$s" || failed+=("$s")
+done
+echo
+if [ ${#failed[@]} -gt 0 ]; then
+  echo "bench: FAILED sections: ${failed[*]}"
+  exit 1
+fi
+echo "bench: all sections done (${run[*]}); outputs in $OUT"
