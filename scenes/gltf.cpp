@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <limits>
@@ -607,9 +608,16 @@ Scene load_gltf_memory(const uint8_t* data, size_t size, const std::string& name
 }
 
 Scene load_gltf(const std::string& path, bool print_warnings) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw SceneError(path + ": is a directory, not a glTF file");
   std::ifstream f(path, std::ios::binary);
   if (!f) throw SceneError(path + ": cannot open: " + std::strerror(errno));
-  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  std::vector<uint8_t> bytes;
+  try {
+    bytes.assign(std::istreambuf_iterator<char>(f), std::istreambuf_iterator<char>());
+  } catch (const std::exception& e) {
+    throw SceneError(path + ": read error: " + e.what());
+  }
   if (f.bad()) throw SceneError(path + ": read error");
   return load_gltf_memory(bytes.data(), bytes.size(), path, dir_of(path), print_warnings);
 }

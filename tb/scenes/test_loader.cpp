@@ -43,6 +43,8 @@ GltfDoc one_triangle(std::vector<float> pos = kTri) {
 
 TEST(Loader, MissingFile) { expect_error("/nonexistent/dir/x.glb", {"/nonexistent/dir/x.glb", "cannot open"}); }
 
+TEST(Loader, DirectoryInsteadOfFile) { expect_error("/tmp", {"/tmp", "is a directory"}); }
+
 TEST(Loader, EmptyFile) { expect_error(write_file("empty.gltf", ""), {"empty.gltf", "empty"}); }
 
 TEST(Loader, GarbageBytes) {
