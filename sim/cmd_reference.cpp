@@ -83,16 +83,16 @@ void run_reference(const ReferenceArgs& a) {
     j["embree"] = reference::to_json(e);
     std::printf("embree    agreement %.4f%% of %llu pixels: %llu same triangle, %llu both miss, %llu ties; "
                 "%llu disagree (%llu embree_miss, %llu embree_extra_hit, %llu different_surface; %llu near an "
-                "edge) [%.2f s]\n",
+                "edge, %llu explained by the float inputs) [%.2f s]\n",
                 e.agreement_pct, (unsigned long long)e.pixels, (unsigned long long)e.agree_same_tri,
                 (unsigned long long)e.agree_both_miss, (unsigned long long)e.agree_tie,
                 (unsigned long long)e.disagree, (unsigned long long)e.embree_miss,
                 (unsigned long long)e.embree_extra_hit, (unsigned long long)e.different_surface,
-                (unsigned long long)e.disagree_near_edge, es);
+                (unsigned long long)e.disagree_near_edge, (unsigned long long)e.disagree_float_inputs, es);
     for (const auto& d : e.examples)
-      std::printf("  (%d, %d) %-17s ref tri %d t %.9g margin %.3g | embree tri %d t %.9g margin %.3g%s\n", d.x, d.y,
+      std::printf("  (%d, %d) %-17s ref tri %d t %.9g margin %.3g | embree tri %d t %.9g margin %.3g%s%s\n", d.x, d.y,
                   d.cause.c_str(), d.ref_tri, d.ref_t, d.ref_edge_margin, d.embree_tri, d.embree_t,
-                  d.embree_edge_margin, d.near_edge ? " (near edge)" : "");
+                  d.embree_edge_margin, d.near_edge ? " (near edge)" : "", d.float_inputs ? " (float inputs)" : "");
   }
   if (!a.report.empty()) {
     std::ofstream out(a.report);

@@ -31,6 +31,26 @@ double edge_margin(const Ray& ray, const Tri& tri) {
   return std::min({u / det, v / det, w / det});
 }
 
+Vec3 to_float(const Vec3& v) { return {double(float(v.x)), double(float(v.y)), double(float(v.z))}; }
+
+// Does the exact (double, watertight) test on float-rounded inputs decide between the reference's
+// triangle and Embree's as Embree did?
+bool explained_by_float_inputs(const Ray& ray, const std::vector<Tri>& tris, int32_t ref_tri, int32_t emb_tri) {
+  const Ray fr{to_float(ray.org), to_float(ray.dir)};
+  const ShearedRay s(fr);
+  auto test = [&](int32_t id, TriHit* h) {
+    if (id < 0) return false;
+    const Tri& t = tris[size_t(id)];
+    const Tri ft = {to_float(t[0]), to_float(t[1]), to_float(t[2])};
+    return intersect_triangle(s, ft, 0.0, HUGE_VAL, h);
+  };
+  TriHit hr, he;
+  const bool r = test(ref_tri, &hr), e = test(emb_tri, &he);
+  if (emb_tri < 0) return !r;  // Embree missed the reference's triangle
+  if (ref_tri < 0) return e;   // Embree hit a triangle the reference's ray misses
+  return e && (!r || he.t < hr.t);
+}
+
 #if RAYCORE_HAVE_EMBREE
 // Owns an Embree device and a committed scene of the triangles (converted to float).
 class EmbreeScene {
@@ -159,6 +179,8 @@ EmbreeAgreement embree_check(const scenes::Scene& scene, const sim::Frame& ref, 
     const bool ref_edge = r.tri >= 0 && std::fabs(d.ref_edge_margin) < opt.edge_tol;
     const bool emb_edge = et >= 0 && std::fabs(d.embree_edge_margin) < opt.edge_tol;
     d.near_edge = ref_edge || emb_edge;
+    d.float_inputs = explained_by_float_inputs(ray, scene.tris, r.tri, et);
+    if (d.float_inputs) ++a.disagree_float_inputs;
     if (et < 0) {
       d.cause = "embree_miss";
       ++a.embree_miss;
@@ -182,7 +204,7 @@ EmbreeAgreement embree_check(const scenes::Scene& scene, const sim::Frame& ref, 
 nlohmann::json to_json(const EmbreeAgreement& a) {
   nlohmann::json ex = nlohmann::json::array();
   for (const auto& d : a.examples)
-    ex.push_back({{"x", d.x}, {"y", d.y}, {"cause", d.cause}, {"near_edge", d.near_edge},
+    ex.push_back({{"x", d.x}, {"y", d.y}, {"cause", d.cause}, {"near_edge", d.near_edge}, {"float_inputs", d.float_inputs},
                   {"ref_tri", d.ref_tri}, {"ref_t", d.ref_t}, {"ref_edge_margin", d.ref_edge_margin},
                   {"embree_tri", d.embree_tri}, {"embree_t", d.embree_t},
                   {"embree_edge_margin", d.embree_edge_margin}});
@@ -196,6 +218,7 @@ nlohmann::json to_json(const EmbreeAgreement& a) {
           {"embree_extra_hit", a.embree_extra_hit},
           {"different_surface", a.different_surface},
           {"disagree_near_edge", a.disagree_near_edge},
+          {"disagree_float_inputs", a.disagree_float_inputs},
           {"agreement_pct", a.agreement_pct},
           {"examples", ex}};
 }

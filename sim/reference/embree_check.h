@@ -8,9 +8,14 @@
 //   embree_miss          - the reference hits, Embree misses;
 //   embree_extra_hit     - Embree hits, the reference misses;
 //   different_surface    - both hit, different triangles, distances differ by more than rel_tol.
-// and, across those, by what the double-precision test says about the triangle the other tracer
-// chose (near_edge: the ray passes within `edge_tol` (relative barycentric margin) of an edge of
-// the reference's or Embree's triangle, i.e. a silhouette decided by FP32 rounding).
+// and, across those, explained where possible:
+//   near_edge      - the ray passes within `edge_tol` (relative barycentric margin) of an edge of
+//                    the reference's or Embree's triangle (a silhouette decided by rounding);
+//   float_inputs   - Embree's answer is the exact answer for its float inputs: the watertight
+//                    double test, run on the two triangles with vertices rounded to float and on
+//                    the ray with origin and direction rounded to float, decides between them as
+//                    Embree did (so the difference comes from rounding the scene and the ray to
+//                    FP32, not from either tracer's arithmetic).
 #pragma once
 
 #include <cstdint>
@@ -27,7 +32,8 @@ namespace raycore::reference {
 struct EmbreeDisagreement {
   int x = 0, y = 0;
   std::string cause;        // embree_miss, embree_extra_hit, different_surface
-  bool near_edge = false;   // explained by an edge graze (see above)
+  bool near_edge = false;     // explained by an edge graze (see above)
+  bool float_inputs = false;  // explained by rounding the inputs to float (see above)
   int32_t ref_tri = -1;
   double ref_t = 0;
   double ref_edge_margin = 0;     // min barycentric of the reference's hit (0 = on an edge)
@@ -43,7 +49,8 @@ struct EmbreeAgreement {
   uint64_t agree_both_miss = 0, agree_same_tri = 0, agree_tie = 0;
   uint64_t disagree = 0;
   uint64_t embree_miss = 0, embree_extra_hit = 0, different_surface = 0;
-  uint64_t disagree_near_edge = 0;  // disagreements explained by an edge graze
+  uint64_t disagree_near_edge = 0;     // disagreements explained by an edge graze
+  uint64_t disagree_float_inputs = 0;  // disagreements explained by the float inputs
   double agreement_pct = 0;
   std::vector<EmbreeDisagreement> examples;  // the first max_examples, row-major order
 };

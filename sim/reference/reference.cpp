@@ -1,6 +1,7 @@
 // sim/reference/reference.cpp - see reference.h.
 #include "sim/reference/reference.h"
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <stdexcept>
@@ -63,7 +64,14 @@ ShadowResult Reference::shadow(const Vec3& origin, const TriHit& h) const {
   const Vec3 p = hit_point(h, &err);
   const Vec3 w = light_.position - p;
   const double len = hls::length(w);
-  r.t_lo = len > 0 ? 2.0 * hls::length(err) / len * (1.0 + 0x1p-20) : HUGE_VAL;
+  // Ignored: the part of the segment within twice the hit point's error radius of P, and within
+  // twice its error slab around the triangle's plane (which matters at grazing light).
+  const Vec3 n = hls::normalize(hls::cross(t[1] - t[0], t[2] - t[0]));
+  const double slab = hls::dot(abs(n), err);
+  const double rise = std::fabs(hls::dot(n, w));  // distance from the plane gained per unit t
+  const double t_ball = len > 0 ? 2.0 * hls::length(err) / len : HUGE_VAL;
+  const double t_slab = rise > 0 ? 2.0 * slab / rise : HUGE_VAL;
+  r.t_lo = std::max(t_ball, t_slab) * (1.0 + 0x1p-20);
   if (r.t_lo >= 1.0) {
     r.lit = true;
     return r;

@@ -19,9 +19,12 @@
 //    because the exact segment from the true hit point cannot cross them for t > 0 when the light
 //    is strictly in front: the hit triangle itself (by index) and every triangle whose three
 //    vertices are exactly coplanar with it (orient3d == 0). Ignored: occluders crossed at
-//    t <= t_lo = 2 |e| / |L - P| (times 1 + 2^-20), i.e. within twice the hit point's error
-//    radius of P, where the computed segment cannot tell which side of them the true point is
-//    on; this is the reference's only approximation (about 1e-15 of the scene's coordinates).
+//    t <= t_lo = max(2 |e|, 2 dot(|n|, e) / |cos|) / |L - P| (times 1 + 2^-20; n the unit
+//    normal, cos between n and L - P), i.e. within twice the hit point's error radius of P or
+//    within twice its error slab around the plane (pbrt's offset dot(|n|, e)), where the
+//    computed segment cannot tell which side of them the true point is on. This is the
+//    reference's only approximation (about 1e-15 of the coordinates' magnitude; more only for
+//    light grazing the surface, by 1 / |cos|).
 //    lit = no occluder; shadow_tri = the nearest occluder (ties to the lowest index), else -1.
 // 5. shade (cosmetic, not used by the metrics): 0 for a miss; 40 + 215 |cos| (rounded) when lit,
 //    40 when shadowed, cos = angle between the geometric normal and L - P.

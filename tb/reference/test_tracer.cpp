@@ -244,6 +244,25 @@ TEST(ReferenceTracer, ShadowLightBehindOrInPlaneSpawnsNoRay) {
   }
 }
 
+TEST(ReferenceTracer, ShadowOccluderVeryCloseToTheHitPointIsFound) {
+  // A wall 1e-6 beside the hit point, unseen by the camera (which looks from the other side) but
+  // crossing the shadow ray at a distance of 1.4e-6: far beyond the hit point's error bound.
+  for (const Vec3& o : {Vec3{0, 0, 0}, Vec3{1000.5, -2000.25, 3000.125}}) {
+    std::vector<Tri> t = quad(1, o.y, o.z - 10, o.z + 10, o.x - 10, o.x + 10);  // floor y = o.y
+    append(t, quad(0, o.x + 1e-6, o.y, o.y + 1, o.z - 1, o.z + 1));            // wall x = o.x + 1e-6
+    const Reference ref(make_scene(t, look_at(o + Vec3{-5, 5, 0.25}, o), o + Vec3{10, 10, 0}));
+    const Vec3 eye = ref.camera().position;
+    const sim::PixelResult px = ref.trace({eye, hls::normalize(o - eye)});
+    ASSERT_TRUE(px.tri == 0 || px.tri == 1) << px.tri;
+    EXPECT_LT(px.hit.x, o.x + 1e-6);
+    EXPECT_TRUE(px.shadow_ray);
+    EXPECT_FALSE(px.lit) << "origin " << o.x;
+    EXPECT_TRUE(px.shadow_tri == 2 || px.shadow_tri == 3) << px.shadow_tri;
+    const ShadowResult s = ref.shadow(eye, ref.closest({eye, hls::normalize(o - eye)}));
+    EXPECT_LT(s.t_lo, 1e-9);
+  }
+}
+
 TEST(ReferenceTracer, GrazingLightOverTessellatedFloorFarFromOriginIsLitEverywhere) {
   // A tilted floor far from the origin, 16 x 16 cells, vertex heights computed in double (so
   // neighbours are only nearly coplanar); the light 2 degrees above the floor's plane, far away.
@@ -277,7 +296,21 @@ TEST(ReferenceTracer, GrazingLightOverTessellatedFloorFarFromOriginIsLitEverywhe
     lit += px.shadow_ray && px.lit;
     self += px.shadow_ray && px.shadow_tri == px.tri;
   }
-  EXPECT_GT(hits, 1000u);
+  // And rays aimed exactly at every vertex and at points on every edge: hit points on shared
+  // edges, where the neighbours (nearly coplanar) touch the shadow ray's origin.
+  const Vec3 eye = ref.camera().position;
+  for (const Tri& tri : t)
+    for (int k = 0; k < 3; ++k)
+      for (double along_edge : {0.0, 0.25, 0.5}) {
+        const Vec3 target = tri[size_t(k)] + (tri[size_t((k + 1) % 3)] - tri[size_t(k)]) * along_edge;
+        const sim::PixelResult px = ref.trace({eye, target - eye});
+        if (px.tri < 0) continue;
+        ++hits;
+        shadow_rays += px.shadow_ray;
+        lit += px.shadow_ray && px.lit;
+        self += px.shadow_ray && px.shadow_tri == px.tri;
+      }
+  EXPECT_GT(hits, 5000u);
   EXPECT_EQ(shadow_rays, hits);
   EXPECT_EQ(lit, hits);
   EXPECT_EQ(self, 0u);
