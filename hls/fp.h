@@ -99,7 +99,7 @@ constexpr uint32_t round_pack(bool sign, int lsb_exp, U mag, bool sticky) {
   const int p = detail::msb(mag);
   int e = lsb_exp + p;
   const int sh = p - M;
-  uint64_t kept;
+  uint64_t kept = 0;
   if (sh > 0) {
     kept = uint64_t(mag >> sh);
     if constexpr (R == Rounding::rne) {
@@ -191,7 +191,7 @@ constexpr uint32_t add(uint32_t a, uint32_t b) {
   const auto ua = detail::unpack<F>(a), ub = detail::unpack<F>(b);
   const int d = ua.exp - ub.exp;
   const uint64_t ma = uint64_t(ua.sig) << G;
-  uint64_t mb;
+  uint64_t mb = 0;
   if (d <= G) {
     mb = uint64_t(ub.sig) << (G - d);
   } else if (d <= M + 1 + G) {
@@ -259,7 +259,7 @@ constexpr uint32_t add3(uint32_t a, uint32_t b, uint32_t c) {
 
   const auto ua = detail::unpack<F>(a), ub = detail::unpack<F>(b), uc = detail::unpack<F>(c);
   const S ma = S(U(ua.sig) << (W - M));
-  S mb, mc;
+  S mb = 0, mc = 0;
   const int db = ua.exp - ub.exp;
   if (W - M - db >= 1) {
     mb = S(U(ub.sig) << (W - M - db));

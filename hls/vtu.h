@@ -81,8 +81,9 @@ struct Vtu {
   }
 };
 
-// The whole image translated: every node, every triangle record and the header's box (box(), not
-// box_outward(): the header holds what the hardware's box registers would). Sets image_flag_vtu.
+// The whole image translated: every node, every triangle record and the header's box (with
+// box_outward(): a plain sub could pull a bound in by an ulp and clip geometry off the box; the
+// hardware's box registers take the same outward step). Sets image_flag_vtu.
 // Throws std::invalid_argument if the image's format or policy differs from the VTU's.
 template <class F, Rounding R>
 Image transform_image(const Image& img, const Vtu<F, R>& vtu) {
@@ -99,7 +100,7 @@ Image transform_image(const Image& img, const Vtu<F, R>& vtu) {
   for (uint32_t i = 0; i < h.tri_count; ++i)
     vtu.tri_record(p + h.tri_offset + size_t(i) * tri_record_bytes<F>());
   ImageHeader nh = h;
-  vtu.box(nh.box_lo, nh.box_hi);
+  vtu.box_outward(nh.box_lo, nh.box_hi);
   nh.flags = uint8_t(nh.flags | image_flag_vtu);
   nh.write(p);
   return out;
