@@ -554,6 +554,31 @@ class Loader {
   std::map<int, uint64_t> skipped_modes_;
 };
 
+// tinygltf converts `extras` and `extensions` to its Value type recursively, so deeply nested JSON
+// overflows the stack (found with [[[[...]]]] 10^5 deep). glTF itself nests about 6 levels; reject
+// documents nested deeper than this before tinygltf sees them.
+constexpr int kMaxJsonDepth = 256;
+
+int json_depth(const uint8_t* p, size_t n) {
+  int depth = 0, deepest = 0;
+  bool in_string = false, escaped = false;
+  for (size_t i = 0; i < n; ++i) {
+    const uint8_t c = p[i];
+    if (in_string) {
+      if (escaped) escaped = false;
+      else if (c == '\\') escaped = true;
+      else if (c == '"') in_string = false;
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '[' || c == '{') {
+      deepest = std::max(deepest, ++depth);
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
 }  // namespace
 
 uint64_t count_degenerate(const std::vector<Tri>& tris) {
@@ -577,6 +602,20 @@ Scene load_gltf_memory(const uint8_t* data, size_t size, const std::string& name
   gltf.SetStoreOriginalJSONForExtrasAndExtensions(true);
   std::string err, warn;
   const bool binary = size >= 4 && std::memcmp(data, "glTF", 4) == 0;
+  {
+    // The JSON text: the whole file, or a .glb's first chunk (never the binary chunk).
+    const uint8_t* json = data;
+    size_t json_size = size;
+    if (binary) {
+      uint32_t len = 0;
+      if (size >= 20) std::memcpy(&len, data + 12, 4);
+      json = data + std::min<size_t>(20, size);
+      json_size = std::min<size_t>(len, size - std::min<size_t>(20, size));
+    }
+    if (json_depth(json, json_size) > kMaxJsonDepth)
+      throw SceneError(name + ": JSON nested deeper than " + std::to_string(kMaxJsonDepth) +
+                       " levels (refused: tinygltf parses nesting recursively)");
+  }
   bool ok;
   if (binary)
     ok = gltf.LoadBinaryFromMemory(&model, &err, &warn, data, static_cast<unsigned int>(size), base_dir);
