@@ -59,6 +59,7 @@ void run_reference(const ReferenceArgs& a) {
   j["scene"] = {{"name", s.name}, {"source", s.source}, {"triangles", s.tris.size()}};
   j["size"] = {a.width, a.height};
   j["bvh"] = {{"nodes", st.nodes}, {"leaves", st.leaves}, {"depth", st.depth}, {"degenerate", st.degenerate},
+              {"references", st.references},
               {"build_seconds", build_s}};
   j["rays"] = {{"primary", f.px.size()}, {"shadow", shadow_rays}};
   j["frame"] = {{"hits", hits}, {"lit", lit}};
