@@ -3,7 +3,9 @@
 
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <string>
@@ -84,7 +86,13 @@ inline std::string temp_path(const std::string& name) {
   static const std::string dir = [] {
     char tmpl[] = "/tmp/raycore_scenes_test_XXXXXX";
     const char* d = mkdtemp(tmpl);
-    return std::string(d ? d : "/tmp");
+    if (!d) return std::string("/tmp");
+    static std::string made = d;
+    std::atexit([] {
+      std::error_code ec;
+      std::filesystem::remove_all(made, ec);
+    });
+    return made;
   }();
   return dir + "/" + name;
 }
