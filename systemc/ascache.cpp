@@ -1,0 +1,84 @@
+// systemc/ascache.cpp - see ascache.h.
+#include "systemc/ascache.h"
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+#include <string>
+
+namespace raycore::sc {
+
+Ascache::Ascache(sc_core::sc_module_name name, const CacheConfig& cfg, uint64_t base,
+                 uint32_t line_bytes)
+    : sc_core::sc_module(name), line_(line_bytes), ways_(cfg.ways), base_(base) {
+  if (line_ == 0 || ways_ == 0 || cfg.mshrs == 0)
+    throw std::invalid_argument(std::string(this->name()) + ": line, ways and MSHRs must be >= 1");
+  sets_ = std::max<uint32_t>(1, cfg.size_bytes / (line_ * ways_));
+  tag_.assign(size_t(sets_) * ways_, 0);
+  stamp_.assign(size_t(sets_) * ways_, 0);
+  data_.assign(size_t(sets_) * ways_ * line_, 0);
+  hit_latency = cfg.hit_latency;
+  mshr_.resize(cfg.mshrs);
+  for (auto& m : mshr_) m.buf.assign(line_, 0);
+  req_.reset(cfg.mshrs);
+}
+
+bool Ascache::present(uint64_t line) const {
+  const size_t set = size_t(line % sets_) * ways_;
+  for (uint32_t w = 0; w < ways_; ++w)
+    if (tag_[set + w] == line + 1) return true;
+  return false;
+}
+
+const uint8_t* Ascache::access(uint64_t line) {
+  ++st_.accesses;
+  const size_t set = size_t(line % sets_) * ways_;
+  for (uint32_t w = 0; w < ways_; ++w)
+    if (tag_[set + w] == line + 1) {
+      ++st_.hits;
+      stamp_[set + w] = ++clock_;
+      return data_.data() + (set + w) * line_;
+    }
+  ++st_.misses;
+  ++st_.cycles_lost;
+  for (const auto& m : mshr_)
+    if (m.valid && m.line == line) {
+      ++st_.mshr_merges;
+      return nullptr;
+    }
+  if (busy_ == mshr_.size()) {
+    ++st_.mshr_full;
+    return nullptr;
+  }
+  for (uint32_t i = 0; i < mshr_.size(); ++i)
+    if (!mshr_[i].valid) {
+      mshr_[i].valid = true;
+      mshr_[i].line = line;
+      ++busy_;
+      req_.push({base_ + line * line_, line_, i, mshr_[i].buf.data()}, now + 1);
+      break;
+    }
+  return nullptr;
+}
+
+void Ascache::fill(uint32_t tag) {
+  Mshr& m = mshr_[tag];
+  if (!m.valid) throw std::logic_error(std::string(name()) + ": fill of a free MSHR");
+  const size_t set = size_t(m.line % sets_) * ways_;
+  size_t victim = set;
+  for (uint32_t w = 0; w < ways_; ++w) {
+    if (tag_[set + w] == 0) {
+      victim = set + w;
+      break;
+    }
+    if (stamp_[set + w] < stamp_[victim]) victim = set + w;
+  }
+  tag_[victim] = m.line + 1;
+  stamp_[victim] = ++clock_;
+  std::memcpy(data_.data() + victim * line_, m.buf.data(), line_);
+  m.valid = false;
+  --busy_;
+  ++st_.fills;
+}
+
+}  // namespace raycore::sc

@@ -1,0 +1,64 @@
+// systemc/ascache.h - one acceleration-structure cache (the RTU has three: node, list, triangle).
+// Set-associative, LRU, lines of line_bytes; non-blocking: a miss allocates an MSHR (or merges into
+// the one already fetching the line) and sends a line request to membus, and the requester loops
+// (it retries later) while hits behind it proceed. A miss that finds every MSHR busy is retried as
+// well (counted as mshr_full). Lines are addressed by index within the cache's region of the image.
+// The fill comes back through the vtu (transformed or not), then fill(tag) installs it.
+#pragma once
+
+#include <systemc>
+
+#include <cstdint>
+#include <vector>
+
+#include "systemc/config.h"
+#include "systemc/fifo.h"
+#include "systemc/membus.h"
+
+namespace raycore::sc {
+
+class Ascache : public sc_core::sc_module {
+ public:
+  // base: byte address of the region in the image; line_bytes: fetched per miss.
+  Ascache(sc_core::sc_module_name name, const CacheConfig& cfg, uint64_t base, uint32_t line_bytes);
+
+  // The line's bytes on a hit, nullptr on a miss (then the line is being fetched, or will be once
+  // an MSHR is free).
+  const uint8_t* access(uint64_t line);
+  // Whether the line is present, without touching LRU or counters (tests).
+  bool present(uint64_t line) const;
+
+  // The fill path: the MSHR buffer the membus writes and the vtu transforms, then the install.
+  uint8_t* mshr_data(uint32_t tag) { return mshr_[tag].buf.data(); }
+  uint64_t mshr_line(uint32_t tag) const { return mshr_[tag].line; }
+  void fill(uint32_t tag);
+
+  TimedFifo<MemReq>& req() { return req_; }  // req_valid_o / req_ready_i / req_addr_o ...
+  uint32_t line_bytes() const { return line_; }
+  uint32_t sets() const { return sets_; }
+  uint32_t ways() const { return ways_; }
+  uint32_t mshrs_busy() const { return busy_; }
+  CacheStats& stats() { return st_; }
+  const CacheStats& stats() const { return st_; }
+  Cycle now = 0;  // set by the owner each cycle (request timestamps)
+  uint32_t hit_latency = 1;
+
+ private:
+  struct Mshr {
+    bool valid = false;
+    uint64_t line = 0;
+    std::vector<uint8_t> buf;
+  };
+  uint32_t line_, ways_, sets_;
+  uint64_t base_;
+  std::vector<uint64_t> tag_;    // line + 1; 0 = invalid
+  std::vector<uint64_t> stamp_;  // LRU: last use
+  std::vector<uint8_t> data_;
+  uint64_t clock_ = 0;
+  std::vector<Mshr> mshr_;
+  uint32_t busy_ = 0;
+  TimedFifo<MemReq> req_;
+  CacheStats st_;
+};
+
+}  // namespace raycore::sc

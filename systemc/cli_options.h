@@ -1,0 +1,85 @@
+// systemc/cli_options.h - the cycle model's command-line options (raycore simulate / compare):
+// --config FILE (JSON, keys of sc::config_json) first, then any option given on the command line.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "systemc/config.h"
+#include "systemc/simulate.h"
+
+namespace raycore::sc {
+
+struct SimOptions {
+  SimConfig cfg;
+  std::string config_file;
+  std::vector<std::function<void(SimConfig&)>> overrides;  // options given on the command line
+};
+
+inline void add_sim_options(CLI::App& c, SimOptions& o) {
+  auto opt = [&](const char* name, auto member, const char* help, auto lo, auto hi) {
+    using T = std::remove_reference_t<decltype(o.cfg.*member)>;
+    auto value = std::make_shared<T>(o.cfg.*member);
+    c.add_option(name, *value, help)
+        ->check(CLI::Range(lo, hi))
+        ->default_str(std::to_string(o.cfg.*member))
+        ->each([&o, member, value](const std::string&) {
+          o.overrides.push_back([member, value](SimConfig& s) { s.*member = *value; });
+        });
+  };
+  opt("--rtus", &SimConfig::rtus, "ray-tracing units sharing the memory bus", 1, 64);
+  opt("--clock-mhz", &SimConfig::clock_mhz, "assumed clock for Mrays/s and GB/s", 1.0, 1e5);
+  opt("--mem-latency", &SimConfig::mem_latency, "memory latency in cycles", 0u, 100000u);
+  opt("--mem-bandwidth", &SimConfig::mem_bandwidth, "memory bus bytes per cycle", 1u, 4096u);
+  opt("--mem-queue", &SimConfig::mem_queue_depth, "outstanding memory requests", 1u, 4096u);
+  opt("--seed", &SimConfig::seed, "randomise memory latency in [L, 2L] (0: fixed)", uint64_t(0),
+      ~uint64_t(0));
+  opt("--vtu-depth", &SimConfig::vtu_depth, "VTU pipeline depth", 0u, 1000u);
+  opt("--rays-in-flight", &SimConfig::rays_in_flight, "ray slots per RTU", 1u, 65535u);
+  opt("--trv-latency", &SimConfig::trv_latency, "cycles of one traversal step", 1u, 1000u);
+  opt("--ist-latency", &SimConfig::ist_latency, "ist pipeline latency (sum of stages)", 1u, 1000u);
+  opt("--hit-latency", &SimConfig::hit_latency, "hit unit latency", 1u, 1000u);
+  auto kb = [&](const char* name, CacheConfig SimConfig::*cache, const char* help) {
+    auto value = std::make_shared<double>((o.cfg.*cache).size_bytes / 1024.0);
+    c.add_option(name, *value, help)
+        ->check(CLI::Range(0.0625, 65536.0))
+        ->default_str(std::to_string((o.cfg.*cache).size_bytes / 1024))
+        ->each([&o, cache, value](const std::string&) {
+          o.overrides.push_back(
+              [cache, value](SimConfig& s) { (s.*cache).size_bytes = uint32_t(*value * 1024); });
+        });
+  };
+  kb("--node-cache-kb", &SimConfig::node_cache, "node cache size per RTU (KiB)");
+  kb("--list-cache-kb", &SimConfig::list_cache, "list cache size per RTU (KiB)");
+  kb("--tri-cache-kb", &SimConfig::tri_cache, "triangle cache size per RTU (KiB)");
+  c.add_option("--trace", o.cfg.trace_file, "write a VCD of the top-level handshakes and counters");
+  c.add_option("--config", o.config_file, "JSON file with the model's parameters (options override it)");
+}
+
+// The configuration: defaults, then --config, then the command line.
+inline SimConfig finish_sim_options(const SimOptions& o) {
+  SimConfig c = o.cfg;
+  if (!o.config_file.empty()) {
+    std::ifstream f(o.config_file);
+    if (!f) throw std::runtime_error("cannot read config file '" + o.config_file + "'");
+    nlohmann::json j;
+    try {
+      j = nlohmann::json::parse(f);
+      config_from_json(j, c);
+    } catch (const std::exception& e) {
+      throw std::runtime_error("config file '" + o.config_file + "': " + e.what());
+    }
+    c.trace_file = o.cfg.trace_file;
+  }
+  for (const auto& f : o.overrides) f(c);
+  return c;
+}
+
+}  // namespace raycore::sc

@@ -1,0 +1,80 @@
+// systemc/membus.h - the external memory and the bus shared by all RTUs. Holds only the memory
+// image's bytes (untransformed). Requests come from the caches' request channels (one per cache
+// per RTU); one request is accepted per cycle, round-robin over the requesters, while fewer than
+// queue_depth are outstanding. A line's data returns latency cycles after acceptance (with a seed:
+// uniform in [latency, 2 latency]), then occupies the shared data bus for ceil(bytes / bandwidth)
+// cycles; the response goes to the requester's vtu port.
+#pragma once
+
+#include <systemc>
+
+#include <cstdint>
+#include <queue>
+#include <vector>
+
+#include "systemc/fifo.h"
+
+namespace raycore::sc {
+
+// A line request: the payload of the req_* handshake (req_addr, req_bytes, req_tag).
+struct MemReq {
+  uint64_t addr = 0;
+  uint32_t bytes = 0;
+  uint32_t tag = 0;        // the requester's MSHR index, returned with the response
+  uint8_t* data = nullptr;  // where the line's bytes land (the MSHR's buffer)
+};
+
+// The receiving side of a response (the vtu of the requesting RTU).
+class MemClient {
+ public:
+  virtual ~MemClient() = default;
+  virtual void mem_resp(uint32_t port, uint32_t tag, Cycle now) = 0;
+};
+
+struct MembusStats {
+  uint64_t requests = 0, bytes = 0, busy_cycles = 0;  // busy: data bus beats
+  uint64_t queue_full_cycles = 0;  // cycles a request waited because queue_depth were outstanding
+  uint64_t latency_sum = 0;        // accept -> last beat, summed over requests
+};
+
+class Membus : public sc_core::sc_module {
+ public:
+  Membus(sc_core::sc_module_name name, const std::vector<uint8_t>& image, uint32_t latency,
+         uint32_t bandwidth, uint32_t queue_depth, uint64_t seed);
+
+  // Binding: a requester's request channel and where its responses go.
+  void add_requester(TimedFifo<MemReq>* req, MemClient* client, uint32_t port);
+
+  bool tick(Cycle now);        // true if anything happened
+  Cycle next_event(Cycle now) const;
+  uint32_t outstanding() const { return uint32_t(resp_.size()); }
+  const MembusStats& stats() const { return st_; }
+
+ private:
+  struct Requester {
+    TimedFifo<MemReq>* req;
+    MemClient* client;
+    uint32_t port;
+  };
+  struct Resp {
+    Cycle arrival;
+    uint64_t seq;
+    uint32_t requester, tag;
+    bool operator>(const Resp& o) const {
+      return arrival != o.arrival ? arrival > o.arrival : seq > o.seq;
+    }
+  };
+  uint32_t draw_latency();
+
+  const std::vector<uint8_t>& mem_;
+  uint32_t latency_, bandwidth_, depth_;
+  uint64_t rng_;
+  std::vector<Requester> reqs_;
+  size_t rr_ = 0;
+  Cycle data_free_ = 0;
+  uint64_t seq_ = 0;
+  std::priority_queue<Resp, std::vector<Resp>, std::greater<Resp>> resp_;
+  MembusStats st_;
+};
+
+}  // namespace raycore::sc

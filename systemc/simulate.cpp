@@ -1,0 +1,279 @@
+// systemc/simulate.cpp - set-up of a frame on the cycle model, and its report (see simulate.h).
+#include "systemc/simulate.h"
+
+#include <sys/resource.h>
+
+#include <chrono>
+#include <stdexcept>
+
+#include "systemc/top.h"
+
+namespace raycore::sc {
+namespace {
+
+double user_cpu_seconds() {
+  rusage u{};
+  getrusage(RUSAGE_SELF, &u);
+  return double(u.ru_utime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec);
+}
+
+template <class A>
+SimResult run(const hls::Image& image, const scenes::Camera& cam, const scenes::Light& light,
+              const sim::TraceConfig& tc, const SimConfig& cfg) {
+  using F = typename A::Fmt;
+  constexpr hls::Rounding R = A::rounding;
+  const auto w0 = std::chrono::steady_clock::now();
+  const double u0 = user_cpu_seconds();
+  if (image.vtu_applied()) throw std::invalid_argument("simulate: the image is already VTU-translated");
+  SimResult res;
+  res.frame.width = tc.width;
+  res.frame.height = tc.height;
+  res.frame.px.resize(size_t(tc.width) * size_t(tc.height));
+
+  FrameCtx fc;
+  fc.width = tc.width;
+  fc.height = tc.height;
+  fc.cam = cam;
+  fc.header = image.header();
+  fc.frame = &res.frame;
+  fc.primary_retired.assign(res.frame.px.size(), 0);
+  fc.shadow_retired.assign(res.frame.px.size(), 0);
+  fc.empty_tree = fc.header.node_count == 0;
+  // The host's set-up registers, as the golden tracer forms them.
+  uint32_t c[3];
+  for (int i = 0; i < 3; ++i) c[i] = A::from_double(cam.position[i]);
+  for (int i = 0; i < 3; ++i) fc.light[i] = A::from_double(light.position[i]);
+  image.box(fc.box_lo, fc.box_hi);
+  const hls::Vtu<F, R> vtu{{c[0], c[1], c[2]}};
+  for (int i = 0; i < 3; ++i) fc.origin[i] = c[i];
+  if (tc.vtu) {
+    vtu.box_outward(fc.box_lo, fc.box_hi);
+    vtu.point(fc.light);
+    for (int i = 0; i < 3; ++i) {
+      fc.origin[i] = A::zero;
+      fc.offset[i] = A::to_double(c[i]);
+    }
+  }
+  fc.tmin = A::from_double(tc.tmin);
+  fc.spawn = tc.spawn;
+  if (fc.spawn.spawn == hls::Spawn::ulp_offset && fc.spawn.ulps == 0)
+    fc.spawn.ulps = sim::default_spawn_ulps(tc.format);
+  const uint32_t rb = uint32_t(hls::tri_record_bytes<F>());
+  fc.tri_line_records = std::max<uint32_t>(1, (cfg.tri_cache.line_bytes + rb / 2) / rb);
+  res.tri_line_bytes = fc.tri_line_records * rb;
+
+  Top<A> top("top", fc, cfg, image.bytes, tc.vtu, vtu);
+  sc_core::sc_start();
+  if (!top.rtus.empty() && fc.retired == 0 && fc.width * fc.height > 0)
+    throw std::runtime_error("cycle model: no ray retired");
+
+  res.cycles = top.cycles;
+  for (const auto& r : top.rtus) {
+    res.rtus.push_back(r->stats());
+    res.primary_rays += res.rtus.back().primary_rays;
+    res.shadow_rays += res.rtus.back().shadow_rays;
+  }
+  res.bus = top.bus.stats();
+  res.issued = fc.issued;
+  res.retired = fc.retired;
+  res.primary_retired = std::move(fc.primary_retired);
+  res.shadow_retired = std::move(fc.shadow_retired);
+  res.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - w0).count();
+  res.user_seconds = user_cpu_seconds() - u0;
+  return res;
+}
+
+}  // namespace
+
+SimResult simulate(const hls::Image& image, const scenes::Camera& cam, const scenes::Light& light,
+                   const sim::TraceConfig& tc, const SimConfig& cfg) {
+  if (tc.width <= 0 || tc.height <= 0) throw std::invalid_argument("image size must be positive");
+  if (image.format() != tc.format || image.rounding() != tc.rounding)
+    throw std::invalid_argument("memory image format/rounding differ from the configuration");
+  if (cfg.clock_mhz <= 0) throw std::invalid_argument("clock must be > 0 MHz");
+  return hls::visit_format(tc.format, tc.rounding, [&](auto f, auto r) {
+    using F = decltype(f);
+    constexpr hls::Rounding R = decltype(r)::value;
+    return run<hls::Arith<F, R>>(image, cam, light, tc, cfg);
+  });
+}
+
+std::vector<PixelDiff> diff_frames(const sim::Frame& a, const sim::Frame& b, size_t max_list,
+                                   uint64_t* count) {
+  std::vector<PixelDiff> out;
+  uint64_t n = 0;
+  if (a.width != b.width || a.height != b.height)
+    throw std::invalid_argument("diff_frames: frames differ in size");
+  for (int y = 0; y < a.height; ++y)
+    for (int x = 0; x < a.width; ++x) {
+      const auto& p = a.at(x, y);
+      const auto& q = b.at(x, y);
+      if (p.tri == q.tri && p.t_bits == q.t_bits && p.shadow_ray == q.shadow_ray && p.lit == q.lit &&
+          p.shadow_tri == q.shadow_tri && p.shade == q.shade)
+        continue;
+      ++n;
+      if (out.size() < max_list) out.push_back({x, y, p, q});
+    }
+  if (count) *count = n;
+  return out;
+}
+
+namespace {
+double ratio(uint64_t a, uint64_t b) { return b ? double(a) / double(b) : 0.0; }
+nlohmann::json cache_json(const CacheStats& c) {
+  return {{"accesses", c.accesses}, {"hits", c.hits},          {"misses", c.misses},
+          {"hit_rate", ratio(c.hits, c.accesses)}, {"mshr_merges", c.mshr_merges},
+          {"mshr_full", c.mshr_full}, {"fills", c.fills},      {"cycles_lost", c.cycles_lost}};
+}
+void add(CacheStats& a, const CacheStats& b) {
+  a.accesses += b.accesses;
+  a.hits += b.hits;
+  a.misses += b.misses;
+  a.mshr_merges += b.mshr_merges;
+  a.mshr_full += b.mshr_full;
+  a.fills += b.fills;
+  a.cycles_lost += b.cycles_lost;
+}
+}  // namespace
+
+nlohmann::json hardware_json(const SimResult& r, const SimConfig& cfg) {
+  RtuStats t;
+  for (const auto& s : r.rtus) {
+    t.primary_rays += s.primary_rays;
+    t.shadow_rays += s.shadow_rays;
+    t.rgu_busy += s.rgu_busy;
+    t.rgu_stall_no_slot += s.rgu_stall_no_slot;
+    t.trv_busy += s.trv_busy;
+    t.trv_node_miss += s.trv_node_miss;
+    t.trv_list_miss += s.trv_list_miss;
+    t.trv_ist_full += s.trv_ist_full;
+    t.inner_steps += s.inner_steps;
+    t.leaf_visits += s.leaf_visits;
+    t.pops += s.pops;
+    t.ist_busy += s.ist_busy;
+    t.ist_tri_miss += s.ist_tri_miss;
+    t.tri_tests += s.tri_tests;
+    t.hit_busy += s.hit_busy;
+    t.vtu_busy += s.vtu_busy;
+    add(t.node, s.node);
+    add(t.list, s.list);
+    add(t.tri, s.tri);
+  }
+  const double cyc = double(r.cycles);
+  const double unit_cycles = cyc * double(r.rtus.size());  // per-unit utilisation: mean over RTUs
+  const double rays = double(r.primary_rays + r.shadow_rays);
+  nlohmann::json per_rtu = nlohmann::json::array();
+  for (const auto& s : r.rtus)
+    per_rtu.push_back({{"rays", s.primary_rays + s.shadow_rays},
+                       {"trv", cyc ? double(s.trv_busy) / cyc : 0.0},
+                       {"ist", cyc ? double(s.ist_busy) / cyc : 0.0}});
+  return {
+      {"cycles", r.cycles},
+      {"clock_mhz", cfg.clock_mhz},
+      {"clock_note", "assumed clock (not from a synthesis result)"},
+      {"rtus", r.rtus.size()},
+      {"rays_per_cycle", cyc ? rays / cyc : 0.0},
+      {"rays_per_cycle_per_rtu", unit_cycles ? rays / unit_cycles : 0.0},
+      {"mrays_per_s", cyc ? rays / cyc * cfg.clock_mhz : 0.0},
+      {"work", {{"inner_steps", t.inner_steps}, {"leaf_visits", t.leaf_visits}, {"pops", t.pops},
+                {"tri_tests", t.tri_tests}}},
+      {"utilisation",
+       {{"rgu", unit_cycles ? double(t.rgu_busy) / unit_cycles : 0.0},
+        {"trv", unit_cycles ? double(t.trv_busy) / unit_cycles : 0.0},
+        {"ist", unit_cycles ? double(t.ist_busy) / unit_cycles : 0.0},
+        {"hit", unit_cycles ? double(t.hit_busy) / unit_cycles : 0.0},
+        {"vtu", unit_cycles ? double(t.vtu_busy) / unit_cycles : 0.0},
+        {"membus", cyc ? double(r.bus.busy_cycles) / cyc : 0.0},
+        {"per_rtu", per_rtu}}},
+      {"caches", {{"node", cache_json(t.node)}, {"list", cache_json(t.list)}, {"tri", cache_json(t.tri)}}},
+      {"bus",
+       {{"requests", r.bus.requests},
+        {"bytes", r.bus.bytes},
+        {"busy_cycles", r.bus.busy_cycles},
+        {"bandwidth_gb_s", cyc ? double(r.bus.bytes) / cyc * cfg.clock_mhz * 1e-3 : 0.0},
+        {"peak_gb_s", double(cfg.mem_bandwidth) * cfg.clock_mhz * 1e-3},
+        {"mean_latency_cycles", ratio(r.bus.latency_sum, r.bus.requests)}}},
+      {"stalls",
+       {{"trv_node_miss", t.trv_node_miss},
+        {"trv_list_miss", t.trv_list_miss},
+        {"trv_ist_queue_full", t.trv_ist_full},
+        {"ist_tri_miss", t.ist_tri_miss},
+        {"rgu_no_free_slot", t.rgu_stall_no_slot},
+        {"membus_queue_full", r.bus.queue_full_cycles}}}};
+}
+
+nlohmann::json sim_json(const SimResult& r) {
+  const double rays = double(r.primary_rays + r.shadow_rays);
+  return {{"wall_seconds", r.wall_seconds},
+          {"user_cpu_seconds", r.user_seconds},
+          {"cycles_per_second", r.wall_seconds > 0 ? double(r.cycles) / r.wall_seconds : 0.0},
+          {"rays_per_second", r.wall_seconds > 0 ? rays / r.wall_seconds : 0.0}};
+}
+
+nlohmann::json config_json(const SimConfig& c) {
+  auto cache = [](const CacheConfig& k) {
+    return nlohmann::json{{"size_kb", k.size_bytes / 1024.0}, {"ways", k.ways}, {"line_bytes", k.line_bytes},
+                          {"mshrs", k.mshrs}, {"hit_latency", k.hit_latency}};
+  };
+  return {{"rtus", c.rtus},
+          {"clock_mhz", c.clock_mhz},
+          {"mem_latency", c.mem_latency},
+          {"mem_bandwidth", c.mem_bandwidth},
+          {"mem_queue_depth", c.mem_queue_depth},
+          {"seed", c.seed},
+          {"vtu_depth", c.vtu_depth},
+          {"node_cache", cache(c.node_cache)},
+          {"list_cache", cache(c.list_cache)},
+          {"tri_cache", cache(c.tri_cache)},
+          {"rays_in_flight", c.rays_in_flight},
+          {"trv_latency", c.trv_latency},
+          {"ist_latency", c.ist_latency},
+          {"ist_queue", c.ist_queue},
+          {"hit_latency", c.hit_latency},
+          {"tile", c.tile}};
+}
+
+void config_from_json(const nlohmann::json& j, SimConfig& c) {
+  if (!j.is_object()) throw std::runtime_error("config: expected a JSON object");
+  auto num = [](const nlohmann::json& v, const std::string& key) {
+    if (!v.is_number()) throw std::runtime_error("config: '" + key + "' must be a number");
+    const double d = v.get<double>();
+    if (!(d >= 0) || d > 4e9) throw std::runtime_error("config: '" + key + "' out of range");
+    return d;
+  };
+  auto u32 = [&](const nlohmann::json& v, const std::string& key) { return uint32_t(num(v, key)); };
+  auto cache = [&](const nlohmann::json& v, const std::string& key, CacheConfig& k) {
+    if (!v.is_object()) throw std::runtime_error("config: '" + key + "' must be an object");
+    for (auto it = v.begin(); it != v.end(); ++it) {
+      const std::string n = key + "." + it.key();
+      if (it.key() == "size_kb") k.size_bytes = uint32_t(num(*it, n) * 1024);
+      else if (it.key() == "ways") k.ways = u32(*it, n);
+      else if (it.key() == "line_bytes") k.line_bytes = u32(*it, n);
+      else if (it.key() == "mshrs") k.mshrs = u32(*it, n);
+      else if (it.key() == "hit_latency") k.hit_latency = u32(*it, n);
+      else throw std::runtime_error("config: unknown key '" + n + "'");
+    }
+  };
+  for (auto it = j.begin(); it != j.end(); ++it) {
+    const std::string& k = it.key();
+    if (k == "rtus") c.rtus = int(u32(*it, k));
+    else if (k == "clock_mhz") c.clock_mhz = num(*it, k);
+    else if (k == "mem_latency") c.mem_latency = u32(*it, k);
+    else if (k == "mem_bandwidth") c.mem_bandwidth = u32(*it, k);
+    else if (k == "mem_queue_depth") c.mem_queue_depth = u32(*it, k);
+    else if (k == "seed") c.seed = uint64_t(num(*it, k));
+    else if (k == "vtu_depth") c.vtu_depth = u32(*it, k);
+    else if (k == "node_cache") cache(*it, k, c.node_cache);
+    else if (k == "list_cache") cache(*it, k, c.list_cache);
+    else if (k == "tri_cache") cache(*it, k, c.tri_cache);
+    else if (k == "rays_in_flight") c.rays_in_flight = u32(*it, k);
+    else if (k == "trv_latency") c.trv_latency = u32(*it, k);
+    else if (k == "ist_latency") c.ist_latency = u32(*it, k);
+    else if (k == "ist_queue") c.ist_queue = u32(*it, k);
+    else if (k == "hit_latency") c.hit_latency = u32(*it, k);
+    else if (k == "tile") c.tile = u32(*it, k);
+    else throw std::runtime_error("config: unknown key '" + k + "'");
+  }
+}
+
+}  // namespace raycore::sc

@@ -1,0 +1,170 @@
+// systemc/trv.h - kd-tree traversal for many rays in flight. Each cycle the ray at the head of the
+// ready queue takes one step (box clip, one inner node, one list line, the leaf's end, one stack
+// pop) and loops back trv_latency cycles later. A ray whose node or list line misses in the
+// ascache loops back the same way and tries again ("looping for the next chance"): the pipeline
+// never stalls on memory. A leaf's list entries go to the ist; the ray waits for all of its
+// results, then its leaf-end step mirrors the golden tracer's termination rules exactly.
+#pragma once
+
+#include <systemc>
+
+#include <stdexcept>
+
+#include "hls/image.h"
+#include "hls/trv.h"
+#include "systemc/slot.h"
+
+namespace raycore::sc {
+
+template <class A>
+class Trv : public sc_core::sc_module {
+ public:
+  Trv(sc_core::sc_module_name name, FrameCtx& fc, RtuChannels& ch, RtuStats& st, uint32_t latency)
+      : sc_core::sc_module(name), fc_(fc), ch_(ch), st_(st), lat_(latency) {}
+
+  bool tick(Cycle now) {
+    if (!ch_.trv_q.can_pop(now)) return false;
+    const uint16_t s = ch_.trv_q.pop();
+    Slot& r = ch_.slots[s];
+    const Cycle again = now + lat_;
+    switch (r.state) {
+      case SlotState::start: {
+        r.best = Best{};
+        r.sp = 0;
+        r.tmax = r.ray.tmax;
+        ++st_.trv_busy;
+        if (fc_.empty_tree || !hls::trv_clip_box<A>(fc_.box_lo, fc_.box_hi, r.ray, r.tnear, r.tfar))
+          return finish(s, r, now);
+        r.node = 0;
+        r.state = SlotState::node;
+        ch_.trv_q.push(s, again);
+        return true;
+      }
+      case SlotState::node: {
+        const uint32_t lb = ch_.node->line_bytes();
+        const uint64_t byte = uint64_t(r.node) * 8;
+        const uint8_t* line = ch_.node->access(byte / lb);
+        if (!line) {
+          ++st_.trv_node_miss;
+          ch_.trv_q.push(s, again);
+          return true;
+        }
+        ++st_.trv_busy;
+        const hls::Node nd = hls::decode_node(hls::detail::get_le(line + byte % lb, 8));
+        const Cycle next = again + hit_lat(*ch_.node);
+        if (!nd.leaf()) {
+          ++st_.inner_steps;
+          const hls::SplitStep sp = hls::trv_split<A>(nd.split_or_count, nd.axis, r.ray, r.tnear, r.tfar);
+          const uint32_t first = sp.below_first ? r.node + 1 : nd.index;
+          const uint32_t second = sp.below_first ? nd.index : r.node + 1;
+          if (sp.visit == hls::Visit::first) {
+            r.node = first;
+          } else if (sp.visit == hls::Visit::second) {
+            r.node = second;
+          } else {
+            if (r.sp >= kStackDepth) throw std::runtime_error("trv: kd-tree deeper than the stack (64)");
+            r.stack[size_t(r.sp++)] = {second, sp.tsplit, r.tfar};
+            r.node = first;
+            r.tfar = sp.tsplit;
+          }
+          ch_.trv_q.push(s, next);
+          return true;
+        }
+        ++st_.leaf_visits;
+        if (nd.split_or_count == 0) return leaf_end(s, r, now, next);
+        r.list_first = nd.index;
+        r.list_count = nd.split_or_count;
+        r.list_pos = 0;
+        r.results = 0;
+        r.leaf = Best{};
+        r.state = SlotState::list;
+        ch_.trv_q.push(s, next);
+        return true;
+      }
+      case SlotState::list: {
+        const uint32_t lb = ch_.list->line_bytes();
+        const uint64_t byte = uint64_t(r.list_first + r.list_pos) * 4;
+        const size_t room = ch_.ist_q.capacity() - ch_.ist_q.size();
+        if (room == 0) {
+          ++st_.trv_ist_full;
+          ch_.trv_q.push(s, again);
+          return true;
+        }
+        const uint8_t* line = ch_.list->access(byte / lb);
+        if (!line) {
+          ++st_.trv_list_miss;
+          ch_.trv_q.push(s, again);
+          return true;
+        }
+        ++st_.trv_busy;
+        uint32_t n = std::min<uint32_t>(r.list_count - r.list_pos, uint32_t((lb - byte % lb) / 4));
+        n = std::min<uint32_t>(n, uint32_t(room));
+        const Cycle ready = now + 1 + hit_lat(*ch_.list);
+        for (uint32_t i = 0; i < n; ++i) {
+          const uint32_t tri = uint32_t(hls::detail::get_le(line + byte % lb + size_t(i) * 4, 4));
+          ch_.ist_q.push({s, r.list_pos + i, tri}, ready);
+        }
+        r.list_pos += n;
+        if (r.list_pos == r.list_count)
+          r.state = SlotState::wait_ist;  // the ist re-queues the ray with its last result
+        else
+          ch_.trv_q.push(s, again + hit_lat(*ch_.list));
+        return true;
+      }
+      case SlotState::leaf_done: {
+        ++st_.trv_busy;
+        // Results of the leaf, reduced in list order: the closest, ties to the earliest entry.
+        // Every test used the leaf-entry tmax (= best.t or the ray's tmax), so a leaf hit is
+        // always closer than the best so far (the golden tracer's sequential tmax update).
+        if (r.leaf.found) {
+          r.best = r.leaf;
+          r.tmax = r.leaf.t;
+        }
+        return leaf_end(s, r, now, again);
+      }
+      case SlotState::pop:
+        ++st_.trv_busy;
+        return pop(s, r, now, again);
+      default:
+        throw std::logic_error("trv: ray in an unexpected state");
+    }
+  }
+
+  Cycle next_event() const { return ch_.trv_q.head_ready(); }
+
+ private:
+  static uint32_t hit_lat(const Ascache& c) { return c.hit_latency; }
+
+  bool leaf_end(uint16_t s, Slot& r, Cycle now, Cycle again) {
+    if (r.best.found && !A::lt(r.tfar, r.best.t)) return finish(s, r, now);  // hit in this cell
+    return pop(s, r, now, again);
+  }
+  // One stack entry per step; entries beyond the best hit are skipped (one step each).
+  bool pop(uint16_t s, Slot& r, Cycle now, Cycle again) {
+    if (r.sp == 0) return finish(s, r, now);
+    const Slot::Entry e = r.stack[size_t(--r.sp)];
+    ++st_.pops;
+    if (r.best.found && A::lt(r.best.t, e.tnear)) {
+      r.state = SlotState::pop;
+    } else {
+      r.node = e.node;
+      r.tnear = e.tnear;
+      r.tfar = e.tfar;
+      r.state = SlotState::node;
+    }
+    ch_.trv_q.push(s, again);
+    return true;
+  }
+  bool finish(uint16_t s, Slot& r, Cycle now) {
+    r.state = SlotState::done;
+    ch_.hit_q.push(s, now + lat_);
+    return true;
+  }
+
+  FrameCtx& fc_;
+  RtuChannels& ch_;
+  RtuStats& st_;
+  uint32_t lat_;
+};
+
+}  // namespace raycore::sc
