@@ -1,0 +1,385 @@
+// tb/systemc: the cycle model (systemc/) against the golden tracer on small frames (every pixel's
+// tri, t bits, shadow decision and shade), determinism, randomised memory latency (every ray
+// retires exactly once, no deadlock), and unit tests of ascache and membus.
+//
+// SystemC allows one elaboration per process, so each simulation runs in a forked child that
+// sends a summary back through a pipe (and gtest_discover_tests runs each TEST in its own process).
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <systemc>
+
+#include <cstring>
+#include <string>
+#include <vector>
+
+#include "hls/image.h"
+#include "scenes/generate.h"
+#include "scenes/scene.h"
+#include "sim/golden/golden.h"
+#include "systemc/ascache.h"
+#include "systemc/membus.h"
+#include "systemc/simulate.h"
+
+namespace {
+
+namespace hls = raycore::hls;
+namespace sim = raycore::sim;
+namespace sc = raycore::sc;
+namespace scenes = raycore::scenes;
+using hls::FormatId;
+using hls::Rounding;
+using hls::Vec3;
+
+struct Summary {
+  bool ok = false;
+  char error[256] = {};
+  uint64_t cycles = 0, issued = 0, retired = 0, primary = 0, shadow = 0;
+  uint64_t mismatches = 0, bad_retire = 0;  // pixels retired other than exactly once per ray
+  uint64_t hash = 0;                        // of every pixel's results
+  uint64_t tri_tests = 0, bus_bytes = 0;
+  int first_x = -1, first_y = -1;
+};
+
+uint64_t frame_hash(const sim::Frame& f) {
+  uint64_t h = 1469598103934665603ull;
+  auto mix = [&](uint64_t v) {
+    h ^= v;
+    h *= 1099511628211ull;
+  };
+  for (const auto& p : f.px) {
+    mix(uint64_t(uint32_t(p.tri)));
+    mix(p.t_bits);
+    mix(uint64_t(p.shadow_ray) | uint64_t(p.lit) << 1 | uint64_t(p.shade) << 8);
+    mix(uint64_t(uint32_t(p.shadow_tri)));
+  }
+  return h;
+}
+
+struct Case {
+  const scenes::Scene* scene;
+  const hls::Image* image;
+  sim::TraceConfig tc;
+  sc::SimConfig cfg;
+};
+
+// Runs the cycle model in a child process and compares with `golden` there.
+Summary run_child(const Case& c, const sim::Frame& golden) {
+  int fd[2];
+  if (pipe(fd) != 0) throw std::runtime_error("pipe");
+  const pid_t pid = fork();
+  if (pid == 0) {
+    close(fd[0]);
+    Summary s;
+    try {
+      const sc::SimResult r = sc::simulate(*c.image, c.scene->camera, c.scene->light, c.tc, c.cfg);
+      s.cycles = r.cycles;
+      s.issued = r.issued;
+      s.retired = r.retired;
+      s.primary = r.primary_rays;
+      s.shadow = r.shadow_rays;
+      s.hash = frame_hash(r.frame);
+      s.bus_bytes = r.bus.bytes;
+      for (const auto& u : r.rtus) s.tri_tests += u.tri_tests;
+      std::vector<sc::PixelDiff> d = sc::diff_frames(r.frame, golden, 1, &s.mismatches);
+      if (!d.empty()) {
+        s.first_x = d[0].x;
+        s.first_y = d[0].y;
+      }
+      for (size_t i = 0; i < r.frame.px.size(); ++i)
+        if (r.primary_retired[i] != 1 || r.shadow_retired[i] != (r.frame.px[i].shadow_ray ? 1 : 0))
+          ++s.bad_retire;
+      s.ok = true;
+    } catch (const std::exception& e) {
+      std::strncpy(s.error, e.what(), sizeof s.error - 1);
+    }
+    if (write(fd[1], &s, sizeof s) != ssize_t(sizeof s)) _exit(3);
+    close(fd[1]);
+    _exit(0);
+  }
+  close(fd[1]);
+  Summary s;
+  const ssize_t n = read(fd[0], &s, sizeof s);
+  close(fd[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (n != ssize_t(sizeof s)) {
+    s = Summary{};
+    std::snprintf(s.error, sizeof s.error, "child died (status %d)", status);
+  }
+  return s;
+}
+
+sim::TraceConfig config(FormatId f, Rounding r, bool vtu, int w, int h) {
+  sim::TraceConfig c;
+  c.format = f;
+  c.rounding = r;
+  c.vtu = vtu;
+  c.width = w;
+  c.height = h;
+  c.threads = 1;
+  return c;
+}
+
+const scenes::Scene& corridor() {
+  static const scenes::Scene s = scenes::generate("corridor");
+  return s;
+}
+
+// A floor, a box standing on it and a wall behind: shadows, edges, a light above one side.
+scenes::Scene tiny_scene() {
+  scenes::Scene s;
+  s.name = "tiny";
+  auto quad = [&](Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
+    s.tris.push_back({a, b, c});
+    s.tris.push_back({a, c, d});
+  };
+  quad({-4, 0, -8}, {4, 0, -8}, {4, 0, 0}, {-4, 0, 0});      // floor
+  quad({-4, 0, -8}, {-4, 4, -8}, {4, 4, -8}, {4, 0, -8});    // back wall
+  const double x0 = -1, x1 = 0.5, z0 = -5, z1 = -3.5, y1 = 1.5;  // box
+  quad({x0, y1, z0}, {x1, y1, z0}, {x1, y1, z1}, {x0, y1, z1});
+  quad({x0, 0, z1}, {x1, 0, z1}, {x1, y1, z1}, {x0, y1, z1});
+  quad({x1, 0, z1}, {x1, 0, z0}, {x1, y1, z0}, {x1, y1, z1});
+  quad({x0, 0, z0}, {x0, 0, z1}, {x0, y1, z1}, {x0, y1, z0});
+  s.camera.present = true;
+  s.camera.position = {0.3, 1.7, 2.5};
+  s.light.present = true;
+  s.light.position = {2.5, 5, -2};
+  return s;
+}
+
+// Golden tracer in this process, cycle model in a child; asserts golden_match and that every ray
+// retired exactly once.
+Summary expect_match(const scenes::Scene& s, const sim::TraceConfig& tc, sc::SimConfig cfg = {}) {
+  const hls::Image img = hls::build_image(s.tris, tc.format, tc.rounding);
+  const sim::Frame golden = sim::trace_golden(img, s.camera, s.light, tc);
+  const Summary r = run_child({&s, &img, tc, cfg}, golden);
+  const std::string what = s.name + " " + hls::format_name(tc.format) + "-" + hls::rounding_name(tc.rounding) +
+                           (tc.vtu ? "-vtu-" : "-novtu-") + sim::to_string(tc.spawn.spawn) +
+                           (tc.spawn.segment ? "-segment" : "") + " seed " + std::to_string(cfg.seed) +
+                           " rtus " + std::to_string(cfg.rtus);
+  EXPECT_TRUE(r.ok) << what << ": " << r.error;
+  EXPECT_EQ(r.mismatches, 0u) << what << ": first differing pixel (" << r.first_x << ", "
+                              << r.first_y << ") (run `raycore compare` for details)";
+  EXPECT_EQ(r.bad_retire, 0u) << what;
+  EXPECT_EQ(r.issued, r.retired) << what;
+  EXPECT_EQ(r.primary, uint64_t(tc.width) * uint64_t(tc.height)) << what;
+  EXPECT_GT(r.cycles, 0u) << what;
+  return r;
+}
+
+TEST(GoldenMatch, Fp24RtzCorridor) {
+  const Summary r = expect_match(corridor(), config(FormatId::fp24, Rounding::rtz, false, 64, 40));
+  EXPECT_GT(r.shadow, 0u);
+  EXPECT_GT(r.tri_tests, 0u);
+}
+TEST(GoldenMatch, Fp24RneCorridorVtu) {
+  expect_match(corridor(), config(FormatId::fp24, Rounding::rne, true, 64, 40));
+}
+TEST(GoldenMatch, Fp32RneCorridor) {
+  expect_match(corridor(), config(FormatId::fp32, Rounding::rne, false, 64, 40));
+}
+TEST(GoldenMatch, Fp32RtzCorridorVtu) {
+  expect_match(corridor(), config(FormatId::fp32, Rounding::rtz, true, 64, 40));
+}
+TEST(GoldenMatch, SpawnStrategies) {
+  for (hls::Spawn sp : {hls::Spawn::skip_origin, hls::Spawn::ulp_offset, hls::Spawn::error_bound})
+    for (bool vtu : {false, true}) {
+      auto tc = config(FormatId::fp24, Rounding::rtz, vtu, 48, 30);
+      tc.spawn.spawn = sp;
+      tc.spawn.ulps = sim::default_spawn_ulps(tc.format);
+      expect_match(corridor(), tc);
+    }
+}
+TEST(GoldenMatch, SegmentShadowRays) {
+  auto tc = config(FormatId::fp24, Rounding::rtz, true, 48, 30);
+  tc.spawn.segment = true;
+  expect_match(corridor(), tc);
+}
+TEST(GoldenMatch, TinySceneAllFormats) {
+  const scenes::Scene s = tiny_scene();
+  for (FormatId f : {FormatId::fp24, FormatId::fp32})
+    for (Rounding r : {Rounding::rtz, Rounding::rne})
+      for (bool vtu : {false, true}) {
+        const Summary x = expect_match(s, config(f, r, vtu, 32, 24));
+        EXPECT_GT(x.shadow, 0u);
+      }
+}
+// One RTU, few ray slots, tiny caches and one MSHR each: heavy looping, still the golden frame.
+TEST(GoldenMatch, StarvedConfiguration) {
+  sc::SimConfig cfg;
+  cfg.rtus = 1;
+  cfg.rays_in_flight = 3;
+  cfg.node_cache = {256, 1, 64, 1, 2};
+  cfg.list_cache = {256, 2, 32, 1, 1};
+  cfg.tri_cache = {512, 2, 64, 1, 3};
+  cfg.ist_queue = 2;
+  cfg.mem_queue_depth = 1;
+  cfg.mem_bandwidth = 3;
+  expect_match(tiny_scene(), config(FormatId::fp24, Rounding::rtz, true, 16, 12), cfg);
+}
+
+TEST(Determinism, SameConfigSameCyclesAndBits) {
+  const auto& s = corridor();
+  const auto tc = config(FormatId::fp24, Rounding::rtz, true, 48, 30);
+  sc::SimConfig cfg;
+  cfg.seed = 11;
+  const Summary a = expect_match(s, tc, cfg);
+  const Summary b = expect_match(s, tc, cfg);
+  EXPECT_EQ(a.cycles, b.cycles);
+  EXPECT_EQ(a.hash, b.hash);
+  EXPECT_EQ(a.bus_bytes, b.bus_bytes);
+}
+
+TEST(RandomLatency, SeedsCompleteAndMatch) {
+  const auto& s = corridor();
+  const auto tc = config(FormatId::fp24, Rounding::rtz, false, 48, 30);
+  std::vector<uint64_t> cycles;
+  for (uint64_t seed : {0ull, 1ull, 2ull, 3ull, 12345ull}) {
+    sc::SimConfig cfg;
+    cfg.seed = seed;
+    cfg.rtus = 3;
+    cycles.push_back(expect_match(s, tc, cfg).cycles);
+  }
+  // Random latency in [L, 2L] is slower than the fixed L on average.
+  EXPECT_LT(cycles[0], (cycles[1] + cycles[2] + cycles[3] + cycles[4]) / 4);
+}
+
+// ---- ascache ----------------------------------------------------------------------------------
+
+TEST(Ascache, LruHitMissAndFill) {
+  // One set of two ways, 16-byte lines.
+  sc::Ascache c("c", {32, 2, 16, 2, 1}, 1000, 16);
+  ASSERT_EQ(c.sets(), 1u);
+  auto fetch = [&](uint64_t line) {
+    EXPECT_EQ(c.access(line), nullptr);
+    ASSERT_TRUE(c.req().can_pop(~0ull));
+    const sc::MemReq q = c.req().pop();
+    EXPECT_EQ(q.addr, 1000 + line * 16);
+    EXPECT_EQ(q.bytes, 16u);
+    for (uint32_t i = 0; i < 16; ++i) q.data[i] = uint8_t(line * 16 + i);
+    c.fill(q.tag);
+  };
+  fetch(0);
+  fetch(1);
+  const uint8_t* p = c.access(0);  // 0 becomes the most recent
+  ASSERT_NE(p, nullptr);
+  EXPECT_EQ(p[5], 5);
+  fetch(2);  // evicts 1, the least recently used
+  EXPECT_TRUE(c.present(0));
+  EXPECT_FALSE(c.present(1));
+  EXPECT_TRUE(c.present(2));
+  ASSERT_NE(c.access(2), nullptr);
+  EXPECT_EQ(c.access(2)[3], 2 * 16 + 3);
+  EXPECT_EQ(c.stats().accesses, 6u);
+  EXPECT_EQ(c.stats().hits, 3u);
+  EXPECT_EQ(c.stats().misses, 3u);
+  EXPECT_EQ(c.stats().fills, 3u);
+}
+
+TEST(Ascache, MshrMergeAndFull) {
+  sc::Ascache c("c", {1024, 4, 32, 2, 1}, 0, 32);
+  EXPECT_EQ(c.access(7), nullptr);
+  EXPECT_EQ(c.access(7), nullptr);  // merged into the same MSHR
+  EXPECT_EQ(c.access(9), nullptr);
+  EXPECT_EQ(c.access(11), nullptr);  // both MSHRs busy
+  EXPECT_EQ(c.stats().mshr_merges, 1u);
+  EXPECT_EQ(c.stats().mshr_full, 1u);
+  EXPECT_EQ(c.req().size(), 2u);  // one request per distinct line
+  EXPECT_EQ(c.mshrs_busy(), 2u);
+  const sc::MemReq a = c.req().pop();
+  EXPECT_EQ(a.addr, 7u * 32);
+  c.fill(a.tag);
+  EXPECT_EQ(c.mshrs_busy(), 1u);
+  EXPECT_NE(c.access(7), nullptr);  // hit now, while line 9 is still outstanding
+  EXPECT_EQ(c.access(11), nullptr);  // the freed MSHR takes it
+  EXPECT_EQ(c.req().size(), 2u);
+}
+
+// ---- membus -------------------------------------------------------------------------------------
+
+struct Recorder : sc::MemClient {
+  struct Ev {
+    uint32_t port, tag;
+    sc::Cycle at;
+  };
+  std::vector<Ev> ev;
+  void mem_resp(uint32_t port, uint32_t tag, sc::Cycle now) override { ev.push_back({port, tag, now}); }
+};
+
+TEST(Membus, LatencyBandwidthAndData) {
+  std::vector<uint8_t> mem(256);
+  for (size_t i = 0; i < mem.size(); ++i) mem[i] = uint8_t(i);
+  sc::Membus bus("bus", mem, 10, 8, 4, 0);
+  sc::TimedFifo<sc::MemReq> q(4);
+  Recorder rec;
+  bus.add_requester(&q, &rec, 5);
+  uint8_t buf[2][64];
+  q.push({64, 64, 0, buf[0]}, 0);
+  q.push({224, 64, 1, buf[1]}, 0);  // runs past the end: zero-filled
+  for (sc::Cycle t = 0; t < 40; ++t) bus.tick(t);
+  ASSERT_EQ(rec.ev.size(), 2u);
+  // First: accepted at 0, data after 10 cycles, 8 beats of 8 bytes -> 18. Second: accepted at 1,
+  // waits for the data bus -> 26.
+  EXPECT_EQ(rec.ev[0].at, 18u);
+  EXPECT_EQ(rec.ev[0].tag, 0u);
+  EXPECT_EQ(rec.ev[0].port, 5u);
+  EXPECT_EQ(rec.ev[1].at, 26u);
+  EXPECT_EQ(buf[0][0], 64);
+  EXPECT_EQ(buf[0][63], 127);
+  EXPECT_EQ(buf[1][31], 255);
+  EXPECT_EQ(buf[1][32], 0);
+  EXPECT_EQ(bus.stats().bytes, 128u);
+  EXPECT_EQ(bus.stats().busy_cycles, 16u);
+}
+
+TEST(Membus, RoundRobinAndQueueDepth) {
+  std::vector<uint8_t> mem(4096, 1);
+  sc::Membus bus("bus", mem, 5, 64, 2, 0);
+  Recorder rec;
+  std::vector<sc::TimedFifo<sc::MemReq>> qs(3, sc::TimedFifo<sc::MemReq>(4));
+  static uint8_t buf[12][64];
+  for (uint32_t r = 0; r < 3; ++r) {
+    bus.add_requester(&qs[r], &rec, r);
+    for (uint32_t i = 0; i < 4; ++i) qs[r].push({r * 256 + i * 64, 64, i, buf[r * 4 + i]}, 0);
+  }
+  size_t max_out = 0;
+  for (sc::Cycle t = 0; t < 200; ++t) {
+    bus.tick(t);
+    max_out = std::max<size_t>(max_out, bus.outstanding());
+  }
+  ASSERT_EQ(rec.ev.size(), 12u);
+  EXPECT_LE(max_out, 2u);
+  for (size_t i = 0; i < rec.ev.size(); ++i) {
+    EXPECT_EQ(rec.ev[i].port, i % 3) << "response " << i;
+    EXPECT_EQ(rec.ev[i].tag, i / 3) << "response " << i;
+  }
+  EXPECT_GT(bus.stats().queue_full_cycles, 0u);
+}
+
+TEST(Membus, RandomLatencyWithinBounds) {
+  std::vector<uint8_t> mem(1024);
+  sc::Membus bus("bus", mem, 20, 1024, 64, 99);
+  Recorder rec;
+  sc::TimedFifo<sc::MemReq> q(16);
+  bus.add_requester(&q, &rec, 0);
+  static uint8_t buf[16][16];
+  for (uint32_t i = 0; i < 16; ++i) q.push({i * 16, 16, i, buf[i]}, 0);
+  for (sc::Cycle t = 0; t < 200; ++t) bus.tick(t);
+  ASSERT_EQ(rec.ev.size(), 16u);
+  bool varied = false;
+  for (const auto& e : rec.ev) {
+    EXPECT_GE(e.at, e.tag + 20 + 1);  // accepted at cycle tag
+    EXPECT_LE(e.at, e.tag + 40 + 1 + 16);
+    if (e.at - e.tag != rec.ev[0].at - rec.ev[0].tag) varied = true;
+  }
+  EXPECT_TRUE(varied);
+}
+
+}  // namespace
+
+extern "C" int sc_main(int argc, char* argv[]) {
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
