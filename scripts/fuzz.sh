@@ -47,12 +47,15 @@ compile "$ROOT/tb/fuzz/fuzz_loader.cpp"
 "$CLANGXX" -fsanitize=fuzzer,address,undefined "${OBJS[@]}" -o "$OUT/fuzz_loader"
 
 echo "fuzz: running $OUT/fuzz_loader for ${SECS}s (corpus $OUT/corpus, seeds tb/fuzz/seeds)"
+PARALLEL=()
+[ "$JOBS" -gt 1 ] && PARALLEL=(-jobs="$JOBS" -workers="$JOBS")  # writes fuzz-N.log into $OUT
+cd "$OUT"
 set +e
 ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:allocator_may_return_null=1} \
 UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1} \
 nice -n "$NICE" "$OUT/fuzz_loader" "$OUT/corpus" "$ROOT/tb/fuzz/seeds" \
   -dict="$ROOT/tb/fuzz/gltf.dict" -max_total_time="$SECS" -max_len=16384 -timeout=10 -rss_limit_mb=2048 \
-  -malloc_limit_mb=1024 -jobs="$JOBS" -workers="$JOBS" -print_final_stats=1 \
+  -malloc_limit_mb=1024 "${PARALLEL[@]}" -print_final_stats=1 \
   -artifact_prefix="$OUT/artifacts/" 2>&1 | tee "$OUT/fuzz.log" | grep -v '^#[0-9]*	\(NEW\|REDUCE\|pulse\)'
 rc=${PIPESTATUS[0]}
 set -e
