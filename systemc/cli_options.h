@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "sim/cli.h"
 #include "systemc/config.h"
 #include "systemc/simulate.h"
 
@@ -68,13 +69,13 @@ inline SimConfig finish_sim_options(const SimOptions& o) {
   SimConfig c = o.cfg;
   if (!o.config_file.empty()) {
     std::ifstream f(o.config_file);
-    if (!f) throw std::runtime_error("cannot read config file '" + o.config_file + "'");
+    if (!f) throw raycore::cli::UserError("cannot read config file '" + o.config_file + "'");
     nlohmann::json j;
     try {
       j = nlohmann::json::parse(f);
       config_from_json(j, c);
     } catch (const std::exception& e) {
-      throw std::runtime_error("config file '" + o.config_file + "': " + e.what());
+      throw raycore::cli::UserError("config file '" + o.config_file + "': " + e.what());
     }
     c.trace_file = o.cfg.trace_file;
   }

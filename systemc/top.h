@@ -42,6 +42,7 @@ class Top : public sc_core::sc_module {
     if (!cfg.trace_file.empty()) {
       std::string base = cfg.trace_file;
       if (base.size() > 4 && base.substr(base.size() - 4) == ".vcd") base.resize(base.size() - 4);
+      sc_core::sc_report_handler::set_actions(sc_core::SC_INFO, sc_core::SC_DO_NOTHING);
       tf_ = sc_core::sc_create_vcd_trace_file(base.c_str());
       tf_->set_time_unit(1, sc_core::SC_NS);
       sc_core::sc_trace(tf_, sig_cycle_, "cycle");
@@ -96,11 +97,7 @@ class Top : public sc_core::sc_module {
         act[i] = rtus[i]->tick(now);
         active |= act[i];
       }
-      if (tf_) {
-        trace(now, act);
-        wait(period_);
-        synced = now + 1;
-      }
+      if (tf_) trace(now, act);
       Cycle next = now + 1;
       if (!active && !all_done()) {
         Cycle t = bus.next_event(now);
@@ -109,6 +106,10 @@ class Top : public sc_core::sc_module {
           throw std::runtime_error("cycle model: deadlock at cycle " + std::to_string(now) +
                                    " (no unit can make progress)");
         next = std::max(next, t);
+      }
+      if (tf_) {  // the trace sees every cycle boundary the model stops at
+        wait(period_ * double(next - synced));
+        synced = next;
       }
       now = next;
       if (!tf_ && now - synced >= (Cycle(1) << 16)) {
