@@ -11,7 +11,8 @@
 #
 # Environment:
 #   RAYCORE_FP_RANDOM   random vectors per op/mode/format in the fp_oracle section (default 1e8)
-#   FP_BENCH_ARGS       extra arguments for fp_bench (e.g. --benchmark_filter=FP24)
+#   FP_BENCH_ARGS       arguments for fp_bench (default: 3 repetitions, medians reported;
+#                       e.g. FP_BENCH_ARGS=--benchmark_filter=FP24 for one quick pass)
 #   BENCH_JOBS          parallel test processes (default: nproc)
 set -uo pipefail
 
@@ -39,15 +40,19 @@ section_fp_bench() {
     return 0
   fi
   machine
-  echo "command: $bin --benchmark_out=$OUT/fp_bench.json --benchmark_out_format=json ${FP_BENCH_ARGS:-}"
+  local args=${FP_BENCH_ARGS-"--benchmark_repetitions=3 --benchmark_report_aggregates_only=true"}
+  echo "command: $bin --benchmark_out=$OUT/fp_bench.json --benchmark_out_format=json $args"
   # shellcheck disable=SC2086
-  "$bin" --benchmark_out="$OUT/fp_bench.json" --benchmark_out_format=json ${FP_BENCH_ARGS:-} \
+  "$bin" --benchmark_out="$OUT/fp_bench.json" --benchmark_out_format=json $args \
     | tee "$OUT/fp_bench.txt" || return 1
   echo
-  echo "FP24 summary (items_per_second from CPU time; the full table is above):"
+  echo "FP24 ops/s (items_per_second, from CPU time; medians if repeated; full table above):"
   awk '
     /^FP24\// {
-      split($1, p, "/"); op = p[2]; mode = (p[3] == "" ? "-" : p[3]);
+      name = $1
+      if (name ~ /_(mean|stddev|cv)$/) next   # with repetitions: keep the median
+      sub(/_median$/, "", name)
+      split(name, p, "/"); op = p[2]; mode = (p[3] == "" ? "-" : p[3]);
       for (i = 2; i <= NF; i++) if ($i ~ /^items_per_second=/) { v = $i; sub(/items_per_second=/, "", v); sub(/\/s$/, "", v) }
       if (!(op in seen)) { seen[op] = 1; order[++n] = op }
       r[op, mode] = v
@@ -56,8 +61,8 @@ section_fp_bench() {
       printf "  %-12s %12s %12s\n", "op", "rtz", "rne"
       for (i = 1; i <= n; i++) {
         op = order[i]
-        a = ((op, "rtz") in r) ? r[op, "rtz"] : (((op, "-") in r) ? r[op, "-"] " (any)" : "")
-        b = ((op, "rne") in r) ? r[op, "rne"] : ""
+        a = ((op, "rtz") in r) ? r[op, "rtz"] : (((op, "-") in r) ? r[op, "-"] : "")
+        b = ((op, "rne") in r) ? r[op, "rne"] : (((op, "-") in r) ? "(same)" : "")
         printf "  %-12s %12s %12s\n", op, a, b
       }
     }' "$OUT/fp_bench.txt"

@@ -65,12 +65,14 @@ void register_format(const std::string& fmt) {
   const std::string mode = R == Rounding::rtz ? "rtz" : "rne";
   auto name = [&](const char* op) { return fmt + "/" + op + "/" + mode; };
   using P = std::vector<uint32_t>;
-  auto reg = [&](const char* op, auto fn) {
-    benchmark::RegisterBenchmark(name(op).c_str(), [fn](benchmark::State& s) {
+  auto reg_named = [&](const std::string& full, auto fn) {
+    benchmark::RegisterBenchmark(full.c_str(), [fn](benchmark::State& s) {
       static const P a = patterns<F>(0), b = patterns<F>(1), c = patterns<F>(2);
       run<uint32_t, uint32_t>(s, a, b, c, fn);
     });
   };
+  auto reg = [&](const char* op, auto fn) { reg_named(name(op), fn); };
+  auto reg_any = [&](const char* op, auto fn) { reg_named(fmt + "/" + op, fn); };
   reg("add", [](uint32_t x, uint32_t y, uint32_t) { return hls::add<F, R>(x, y); });
   reg("sub", [](uint32_t x, uint32_t y, uint32_t) { return hls::sub<F, R>(x, y); });
   reg("add3", [](uint32_t x, uint32_t y, uint32_t z) { return hls::add3<F, R>(x, y, z); });
@@ -78,9 +80,9 @@ void register_format(const std::string& fmt) {
   reg("div", [](uint32_t x, uint32_t y, uint32_t) { return hls::div<F, R>(x, y); });
   reg("rcp", [](uint32_t x, uint32_t, uint32_t) { return hls::rcp<F, R>(x); });
   if constexpr (R == Rounding::rtz) {  // rounding-independent: listed once
-    reg("lt", [](uint32_t x, uint32_t y, uint32_t) { return uint32_t(hls::lt<F>(x, y)); });
-    reg("cmp", [](uint32_t x, uint32_t y, uint32_t) { return uint32_t(hls::cmp<F>(x, y) + 1); });
-    reg("min", [](uint32_t x, uint32_t y, uint32_t) { return hls::min<F>(x, y); });
+    reg_any("lt", [](uint32_t x, uint32_t y, uint32_t) { return uint32_t(hls::lt<F>(x, y)); });
+    reg_any("cmp", [](uint32_t x, uint32_t y, uint32_t) { return uint32_t(hls::cmp<F>(x, y) + 1); });
+    reg_any("min", [](uint32_t x, uint32_t y, uint32_t) { return hls::min<F>(x, y); });
     benchmark::RegisterBenchmark((fmt + "/to_double").c_str(), [](benchmark::State& s) {
       static const P a = patterns<F>(0);
       run<uint32_t, double>(s, a, a, a, [](uint32_t x, uint32_t, uint32_t) { return hls::to_double<F>(x); });

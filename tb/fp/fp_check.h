@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <ostream>
 #include <random>
 #include <set>
 #include <sstream>
@@ -204,6 +205,9 @@ inline const char* op_name(Op op) {
   }
   return "?";
 }
+
+// gtest prints a test parameter with this (instead of its raw bytes).
+inline void PrintTo(Op op, std::ostream* os) { *os << op_name(op); }
 
 // Random operands that reach every path, not only uniform bits: uniform patterns (zeros and the
 // range ends included), "close" operands (same or adjacent exponents, mostly opposite signs, or

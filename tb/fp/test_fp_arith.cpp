@@ -63,6 +63,9 @@ struct Case {
   Op op;
   Rounding r;
 };
+void PrintTo(const Case& c, std::ostream* os) {
+  *os << "FP" << c.fmt << " " << op_name(c.op) << " " << mode_name(c.r);
+}
 std::string case_name(const testing::TestParamInfo<Case>& i) {
   return std::string("FP") + std::to_string(i.param.fmt) + "_" + op_name(i.param.op) + "_" +
          mode_name(i.param.r);
