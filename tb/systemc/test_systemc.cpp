@@ -11,6 +11,7 @@
 #include <systemc>
 
 #include <cstring>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -152,7 +153,10 @@ scenes::Scene tiny_scene() {
 // Golden tracer in this process, cycle model in a child; asserts golden_match and that every ray
 // retired exactly once.
 Summary expect_match(const scenes::Scene& s, const sim::TraceConfig& tc, sc::SimConfig cfg = {}) {
-  const hls::Image img = hls::build_image(s.tris, tc.format, tc.rounding);
+  static std::map<std::string, hls::Image> images;  // built once per scene, format and policy
+  const std::string key = s.name + hls::format_name(tc.format) + hls::rounding_name(tc.rounding);
+  if (!images.count(key)) images[key] = hls::build_image(s.tris, tc.format, tc.rounding);
+  const hls::Image& img = images[key];
   const sim::Frame golden = sim::trace_golden(img, s.camera, s.light, tc);
   const Summary r = run_child({&s, &img, tc, cfg}, golden);
   const std::string what = s.name + " " + hls::format_name(tc.format) + "-" + hls::rounding_name(tc.rounding) +
@@ -186,7 +190,7 @@ TEST(GoldenMatch, Fp32RtzCorridorVtu) {
 TEST(GoldenMatch, SpawnStrategies) {
   for (hls::Spawn sp : {hls::Spawn::skip_origin, hls::Spawn::ulp_offset, hls::Spawn::error_bound})
     for (bool vtu : {false, true}) {
-      auto tc = config(FormatId::fp24, Rounding::rtz, vtu, 48, 30);
+      auto tc = config(FormatId::fp24, Rounding::rtz, vtu, 32, 20);
       tc.spawn.spawn = sp;
       tc.spawn.ulps = sim::default_spawn_ulps(tc.format);
       expect_match(corridor(), tc);
@@ -234,7 +238,7 @@ TEST(Determinism, SameConfigSameCyclesAndBits) {
 
 TEST(RandomLatency, SeedsCompleteAndMatch) {
   const auto& s = corridor();
-  const auto tc = config(FormatId::fp24, Rounding::rtz, false, 48, 30);
+  const auto tc = config(FormatId::fp24, Rounding::rtz, false, 32, 20);
   std::vector<uint64_t> cycles;
   for (uint64_t seed : {0ull, 1ull, 2ull, 3ull, 12345ull}) {
     sc::SimConfig cfg;
