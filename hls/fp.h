@@ -428,7 +428,7 @@ constexpr uint32_t next_up(uint32_t a) {
   if (is_zero<F>(a)) return F::min_mag;
   const uint32_t m = a & F::max_mag;
   if (!sign_of<F>(a)) return m == F::max_mag ? a : a + 1u;
-  return m == F::min_mag ? 0u : a - 1u;
+  return m == F::min_mag ? F::sign_mask : a - 1u;  // -min -> -0 (IEEE nextUp)
 }
 template <class F>
 constexpr uint32_t next_down(uint32_t a) {
