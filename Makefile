@@ -47,9 +47,11 @@ area: deps
 bench: build
 	./scripts/bench.sh $(BUILD)
 
-# The paper's Table 3 (three scenes x 24/32-bit x VTU off/on, 800 x 480) into docs/results.md.
+# The paper's Table 3 (three scenes x 24/32-bit x VTU off/on, 800 x 480) into docs/results.md,
+# with unit-direction and with segment shadow rays.
 table3: build
 	$(RAYCORE) table3
+	$(RAYCORE) table3 --shadow-ray segment --json out/table3-segment.json
 
 # libFuzzer on the glTF loader (clang), bounded time: FUZZ_SECONDS (default 60).
 fuzz: deps

@@ -14,9 +14,10 @@
 #   FP_BENCH_ARGS       arguments for fp_bench (default: 3 repetitions, medians reported;
 #                       e.g. FP_BENCH_ARGS=--benchmark_filter=FP24 for one quick pass)
 #   BENCH_JOBS          parallel test processes (default: nproc)
+#   SHARED_SCENES       where sponza-paper.glb is (default: ../shared/scenes next to the repo)
 set -uo pipefail
 
-SECTIONS=(fp_bench fp_oracle)
+SECTIONS=(fp_bench frames fp_oracle)
 
 usage() { echo "usage: $0 BUILD_DIR [--list | SECTION ...]; sections: ${SECTIONS[*]}" >&2; exit 2; }
 [ $# -ge 1 ] || usage
@@ -90,6 +91,48 @@ fp_summary_table() {
       printf "ZZZZ total: %.0f vectors, %d mismatches\n", tv, tm
     }' "$1" | LC_ALL=C sort -k1,1 -k2,2 -k4,4 -k3,3 | sed 's/^ZZZZ /  /' |
     { printf "  %-6s %-24s %-4s %-20s %14s %10s\n" format op mode set vectors mismatches; cat; }
+}
+
+# ---- frames: golden tracer, reference and cycle model on full 800x480 frames -------------------
+# Golden speed (FP24 and FP32, both cores), kd-tree build, reference speed, and the cycle model of
+# sponza-paper with 6 RTUs, VTU off and on (golden_match must be true; cycles within 1%).
+json_get() {  # json_get FILE a.b.c  -> value (python3 if present, else jq-free grep fallback)
+  python3 -c 'import json,sys; d=json.load(open(sys.argv[1]))
+for k in sys.argv[2].split("."): d=d[k]
+print(d)' "$1" "$2" 2>/dev/null
+}
+section_frames() {
+  header "frames: full 800x480 frames (golden, reference, cycle model)"
+  local rc_bin="$BUILD/bin/raycore"
+  local scenes=${SHARED_SCENES:-$(cd "$(dirname "$0")/.." && pwd)/../shared/scenes}
+  local sponza="$scenes/sponza-paper.glb"
+  if [ ! -x "$rc_bin" ]; then echo "raycore not built: skipped"; return 0; fi
+  if [ ! -f "$sponza" ]; then echo "sponza-paper.glb not found in $scenes (set SHARED_SCENES): skipped"; return 0; fi
+  machine
+  export SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1
+  local rc=0 f
+  for f in "fp24 --rounding rtz" "fp32 --rounding rne"; do
+    local tag=${f%% *}
+    echo "command: $rc_bin render $sponza --format $f --vtu on --threads 0 --out-dir $OUT"
+    # shellcheck disable=SC2086
+    "$rc_bin" render "$sponza" --format $f --vtu on --threads 0 --out-dir "$OUT" \
+      --report "$OUT/golden-$tag.json" --png "$OUT/golden-$tag.png" || rc=1
+  done
+  for v in off on; do
+    echo "command: $rc_bin simulate $sponza --vtu $v --no-reference --out-dir $OUT"
+    "$rc_bin" simulate "$sponza" --vtu "$v" --no-reference --out-dir "$OUT" \
+      --report "$OUT/simulate-vtu-$v.json" --png "$OUT/simulate-vtu-$v.png" || rc=1
+  done
+  local c0 c1
+  c0=$(json_get "$OUT/simulate-vtu-off.json" hardware.cycles)
+  c1=$(json_get "$OUT/simulate-vtu-on.json" hardware.cycles)
+  if [ -n "$c0" ] && [ -n "$c1" ]; then
+    python3 -c "import sys; a,b=float(sys.argv[1]),float(sys.argv[2]); r=b/a; print('VTU on/off cycle ratio: %.4f (%s)' % (r, 'within 1%' if abs(r-1)<=0.01 else 'NOT within 1%')); sys.exit(0 if abs(r-1)<=0.01 else 1)" "$c0" "$c1" || rc=1
+  fi
+  for v in off on; do
+    [ "$(json_get "$OUT/simulate-vtu-$v.json" golden_match)" = "True" ] || { echo "golden_match false (VTU $v)"; rc=1; }
+  done
+  return $rc
 }
 
 section_fp_oracle() {
