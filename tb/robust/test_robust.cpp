@@ -1,0 +1,653 @@
+// Numerical stability on hard cases (issue 6; findings in docs/robustness.md):
+// - ReIntersection: pbrt-style, seeded random triangles at magnitudes 1 .. 10^6, a ray through a
+//   random interior point, a shadow ray spawned with each strategy (hls::hit_shadow) and traced
+//   against the triangle alone (hls::ist_wald); error_bound must never re-hit, none must.
+// - Watertight: rays from inside closed meshes (cube, icosphere, jittered closed room) must hit.
+// - FarOffset: one small scene translated by 10^k, k = 0..6, VTU off/on, errors vs the reference.
+// - Limitations: the paper's two (camera at the origin: VTU = no change; objects at the origin,
+//   camera far: VTU gains little).
+// - Regression: literal bit patterns of failures found here.
+// Every test prints its table (lines prefixed with the test's tag, for tb/robust/plot.sh).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "hls/fp.h"
+#include "hls/hit.h"
+#include "hls/image.h"
+#include "hls/ist.h"
+#include "hls/wald.h"
+#include "scenes/generate.h"
+#include "scenes/scene.h"
+#include "sim/golden/golden.h"
+#include "sim/reference/metrics.h"
+#include "sim/reference/reference.h"
+#include "sim/run.h"
+
+namespace {
+
+namespace hls = raycore::hls;
+namespace sim = raycore::sim;
+namespace scenes = raycore::scenes;
+namespace ref = raycore::reference;
+using hls::FormatId;
+using hls::Rounding;
+using hls::Spawn;
+using hls::Tri;
+using hls::Vec3;
+
+// ---- deterministic random numbers (no std:: distributions: their output is library-specific) --
+
+struct Rng {
+  uint64_t s;
+  explicit Rng(uint64_t seed) : s(seed * 0x9E3779B97F4A7C15ull + 1) {}
+  uint64_t next() {  // splitmix64
+    uint64_t z = (s += 0x9E3779B97F4A7C15ull);
+    z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+    z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+    return z ^ (z >> 31);
+  }
+  double uni() { return double(next() >> 11) * 0x1p-53; }       // [0, 1)
+  double sym() { return 2 * uni() - 1; }                         // [-1, 1)
+  Vec3 sphere() {                                                // uniform unit vector
+    for (;;) {
+      const Vec3 v{sym(), sym(), sym()};
+      const double l = hls::dot(v, v);
+      if (l > 1e-6 && l <= 1) return v * (1 / std::sqrt(l));
+    }
+  }
+};
+
+const char* spawn_name(Spawn s) {
+  switch (s) {
+    case Spawn::none: return "none";
+    case Spawn::skip_origin: return "skip-origin";
+    case Spawn::ulp_offset: return "ulp-offset";
+    case Spawn::error_bound: return "error-bound";
+  }
+  return "?";
+}
+
+std::string fmt_name(FormatId f, Rounding r) {
+  return std::string(hls::format_name(f)) + "-" + hls::rounding_name(r);
+}
+
+// ---- re-intersection ---------------------------------------------------------------------------
+
+struct ReCase {
+  uint64_t tested = 0;  // primary hits with the light in front
+  uint64_t rehit = 0;   // shadow ray hit its own triangle
+};
+
+// One random triangle, ray and light at magnitude `mag`; returns false if the primary ray missed
+// or the hit unit found the light behind (nothing to test). `rehit[s]` per strategy.
+template <class A>
+bool reintersect_one(Rng& rng, double mag, const std::vector<hls::SpawnParams>& sps, bool* rehit,
+                     std::string* detail) {  // detail: per strategy, filled once
+  using F = typename A::Fmt;
+  const Tri tri = {Vec3{rng.sym(), rng.sym(), rng.sym()} * mag,
+                   Vec3{rng.sym(), rng.sym(), rng.sym()} * mag,
+                   Vec3{rng.sym(), rng.sym(), rng.sym()} * mag};
+  const hls::WaldTri<F> w = hls::make_wald<F, A::rounding>(tri, 7);
+  if (w.degenerate()) return false;
+  // A random interior point (barycentrics >= 0.05) and a ray through it from a random direction.
+  double b1 = 0.05 + 0.9 * rng.uni(), b2 = 0.05 + 0.9 * rng.uni();
+  if (b1 + b2 > 0.95) {
+    b1 = 1 - b1;
+    b2 = 1 - b2;
+  }
+  const Vec3 p = tri[0] * (1 - b1 - b2) + tri[1] * b1 + tri[2] * b2;
+  const Vec3 d = rng.sphere();
+  const Vec3 o = p - d * (mag * (0.1 + 1.9 * rng.uni()));
+  Vec3 n = hls::normalize(hls::cross(tri[1] - tri[0], tri[2] - tri[0]));
+  if (hls::dot(n, o - p) < 0) n = n * -1.0;
+  if (hls::dot(n, o - p) < 0.01 * hls::length(o - p)) return false;  // skip near-tangent primaries
+  // The light on the primary ray's side, 10^-3 .. 1 mag off the plane (grazing light included),
+  // up to mag away along it.
+  const Vec3 lat = Vec3{rng.sym(), rng.sym(), rng.sym()} * mag;
+  const Vec3 lp = p + (lat - n * hls::dot(lat, n)) + n * (mag * std::pow(10.0, -3 * rng.uni()));
+  hls::Ray pr;
+  for (int i = 0; i < 3; ++i) {
+    pr.o[i] = A::from_double(o[i]);
+    pr.d[i] = A::from_double(d[i]);
+    pr.inv[i] = A::rcp(pr.d[i]);
+  }
+  const uint32_t tmin = A::from_double(1.0 / 4096);
+  pr.tmin = tmin;
+  pr.tmax = F::max_mag;
+  const hls::IstOut h = hls::ist_wald<A>(w.k, w.c, pr.o, pr.d, pr.tmin, pr.tmax);
+  if (h.exit != hls::IstExit::hit) return false;
+  const uint32_t light[3] = {A::from_double(lp.x), A::from_double(lp.y), A::from_double(lp.z)};
+  const hls::HitTri ht{w.id, w.k, w.c[hls::kNU], w.c[hls::kNV], w.c[hls::kND], h.den};
+  for (size_t s = 0; s < sps.size(); ++s) {
+    const hls::ShadowSetup ss = hls::hit_shadow<A>(pr, h.t, ht, light, tmin, sps[s]);
+    if (!ss.front) return false;  // decided before the spawn: the same for every strategy
+    const bool hit = ss.skip_id != w.id &&
+                     hls::ist_wald<A>(w.k, w.c, ss.ray.o, ss.ray.d, ss.ray.tmin, ss.ray.tmax).exit ==
+                         hls::IstExit::hit;
+    rehit[s] = hit;
+    if (hit && detail && detail[s].empty()) {
+      char buf[512];
+      std::snprintf(buf, sizeof buf,
+                    "k=%u c={%#x,%#x,%#x,%#x,%#x,%#x,%#x,%#x,%#x} o={%#x,%#x,%#x} d={%#x,%#x,%#x} "
+                    "light={%#x,%#x,%#x} segment=%d",
+                    w.k, w.c[0], w.c[1], w.c[2], w.c[3], w.c[4], w.c[5], w.c[6], w.c[7], w.c[8],
+                    pr.o[0], pr.o[1], pr.o[2], pr.d[0], pr.d[1], pr.d[2], light[0], light[1],
+                    light[2], int(sps[s].segment));
+      detail[s] = buf;
+    }
+  }
+  return true;
+}
+
+constexpr int kMagnitudes = 7;  // 10^0 .. 10^6
+constexpr int kTrianglesPerMagnitude = 4000;
+
+struct ReTable {
+  std::vector<hls::SpawnParams> sps;
+  std::vector<std::string> names;
+  uint64_t tested[kMagnitudes] = {};
+  std::vector<std::vector<uint64_t>> rehit;  // [strategy][magnitude]
+  std::vector<std::string> first_failure;  // per strategy: bit patterns of the first re-hit
+};
+
+template <class A>
+ReTable reintersect_table(FormatId f) {
+  ReTable t;
+  for (bool seg : {false, true}) {
+    for (Spawn s : {Spawn::none, Spawn::skip_origin, Spawn::ulp_offset, Spawn::error_bound}) {
+      hls::SpawnParams sp;
+      sp.spawn = s;
+      sp.ulps = sim::default_spawn_ulps(f);
+      sp.segment = seg;
+      t.sps.push_back(sp);
+      t.names.push_back(std::string(spawn_name(s)) + (seg ? "/seg" : "/unit"));
+    }
+  }
+  t.rehit.assign(t.sps.size(), std::vector<uint64_t>(kMagnitudes, 0));
+  t.first_failure.assign(t.sps.size(), std::string());
+  std::vector<char> rehit(t.sps.size());
+  for (int m = 0; m < kMagnitudes; ++m) {
+    Rng rng(1000u + uint64_t(m));
+    const double mag = std::pow(10.0, m);
+    for (int i = 0; i < kTrianglesPerMagnitude; ++i) {
+      bool rh[8] = {};
+      if (!reintersect_one<A>(rng, mag, t.sps, rh, t.first_failure.data()))
+        continue;
+      ++t.tested[m];
+      for (size_t s = 0; s < t.sps.size(); ++s) t.rehit[s][size_t(m)] += rh[s] ? 1 : 0;
+    }
+  }
+  return t;
+}
+
+void print_re_table(const std::string& cfg, const ReTable& t) {
+  std::printf("reintersect %s: re-hit rate in %% of tested rays per magnitude 10^0..10^6\n", cfg.c_str());
+  std::printf("reintersect %-14s", "tested");
+  for (int m = 0; m < kMagnitudes; ++m) std::printf(" %8llu", (unsigned long long)t.tested[m]);
+  std::printf("\n");
+  for (size_t s = 0; s < t.sps.size(); ++s) {
+    std::printf("reintersect %-14s", t.names[s].c_str());
+    for (int m = 0; m < kMagnitudes; ++m)
+      std::printf(" %8.3f", t.tested[m] ? 100.0 * double(t.rehit[s][size_t(m)]) / double(t.tested[m]) : 0.0);
+    std::printf("\n");
+  }
+  for (size_t s = 0; s < t.sps.size(); ++s)
+    if (!t.first_failure[s].empty())
+      std::printf("reintersect %s first re-hit: %s\n", t.names[s].c_str(), t.first_failure[s].c_str());
+  std::fflush(stdout);
+}
+
+template <class A>
+void check_reintersection(FormatId f) {
+  const ReTable t = reintersect_table<A>(f);
+  const std::string cfg = fmt_name(f, A::rounding);
+  print_re_table(cfg, t);
+  for (int m = 0; m < kMagnitudes; ++m) EXPECT_GT(t.tested[m], uint64_t(kTrianglesPerMagnitude) / 2) << cfg;
+  for (size_t s = 0; s < t.sps.size(); ++s) {
+    const uint64_t big = t.rehit[s][4] + t.rehit[s][5] + t.rehit[s][6];
+    switch (t.sps[s].spawn) {
+      case Spawn::error_bound:
+      case Spawn::skip_origin:  // the triangle alone: skipping it is trivially exact
+        for (int m = 0; m < kMagnitudes; ++m)
+          EXPECT_EQ(t.rehit[s][size_t(m)], 0u) << cfg << " " << t.names[s] << " at 10^" << m
+                                               << "; first: " << t.first_failure[s];
+        break;
+      case Spawn::none:
+        if (t.sps[s].segment) break;  // reported only (see docs/robustness.md)
+        // t_min = 2^-12 is a world distance (unit) or a fraction of the light distance (segment):
+        // useless once ulps of the hit point exceed it.
+        EXPECT_GT(big, uint64_t(t.tested[6]) / 20) << cfg << " " << t.names[s]
+                                                   << ": none must re-intersect at 10^4..10^6";
+        break;
+      case Spawn::ulp_offset:
+        break;  // reported only
+    }
+  }
+}
+
+TEST(ReIntersection, Fp24Rtz) { check_reintersection<hls::Arith<hls::FP24, Rounding::rtz>>(FormatId::fp24); }
+TEST(ReIntersection, Fp24Rne) { check_reintersection<hls::Arith<hls::FP24, Rounding::rne>>(FormatId::fp24); }
+TEST(ReIntersection, Fp32Rtz) { check_reintersection<hls::Arith<hls::FP32, Rounding::rtz>>(FormatId::fp32); }
+TEST(ReIntersection, Fp32Rne) { check_reintersection<hls::Arith<hls::FP32, Rounding::rne>>(FormatId::fp32); }
+
+// ---- closed meshes -----------------------------------------------------------------------------
+
+void add_quad(std::vector<Tri>& out, Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
+  out.push_back({a, b, c});
+  out.push_back({a, c, d});
+}
+
+// The box lo..hi, each face an n x n grid; interior grid vertices moved by up to `jitter` along
+// the face normal (edge vertices are computed by the same formula on every face: closed).
+std::vector<Tri> grid_box(Vec3 lo, Vec3 hi, int n, double jitter, uint64_t seed) {
+  Rng rng(seed);
+  std::vector<Tri> out;
+  auto coord = [&](int axis, int i) { return lo[axis] + (hi[axis] - lo[axis]) * i / n; };
+  for (int k = 0; k < 3; ++k)
+    for (int side = 0; side < 2; ++side) {
+      const int u = (k + 1) % 3, v = (k + 2) % 3;
+      std::vector<Vec3> g(size_t((n + 1) * (n + 1)));
+      for (int i = 0; i <= n; ++i)
+        for (int j = 0; j <= n; ++j) {
+          Vec3 p;
+          p[k] = side ? hi[k] : lo[k];
+          p[u] = coord(u, i);
+          p[v] = coord(v, j);
+          if (i > 0 && i < n && j > 0 && j < n) p[k] += jitter * rng.sym();
+          g[size_t(i * (n + 1) + j)] = p;
+        }
+      for (int i = 0; i < n; ++i)
+        for (int j = 0; j < n; ++j) {
+          auto at = [&](int a, int b) { return g[size_t(a * (n + 1) + b)]; };
+          add_quad(out, at(i, j), at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+        }
+    }
+  return out;
+}
+
+std::vector<Tri> icosphere(Vec3 c, double r, int levels) {
+  const double t = (1 + std::sqrt(5.0)) / 2;
+  std::vector<Vec3> v = {{-1, t, 0}, {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                         {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+  std::vector<std::array<int, 3>> f = {{0, 11, 5}, {0, 5, 1},  {0, 1, 7},   {0, 7, 10}, {0, 10, 11},
+                                       {1, 5, 9},  {5, 11, 4}, {11, 10, 2}, {10, 7, 6}, {7, 1, 8},
+                                       {3, 9, 4},  {3, 4, 2},  {3, 2, 6},   {3, 6, 8},  {3, 8, 9},
+                                       {4, 9, 5},  {2, 4, 11}, {6, 2, 10},  {8, 6, 7},  {9, 8, 1}};
+  for (auto& p : v) p = hls::normalize(p);
+  for (int l = 0; l < levels; ++l) {
+    std::map<std::pair<int, int>, int> mid;
+    auto midpoint = [&](int a, int b) {
+      const auto key = std::make_pair(std::min(a, b), std::max(a, b));
+      auto it = mid.find(key);
+      if (it != mid.end()) return it->second;
+      v.push_back(hls::normalize(v[size_t(a)] + v[size_t(b)]));
+      return mid[key] = int(v.size() - 1);
+    };
+    std::vector<std::array<int, 3>> nf;
+    for (const auto& x : f) {
+      const int a = midpoint(x[0], x[1]), b = midpoint(x[1], x[2]), cc = midpoint(x[2], x[0]);
+      nf.push_back({x[0], a, cc});
+      nf.push_back({x[1], b, a});
+      nf.push_back({x[2], cc, b});
+      nf.push_back({a, b, cc});
+    }
+    f = nf;
+  }
+  std::vector<Tri> out;
+  for (const auto& x : f) out.push_back({c + v[size_t(x[0])] * r, c + v[size_t(x[1])] * r, c + v[size_t(x[2])] * r});
+  return out;
+}
+
+scenes::Camera camera_basis(Vec3 pos, Vec3 fwd, Vec3 up, double yfov, double aspect) {
+  scenes::Camera c;
+  c.present = true;
+  c.position = pos;
+  c.forward = hls::normalize(fwd);
+  c.right = hls::normalize(hls::cross(c.forward, up));
+  c.up = hls::cross(c.right, c.forward);
+  c.yfov = yfov;
+  c.aspect = aspect;
+  return c;
+}
+
+scenes::Camera look_at(Vec3 pos, Vec3 target, double yfov, double aspect) {
+  return camera_basis(pos, target - pos, Vec3{0, 1, 0}, yfov, aspect);
+}
+
+struct ClosedMesh {
+  std::string name;
+  std::vector<Tri> tris;
+  std::vector<Vec3> inside;  // camera positions strictly inside
+};
+
+std::vector<ClosedMesh> closed_meshes() {
+  std::vector<ClosedMesh> m;
+  {
+    ClosedMesh c{"cube", grid_box(Vec3{3.7, -1.3, 250.5}, Vec3{5.9, 0.45, 253.1}, 1, 0, 1), {}};
+    c.inside = {Vec3{4.8, -0.4, 251.8}, Vec3{3.71, -1.29, 250.51}, Vec3{5.89, 0.44, 253.09}};
+    m.push_back(c);
+  }
+  {
+    ClosedMesh c{"icosphere", icosphere(Vec3{123.4, -56.7, 89.1}, 7.3, 3), {}};
+    c.inside = {Vec3{123.4, -56.7, 89.1}, Vec3{129.0, -54.0, 91.0}, Vec3{118.0, -59.0, 87.0}};
+    m.push_back(c);
+  }
+  {
+    ClosedMesh c{"room", grid_box(Vec3{-20.3, 0.1, -12.7}, Vec3{19.9, 10.2, 12.4}, 8, 0.4, 2), {}};
+    c.inside = {Vec3{0.3, 5.1, 0.2}, Vec3{-19.0, 1.0, 11.0}, Vec3{17.5, 9.0, -11.5}};
+    m.push_back(c);
+  }
+  return m;
+}
+
+struct Escape {
+  uint64_t rays = 0, escaped = 0;
+};
+
+// All directions: six 90-degree views of a random orthonormal basis per camera position.
+Escape escapes(const ClosedMesh& mesh, const sim::TraceConfig& base, uint64_t seed) {
+  const hls::Image img = hls::build_image(mesh.tris, base.format, base.rounding);
+  Rng rng(seed);
+  Escape e;
+  scenes::Light light;
+  light.present = true;
+  for (const Vec3& pos : mesh.inside) {
+    light.position = pos;
+    const Vec3 a = rng.sphere();
+    const Vec3 b = hls::normalize(hls::cross(a, rng.sphere()));
+    const Vec3 c = hls::cross(a, b);
+    const Vec3 dirs[6] = {a, a * -1.0, b, b * -1.0, c, c * -1.0};
+    const Vec3 ups[6] = {b, b, c, c, a, a};
+    for (int i = 0; i < 6; ++i) {
+      const scenes::Camera cam = camera_basis(pos, dirs[i], ups[i], M_PI / 2, 1.0);
+      const sim::Frame fr = sim::trace_golden(img, cam, light, base);
+      for (const auto& p : fr.px) {
+        ++e.rays;
+        if (p.tri < 0) ++e.escaped;
+      }
+    }
+  }
+  return e;
+}
+
+TEST(Watertight, EscapeRatePerConfiguration) {
+  const auto meshes = closed_meshes();
+  std::printf("watertight: escaped rays (of rays) from inside closed meshes, 6 x 40x40 per camera\n");
+  std::vector<double> pcts;
+  std::printf("watertight %-10s %-5s", "config", "vtu");
+  for (const auto& m : meshes) std::printf(" %22s", m.name.c_str());
+  std::printf("\n");
+  for (FormatId f : {FormatId::fp24, FormatId::fp32})
+    for (Rounding r : {Rounding::rtz, Rounding::rne})
+      for (bool vtu : {false, true}) {
+        sim::TraceConfig cfg;
+        cfg.format = f;
+        cfg.rounding = r;
+        cfg.vtu = vtu;
+        cfg.width = cfg.height = 40;
+        cfg.threads = 0;
+        std::printf("watertight %-10s %-5s", fmt_name(f, r).c_str(), vtu ? "on" : "off");
+        for (const auto& m : meshes) {
+          const Escape e = escapes(m, cfg, 77);
+          const double pct = 100.0 * double(e.escaped) / double(e.rays);
+          std::printf(" %6llu/%7llu %6.3f%%", (unsigned long long)e.escaped, (unsigned long long)e.rays, pct);
+          pcts.push_back(pct);
+        }
+        std::printf("\n");
+        std::fflush(stdout);
+        // Bounds from measurements with these seeds (docs/robustness.md), about 1.3x the worst
+        // seen: Wald's test is not watertight (adjacent triangles' rounded edge constants
+        // disagree); the cube has a camera 0.01 (5 FP24 ulps) from a corner, where most rays
+        // cross edges close to the origin.
+        for (size_t i = 0; i < meshes.size(); ++i)
+          EXPECT_LE(pcts[i], f == FormatId::fp32 ? 0.02 : i == 0 ? 1.6 : 0.2)
+              << meshes[i].name << " " << fmt_name(f, r) << " vtu " << vtu;
+        pcts.clear();
+      }
+  std::fflush(stdout);
+}
+
+// ---- far-offset invariance ---------------------------------------------------------------------
+
+// A small scene (ground grid, icosphere, box, a thin leaning plate), camera, light; all translated
+// by `off`.
+scenes::Scene small_scene(Vec3 off) {
+  scenes::Scene s;
+  s.name = "small";
+  s.source = "generated";
+  for (int i = 0; i < 8; ++i)
+    for (int j = 0; j < 8; ++j) {
+      const double x0 = -10 + 2.5 * i, z0 = -10 + 2.5 * j;
+      add_quad(s.tris, Vec3{x0, 0, z0}, Vec3{x0, 0, z0 + 2.5}, Vec3{x0 + 2.5, 0, z0 + 2.5}, Vec3{x0 + 2.5, 0, z0});
+    }
+  for (const Tri& t : icosphere(Vec3{-2.5, 3.1, -1.0}, 3.0, 2)) s.tris.push_back(t);
+  for (const Tri& t : grid_box(Vec3{3.0, 0.0, -4.0}, Vec3{5.5, 4.5, -1.5}, 2, 0, 3)) s.tris.push_back(t);
+  add_quad(s.tris, Vec3{-8, 0, 4}, Vec3{-3, 0, 6}, Vec3{-3, 5, 5.2}, Vec3{-8, 5, 3.2});
+  for (Tri& t : s.tris)
+    for (Vec3& v : t) v = v + off;
+  s.camera = look_at(Vec3{1.5, 7.0, 17.0} + off, Vec3{0, 1.5, 0} + off, 0.8726646259971648, 800.0 / 480.0);
+  s.light.present = true;
+  s.light.position = Vec3{8.0, 18.0, 9.0} + off;
+  return s;
+}
+
+struct Errors {
+  ref::ErrorMetrics m;
+  uint64_t total() const { return m.self_intersections + m.shadow_errors + m.primary_errors; }
+};
+
+Errors frame_errors(const scenes::Scene& s, const sim::TraceConfig& cfg, const sim::Frame& reference) {
+  const hls::Image img = hls::build_image(s.tris, cfg.format, cfg.rounding);
+  const sim::Frame fr = sim::trace_golden(img, s.camera, s.light, cfg);
+  return {ref::compute_errors(fr, reference, s.tris)};
+}
+
+constexpr int kFarW = 160, kFarH = 96;
+
+TEST(FarOffset, VtuKeepsErrorFlat) {
+  std::printf("far_offset: # small scene (%d x %d) translated by 10^k (1,1,1); errors = self + shadow + primary\n",
+              kFarW, kFarH);
+  std::printf("far_offset: # k config vtu self shadow primary total\n");
+  for (FormatId f : {FormatId::fp24, FormatId::fp32})
+    for (Rounding r : {Rounding::rtz, Rounding::rne}) {
+      uint64_t on[7] = {}, off[7] = {};
+      for (int k = 0; k <= 6; ++k) {
+        const double d = std::pow(10.0, k);
+        const scenes::Scene s = small_scene(Vec3{d, d, d});
+        ASSERT_LE(s.bounds().hi.x, sim::max_coordinate(f));
+        ASSERT_LE(s.light.position.y, sim::max_coordinate(f));
+        const sim::Frame reference = ref::render(s, kFarW, kFarH, 0);
+        for (bool vtu : {false, true}) {
+          sim::TraceConfig cfg;
+          cfg.format = f;
+          cfg.rounding = r;
+          cfg.vtu = vtu;
+          cfg.width = kFarW;
+          cfg.height = kFarH;
+          const Errors e = frame_errors(s, cfg, reference);
+          (vtu ? on : off)[k] = e.total();
+          std::printf("far_offset: %d %s %s %llu %llu %llu %llu\n", k, fmt_name(f, r).c_str(), vtu ? "on" : "off",
+                      (unsigned long long)e.m.self_intersections, (unsigned long long)e.m.shadow_errors,
+                      (unsigned long long)e.m.primary_errors, (unsigned long long)e.total());
+        }
+      }
+      std::fflush(stdout);
+      // The VTU keeps the error flat only while the image's own constants (rounded at the
+      // scene's magnitude before the VTU translates them) resolve the scene: FP24 up to 10^3,
+      // FP32 up to 10^4 for this 20-unit scene (docs/robustness.md). rtz only for the "off is
+      // worse" claim: with rne, spawn none self-intersects at every offset, VTU or not.
+      const std::string cfg = fmt_name(f, r);
+      const int kmax = f == FormatId::fp24 ? 3 : 4;
+      for (int k = 1; k <= kmax; ++k) EXPECT_LE(on[k], 3 * on[0] + 20) << cfg << " k=" << k;
+      if (r == Rounding::rtz) {
+        EXPECT_GT(off[kmax], 5 * on[kmax] + 50) << cfg << " k=" << kmax;
+      }
+      // Beyond: both degrade (FP24 k = 6: thousands of primary errors of 15360 pixels).
+      EXPECT_GT(on[6], on[0]) << cfg;
+    }
+}
+
+// ---- the paper's two limitations ---------------------------------------------------------------
+
+TEST(Limitations, CameraAtOriginVtuGainsNothing) {
+  std::printf("limitation_a: # camera at / near the origin: VTU off vs on, %d x %d\n", kFarW, kFarH);
+  for (Vec3 cam_at : {Vec3{0, 0, 0}, Vec3{0.37, 0.21, -0.13}}) {
+    scenes::Scene s = small_scene(Vec3{0, 0, 0});
+    const Vec3 shift = cam_at - s.camera.position;  // move everything so the camera sits at cam_at
+    for (Tri& t : s.tris)
+      for (Vec3& v : t) v = v + shift;
+    s.camera.position = cam_at;
+    s.light.position = s.light.position + shift;
+    const sim::Frame reference = ref::render(s, kFarW, kFarH, 0);
+    for (Rounding r : {Rounding::rtz, Rounding::rne}) {
+      sim::TraceConfig cfg;
+      cfg.rounding = r;
+      cfg.width = kFarW;
+      cfg.height = kFarH;
+      Errors e[2];
+      for (int vtu = 0; vtu < 2; ++vtu) {
+        cfg.vtu = vtu != 0;
+        e[vtu] = frame_errors(s, cfg, reference);
+        std::printf("limitation_a: camera (%g,%g,%g) fp24-%s vtu %s: self %llu shadow %llu primary %llu\n",
+                    cam_at.x, cam_at.y, cam_at.z, hls::rounding_name(r), vtu ? "on" : "off",
+                    (unsigned long long)e[vtu].m.self_intersections, (unsigned long long)e[vtu].m.shadow_errors,
+                    (unsigned long long)e[vtu].m.primary_errors);
+      }
+      if (cam_at.x == 0 && cam_at.y == 0 && cam_at.z == 0) {
+        // Translation by an exact zero is the identity: the same frame.
+        EXPECT_EQ(e[0].m.self_intersections, e[1].m.self_intersections);
+        EXPECT_EQ(e[0].m.shadow_errors, e[1].m.shadow_errors);
+        EXPECT_EQ(e[0].m.primary_errors, e[1].m.primary_errors);
+      } else {
+        // No real gain (here rtz even gets worse with the VTU: its translated plane constants
+        // are truncated once more).
+        EXPECT_GE(2 * e[1].total() + 10, e[0].total()) << "VTU gains nothing near the origin";
+      }
+    }
+  }
+  std::fflush(stdout);
+}
+
+TEST(Limitations, OriginObjectsFarCameraVtuGainsLittle) {
+  const scenes::Scene s = scenes::generate("origin-far-camera");
+  const int w = 200, h = 120;
+  const sim::Frame reference = ref::render(s, w, h, 0);
+  for (Rounding r : {Rounding::rtz, Rounding::rne}) {
+    sim::TraceConfig cfg;
+    cfg.rounding = r;
+    cfg.width = w;
+    cfg.height = h;
+    Errors e[2];
+    for (int vtu = 0; vtu < 2; ++vtu) {
+      cfg.vtu = vtu != 0;
+      e[vtu] = frame_errors(s, cfg, reference);
+      std::printf("limitation_b: origin-far-camera %dx%d fp24-%s vtu %s: self %llu shadow %llu primary %llu total %llu\n",
+                  w, h, hls::rounding_name(r), vtu ? "on" : "off", (unsigned long long)e[vtu].m.self_intersections,
+                  (unsigned long long)e[vtu].m.shadow_errors, (unsigned long long)e[vtu].m.primary_errors,
+                  (unsigned long long)e[vtu].total());
+    }
+    // Little gain or worse: VTU on removes at most half of VTU off's errors.
+    EXPECT_GE(2 * e[1].total() + 10, e[0].total()) << hls::rounding_name(r);
+  }
+  std::fflush(stdout);
+}
+
+// ---- literal regressions (bit patterns printed by the ReIntersection tables) -----------------
+
+struct LiteralCase {
+  uint32_t k, c[9], o[3], d[3], light[3];
+};
+
+// Primary ray -> hit -> shadow ray with `sp`, traced against the triangle alone: re-hit?
+template <class A>
+bool literal_rehit(const LiteralCase& lc, const hls::SpawnParams& sp) {
+  hls::Ray pr;
+  for (int i = 0; i < 3; ++i) {
+    pr.o[i] = lc.o[i];
+    pr.d[i] = lc.d[i];
+    pr.inv[i] = A::rcp(pr.d[i]);
+  }
+  const uint32_t tmin = A::from_double(1.0 / 4096);
+  pr.tmin = tmin;
+  pr.tmax = A::Fmt::max_mag;
+  const hls::IstOut h = hls::ist_wald<A>(lc.k, lc.c, pr.o, pr.d, pr.tmin, pr.tmax);
+  EXPECT_EQ(h.exit, hls::IstExit::hit);
+  const hls::HitTri ht{7, lc.k, lc.c[hls::kNU], lc.c[hls::kNV], lc.c[hls::kND], h.den};
+  const hls::ShadowSetup ss = hls::hit_shadow<A>(pr, h.t, ht, lc.light, tmin, sp);
+  EXPECT_TRUE(ss.front);
+  return hls::ist_wald<A>(lc.k, lc.c, ss.ray.o, ss.ray.d, ss.ray.tmin, ss.ray.tmax).exit == hls::IstExit::hit;
+}
+
+hls::SpawnParams spawn(Spawn s, int32_t ulps) {
+  hls::SpawnParams sp;
+  sp.spawn = s;
+  sp.ulps = ulps;
+  return sp;
+}
+
+// FP24 rne, magnitude 1: the default 2-ulp offset (Waechter & Binder's 256 FP32 ulps scaled) is
+// not enough for a hit point 3 ulps off its plane; error_bound is.
+TEST(Regression, Fp24RneUlpOffsetTwoUlpsReHits) {
+  using A = hls::Arith<hls::FP24, Rounding::rne>;
+  const LiteralCase lc{2,
+                       {0x3d6128, 0xbcc59e, 0x3b3629, 0xbf03e6, 0xbfd1fd, 0xbd8a8c, 0x3dea5f, 0xbde72b, 0x3d6b9a},
+                       {0xbef39c, 0xbe35de, 0x3f8be8},
+                       {0x3dc689, 0x3c8908, 0xbec027},
+                       {0x3e41f7, 0x3dc4fe, 0xba43a5}};
+  EXPECT_TRUE(literal_rehit<A>(lc, spawn(Spawn::none, 0)));
+  EXPECT_TRUE(literal_rehit<A>(lc, spawn(Spawn::ulp_offset, 2)));
+  EXPECT_FALSE(literal_rehit<A>(lc, spawn(Spawn::error_bound, 0)));
+}
+
+// FP32 rne, magnitude 10^6 (a triangle with tiny n_u, n_v): WB's 256 FP32 ulps re-hit; the error
+// bound does not.
+TEST(Regression, Fp32RneUlpOffset256ReHitsFar) {
+  using A = hls::Arith<hls::FP32, Rounding::rne>;
+  const LiteralCase lc{1,
+                       {0xbd8b20a6, 0xbd1227b7, 0xc707941d, 0xb5330360, 0xb4de6f80, 0x3eedbc2e, 0xb56722e4,
+                        0x35ed7368, 0x3ebdee35},
+                       {0xc90d5d2f, 0xc9cf654b, 0x49317f13},
+                       {0x3ee264ba, 0x3f5ee85b, 0xbe5c5a0d},
+                       {0xc726517d, 0xc6f7c199, 0x4823f5c7}};
+  EXPECT_TRUE(literal_rehit<A>(lc, spawn(Spawn::ulp_offset, 256)));
+  EXPECT_FALSE(literal_rehit<A>(lc, spawn(Spawn::error_bound, 0)));
+}
+
+// Known limitation (not fixed: Wald's test is not watertight): a ray exactly through the edge
+// where two faces of a cube meet, from a camera 0.01 from both faces, escapes in FP32 rne while
+// the watertight reference hits. Pinned so a change in the ist shows up here.
+TEST(Regression, Fp32CubeEdgeEscapes) {
+  const auto m = closed_meshes()[0];
+  sim::TraceConfig cfg;
+  cfg.format = FormatId::fp32;
+  cfg.rounding = Rounding::rne;
+  cfg.width = cfg.height = 40;
+  const hls::Image img = hls::build_image(m.tris, cfg.format, cfg.rounding);
+  scenes::Scene s;
+  s.tris = m.tris;
+  s.light.present = true;
+  s.light.position = Vec3{5.89, 0.44, 253.09};
+  s.camera = camera_basis(s.light.position, Vec3{0, 0, -1}, Vec3{0, 1, 0}, M_PI / 2, 1.0);
+  const sim::Frame fr = sim::trace_golden(img, s.camera, s.light, cfg);
+  const sim::Frame rf = ref::render(s, 40, 40, 1);
+  int escaped = 0, diagonal = 0;
+  for (int y = 0; y < 40; ++y)
+    for (int x = 0; x < 40; ++x) {
+      EXPECT_GE(rf.at(x, y).tri, 0);
+      if (fr.at(x, y).tri < 0) {
+        ++escaped;
+        diagonal += x + y == 39;  // the pixels whose ray has d_x == d_y: exactly through the edge
+      }
+    }
+  std::printf("regression: cube edge fp32-rne: %d escaped of 1600, %d on the diagonal\n", escaped, diagonal);
+  EXPECT_EQ(escaped, 20);
+  EXPECT_EQ(diagonal, 20);
+}
+
+}  // namespace
