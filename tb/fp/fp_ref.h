@@ -186,6 +186,14 @@ class Oracle {
     mpfr_sum(r_, tab, 3, mpfr_mode(R));
     return encode(r_);
   }
+  // sqrt: hls/fp.h's definition for negative operands (+0; sqrt(-0) = -0), MPFR otherwise.
+  uint32_t sqrt(uint32_t a, Rounding R) {
+    if (S::zero(a)) return S::signed_zero(S::sign(a));
+    if (S::sign(a)) return 0u;
+    load(in_[0], a);
+    mpfr_sqrt(r_, in_[0], mpfr_mode(R));
+    return encode(r_);
+  }
   uint32_t from_double(double d, Rounding R) {
     if (std::isnan(d) || std::isinf(d)) return S::sat(std::signbit(d));
     mpfr_set_d(r_, d, mpfr_mode(R));

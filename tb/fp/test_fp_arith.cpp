@@ -5,6 +5,9 @@
 // normal inputs and normal results.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <type_traits>
+
 #include <cfloat>
 #include <cmath>
 #include <cstring>
@@ -239,6 +242,48 @@ void run_rcp_exhaustive() {
 }
 TEST(RcpExhaustive, FP24_rtz) { run_rcp_exhaustive<Rounding::rtz>(); }
 TEST(RcpExhaustive, FP24_rne) { run_rcp_exhaustive<Rounding::rne>(); }
+
+// sqrt: every FP24 pattern in both modes, random FP32 patterns (and their neighbourhood of 1.0).
+template <class F, Rounding R>
+void run_sqrt() {
+  Oracle<F> o;
+  const bool exhaustive = std::is_same<F, hls::FP24>::value;
+  Tally t(fmt_name<F>(), "sqrt", mode_name(R), exhaustive ? "exhaustive" : "random");
+  auto one = [&](uint32_t a) {
+    return t.check(Shown<F>{hls::sqrt<F, R>(a)}, Shown<F>{o.sqrt(a, R)},
+                   [&] { return "a=" + show<F>(a); });
+  };
+  if (exhaustive) {
+    const uint32_t stride = exhaustive_stride();
+    for (uint32_t a = 0; a <= Spec<F>::all; a += stride)
+      if (!one(a)) break;
+  } else {
+    uint64_t x = seed_for("sqrt");
+    for (uint64_t i = 0; i < random_count(); ++i) {
+      x = x * 6364136223846793005ull + 1442695040888963407ull;
+      if (!one(uint32_t(x >> 32) & Spec<F>::all)) break;
+    }
+  }
+  t.finish();
+}
+TEST(SqrtExhaustive, FP24_rtz) { run_sqrt<hls::FP24, Rounding::rtz>(); }
+TEST(SqrtExhaustive, FP24_rne) { run_sqrt<hls::FP24, Rounding::rne>(); }
+TEST(SqrtRandom, FP32_rtz) { run_sqrt<hls::FP32, Rounding::rtz>(); }
+TEST(SqrtRandom, FP32_rne) { run_sqrt<hls::FP32, Rounding::rne>(); }
+
+// to_int_rtz: every FP24 pattern against truncation of the exact value (saturating at 2^31 - 1).
+TEST(ToIntExhaustive, FP24) {
+  using F = hls::FP24;
+  Tally t(fmt_name<F>(), "to_int_rtz", "rtz", "exhaustive");
+  const uint32_t stride = exhaustive_stride();
+  for (uint32_t a = 0; a <= Spec<F>::all; a += stride) {
+    const double v = std::trunc(hls::to_double<F>(a));
+    const double c = std::fmin(std::fmax(v, -2147483647.0), 2147483647.0);
+    if (!t.check(int(hls::to_int_rtz<F>(a)), int(c), [&] { return "a=" + show<F>(a); }))
+      break;
+  }
+  t.finish();
+}
 
 // ---- the oracle's own assumptions ---------------------------------------------------------------
 
