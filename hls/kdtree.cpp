@@ -95,7 +95,12 @@ struct Builder {
     best.cost = opt.cost_intersect * double(n);  // the leaf's cost: a split must beat it
     if (!(a0 > 0)) return best;
     std::vector<double> los(n), his(n);
-    std::vector<uint32_t> lo_bits(n), hi_bits(n);
+    struct Cand {
+      double s;
+      uint32_t bits;
+    };
+    std::vector<Cand> cands;
+    cands.reserve(4 * n);
     for (int a = 0; a < 3; ++a) {
       if (!(cell.lo[a] < cell.hi[a])) continue;
       for (size_t i = 0; i < n; ++i) {
@@ -104,29 +109,34 @@ struct Builder {
       }
       std::sort(los.begin(), los.end());
       std::sort(his.begin(), his.end());
-      // Candidates: every bound rounded to the format (rounding is monotone, so the rounded
-      // arrays stay sorted); merge them in ascending order.
+      // Candidates: the representable planes on both sides of every bound (the rounded bound and,
+      // if rounding moved it, its neighbour across the bound), so that the cost can choose the
+      // plane that separates a triangle cleanly whatever the rounding policy.
+      cands.clear();
+      auto add = [&](double b) {
+        const uint32_t r = q.round(b);
+        const double v = q.value(r);
+        cands.push_back({v, r});
+        if (v < b) {
+          const uint32_t u = q.next_up(r);
+          cands.push_back({q.value(u), u});
+        } else if (v > b) {
+          const uint32_t d = q.next_down(r);
+          cands.push_back({q.value(d), d});
+        }
+      };
       for (size_t i = 0; i < n; ++i) {
-        lo_bits[i] = q.round(los[i]);
-        hi_bits[i] = q.round(his[i]);
+        add(los[i]);
+        add(his[i]);
       }
+      std::sort(cands.begin(), cands.end(), [](const Cand& x, const Cand& y) { return x.s < y.s; });
       const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
       const double d1 = cell.hi[b1] - cell.lo[b1], d2 = cell.hi[b2] - cell.lo[b2];
-      size_t il = 0, ih = 0;  // next candidate in each array
       size_t nl = 0, nb = 0;  // #lo <= s, #hi < s (true bounds)
       double prev = -HUGE_VAL;
-      while (il < n || ih < n) {
-        uint32_t bits;
-        double s;
-        const double sl = il < n ? q.value(lo_bits[il]) : HUGE_VAL;
-        const double sh = ih < n ? q.value(hi_bits[ih]) : HUGE_VAL;
-        if (sl <= sh) {
-          bits = lo_bits[il++];
-          s = sl;
-        } else {
-          bits = hi_bits[ih++];
-          s = sh;
-        }
+      for (const Cand& c : cands) {
+        const uint32_t bits = c.bits;
+        const double s = c.s;
         if (!(s > prev)) continue;  // duplicate plane
         prev = s;
         if (!(s > cell.lo[a])) continue;
