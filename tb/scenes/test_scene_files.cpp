@@ -43,6 +43,9 @@ struct SharedScene {
   Vec3 lo, hi;
   double tol;  // the README rounds the box to this many units
 };
+// Shown by name in test listings (not as raw bytes).
+inline void PrintTo(const SharedScene& s, std::ostream* os) { *os << s.file; }
+
 
 class Shared : public ::testing::TestWithParam<SharedScene> {};
 
@@ -84,6 +87,8 @@ struct PaperFrame {
   const char* file;
   Vec3 camera, target, light;
 };
+inline void PrintTo(const PaperFrame& f, std::ostream* os) { *os << f.file; }
+
 
 class Paper : public ::testing::TestWithParam<PaperFrame> {};
 
