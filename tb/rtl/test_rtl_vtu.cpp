@@ -1,0 +1,369 @@
+// tb/rtl/test_rtl_vtu.cpp - co-simulation of rtl/units/vtu.v (Verilator --cc, clocked from C++)
+// against hls::Vtu<F, R>::node / ::tri, bit for bit, in order.
+//
+// One test per Verilated variant (format, rounding, STAGES; listed once in rtl/CMakeLists.txt,
+// RAYCORE_RTL_VTU_VARIANTS). Each streams, through the unit's valid/ready handshake:
+//   1. fullrate: 4096 records with no stalls (checks one record per cycle and latency 3*STAGES),
+//   2. random: RAYCORE_RTL_VTU_RANDOM (default 200000) records with random input gaps and random
+//      output back-pressure (bursty rates, new every 256 cycles),
+// each a node (1/2; a quarter of them leaves) or a triangle (random k, flags, id; constants with
+// magnitudes 1e-3..1e4, some zeros of either sign and some raw bit patterns), with a camera that
+// changes every few records (magnitudes 1e-3..1e4, some zero coordinates) and vtu_on_i off for
+// about 1/8 of the records (then the record must come out unchanged). A 16-bit sequence number
+// rides in the tag. Summary line per run: `VTUSUM <variant> <set> vectors=N mismatches=M ...`;
+// zero vectors or any mismatch fails; the first 10 mismatches print the record, the camera, the
+// expected and the received fields.
+#include <gtest/gtest.h>
+#include <verilated.h>
+
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <deque>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <string>
+
+#include "hls/fp.h"
+#include "hls/image.h"
+#include "hls/vtu.h"
+#include "hls/wald.h"
+
+#include "rtl_vtu_models.h"
+
+namespace raycore::rtltest {
+namespace {
+
+using hls::FP24;
+using hls::FP32;
+using hls::Rounding;
+
+uint64_t random_count() {
+  const char* s = std::getenv("RAYCORE_RTL_VTU_RANDOM");
+  if (s == nullptr || *s == '\0') return 200000;
+  return std::strtoull(s, nullptr, 10);
+}
+
+// Assigns to a Verilated port of any width (CData/SData/IData/QData) without -Wconversion noise.
+template <class P, class U>
+void set(P& port, U v) {
+  port = static_cast<P>(v);
+}
+
+template <class F>
+struct Record {
+  bool tri = false;
+  uint64_t node = 0;
+  hls::WaldTri<F> t;
+  uint32_t cam[3] = {0, 0, 0};
+  bool on = true;
+};
+
+template <class F>
+struct Out {
+  bool tri = false;
+  uint64_t node = 0;
+  hls::WaldTri<F> t;
+  bool operator==(const Out& o) const {
+    if (tri != o.tri) return false;
+    return tri ? t == o.t : node == o.node;
+  }
+};
+
+std::string hex(uint64_t x) {
+  char b[24];
+  std::snprintf(b, sizeof b, "0x%llx", static_cast<unsigned long long>(x));
+  return b;
+}
+
+template <class F>
+std::string show(const Out<F>& o) {
+  std::ostringstream s;
+  if (!o.tri) {
+    s << "node " << hex(o.node);
+    return s.str();
+  }
+  s << "tri k=" << o.t.k << " flags=" << hex(o.t.flags) << " id=" << o.t.id << " c=[";
+  for (int i = 0; i < 9; ++i) s << (i ? " " : "") << hex(o.t.c[i]);
+  s << "]";
+  return s.str();
+}
+
+template <class F>
+std::string show(const Record<F>& r) {
+  Out<F> o;
+  o.tri = r.tri;
+  o.node = r.node;
+  o.t = r.t;
+  std::ostringstream s;
+  s << show(o) << " cam=[" << hex(r.cam[0]) << " " << hex(r.cam[1]) << " " << hex(r.cam[2])
+    << "] on=" << r.on;
+  return s.str();
+}
+
+template <class F, Rounding R>
+Out<F> expect(const Record<F>& r) {
+  Out<F> o;
+  o.tri = r.tri;
+  if (!r.on) {
+    o.node = r.node;
+    o.t = r.t;
+    return o;
+  }
+  hls::Vtu<F, R> v;
+  for (int i = 0; i < 3; ++i) v.c[i] = r.cam[i];
+  if (r.tri)
+    o.t = v.tri(r.t);
+  else
+    o.node = v.node(r.node);
+  return o;
+}
+
+template <class F, Rounding R>
+class Gen {
+ public:
+  explicit Gen(uint64_t seed) : rng_(seed) {}
+  // A format value: magnitude 1e-3..1e4 (log-uniform), random sign; 1/32 a signed zero, 1/64 a
+  // raw bit pattern of the format (any exponent, incl. the zero field with a nonzero mantissa).
+  uint32_t value() {
+    const uint32_t sel = uint32_t(rng_() & 63u);
+    if (sel == 0) return uint32_t(rng_()) & F::mask;
+    if (sel <= 2) return (rng_() & 1u) ? F::sign_mask : 0u;
+    const double mag = std::pow(10.0, std::uniform_real_distribution<double>(-3.0, 4.0)(rng_));
+    return hls::Arith<F, R>::from_double((rng_() & 1u) ? -mag : mag);
+  }
+  uint32_t cam_coord() { return (rng_() & 15u) == 0 ? 0u : value(); }
+  Record<F> next() {
+    if ((rng_() & 7u) == 0)
+      for (uint32_t& c : cam_) c = cam_coord();
+    if ((rng_() & 255u) == 0) on_ = !on_;
+    if (!on_ && (rng_() & 7u) != 0) on_ = true;  // off for short stretches
+    Record<F> r;
+    for (int i = 0; i < 3; ++i) r.cam[i] = cam_[i];
+    r.on = on_;
+    r.tri = (rng_() & 1u) != 0;
+    if (r.tri) {
+      r.t.k = uint32_t(rng_() % 3u);
+      r.t.flags = uint32_t(rng_() & 0xFFu);
+      r.t.id = uint32_t(rng_());
+      for (uint32_t& c : r.t.c) c = value();
+    } else {
+      const uint64_t axis = rng_() & 3u;
+      uint64_t hi = (uint64_t(rng_()) << 32) & ~(uint64_t(3) << 56);
+      hi |= axis << 56;
+      // Leaves: any count; inner nodes: a split in the format (bits above its width zero).
+      const uint32_t lo = axis == hls::node_leaf_axis ? uint32_t(rng_()) : value();
+      r.node = hi | lo;
+    }
+    return r;
+  }
+  std::mt19937_64& rng() { return rng_; }
+
+ private:
+  std::mt19937_64 rng_;
+  uint32_t cam_[3] = {0, 0, 0};
+  bool on_ = true;
+};
+
+template <class V, class F, Rounding R>
+class VtuCosim {
+ public:
+  VtuCosim(std::string name, int stages, uint64_t seed)
+      : name_(std::move(name)), stages_(stages), gen_(seed) {
+    ctx_ = std::make_unique<VerilatedContext>();
+    ctx_->randReset(2);  // data registers start random: a result must never depend on them
+    ctx_->randSeed(int(seed & 0x7fffffffu) | 1);
+    m_ = std::make_unique<V>(ctx_.get(), "top");
+  }
+
+  void reset() {
+    m_->clk_i = 0;
+    m_->rst_ni = 1;
+    m_->in_valid_i = 0;
+    m_->out_ready_i = 0;
+    m_->eval();
+    m_->rst_ni = 0;
+    m_->eval();
+    for (int i = 0; i < 2; ++i) clock();
+    m_->rst_ni = 1;
+    m_->eval();
+  }
+
+  void drive(const Record<F>& r) {
+    V& m = *m_;
+    set(m.vtu_on_i, r.on);
+    set(m.cam_x_i, r.cam[0]);
+    set(m.cam_y_i, r.cam[1]);
+    set(m.cam_z_i, r.cam[2]);
+    set(m.in_kind_i, r.tri);
+    set(m.in_node_i, r.node);
+    set(m.in_k_i, r.t.k);
+    set(m.in_flags_i, r.t.flags);
+    set(m.in_c0_i, r.t.c[0]);
+    set(m.in_c1_i, r.t.c[1]);
+    set(m.in_c2_i, r.t.c[2]);
+    set(m.in_c3_i, r.t.c[3]);
+    set(m.in_c4_i, r.t.c[4]);
+    set(m.in_c5_i, r.t.c[5]);
+    set(m.in_c6_i, r.t.c[6]);
+    set(m.in_c7_i, r.t.c[7]);
+    set(m.in_c8_i, r.t.c[8]);
+    set(m.in_id_i, r.t.id);
+  }
+
+  Out<F> read() const {
+    const V& m = *m_;
+    Out<F> o;
+    o.tri = m.out_kind_o != 0;
+    if (!o.tri) {
+      o.node = m.out_node_o;
+      return o;
+    }
+    o.t.k = m.out_k_o;
+    o.t.flags = m.out_flags_o;
+    o.t.id = m.out_id_o;
+    o.t.c[0] = m.out_c0_o;
+    o.t.c[1] = m.out_c1_o;
+    o.t.c[2] = m.out_c2_o;
+    o.t.c[3] = m.out_c3_o;
+    o.t.c[4] = m.out_c4_o;
+    o.t.c[5] = m.out_c5_o;
+    o.t.c[6] = m.out_c6_o;
+    o.t.c[7] = m.out_c7_o;
+    o.t.c[8] = m.out_c8_o;
+    return o;
+  }
+
+  // Streams `count` records; returns the number checked.
+  uint64_t run(const std::string& set_name, uint64_t count, bool full) {
+    reset();
+    struct Pending {
+      Record<F> r;
+      Out<F> expected;
+      uint16_t tag = 0;
+      uint64_t cycle = 0;
+    };
+    std::deque<Pending> inflight;
+    std::mt19937_64& rng = gen_.rng();
+    uint64_t issued = 0, checked = 0, mismatches = 0, cycles = 0, idle = 0, protocol = 0;
+    uint64_t min_lat = ~uint64_t(0), max_lat = 0;
+    uint32_t p_gap = 0, p_stall = 0;  // in 1/8
+    bool holding = false;
+    Pending cur;
+    const uint64_t lat = 3u * uint64_t(stages_);
+    while ((issued < count || !inflight.empty()) && mismatches < 10 && protocol < 10) {
+      if (!full && (cycles & 255u) == 0) {
+        static constexpr uint32_t kRates[] = {0, 1, 4, 7};
+        p_gap = kRates[rng() & 3u];
+        p_stall = kRates[(rng() >> 2) & 3u];
+      }
+      if (!holding) {
+        if (issued < count && (full || (rng() & 7u) >= p_gap)) {
+          cur.r = gen_.next();
+          cur.expected = expect<F, R>(cur.r);
+          cur.tag = uint16_t(issued);
+          holding = true;
+          drive(cur.r);
+          set(m_->in_tag_i, cur.tag);
+          m_->in_valid_i = 1;
+        } else {  // a bubble with junk on the inputs (must be ignored)
+          drive(gen_.next());
+          set(m_->in_tag_i, rng());
+          m_->in_valid_i = 0;
+        }
+      }
+      m_->out_ready_i = (full || (rng() & 7u) >= p_stall) ? 1 : 0;
+      m_->eval();
+      if (m_->in_valid_i && m_->in_ready_o) {
+        cur.cycle = cycles;
+        inflight.push_back(cur);
+        ++issued;
+        holding = false;
+      } else if (full && holding) {
+        ++protocol;
+        ADD_FAILURE() << name_ << ": in_ready_o low at cycle " << cycles
+                      << " with the output always ready";
+      }
+      if (m_->out_valid_o && m_->out_ready_i) {
+        idle = 0;
+        if (inflight.empty()) {
+          ++protocol;
+          ADD_FAILURE() << name_ << ": out_valid_o at cycle " << cycles << " with nothing in flight";
+        } else {
+          const Pending p = inflight.front();
+          inflight.pop_front();
+          min_lat = std::min(min_lat, cycles - p.cycle);
+          max_lat = std::max(max_lat, cycles - p.cycle);
+          const uint16_t tag = uint16_t(m_->out_tag_o);
+          if (tag != p.tag) {
+            ++protocol;
+            ADD_FAILURE() << name_ << ": out of order at cycle " << cycles << ": tag " << tag
+                          << ", expected " << p.tag;
+          }
+          const Out<F> got = read();
+          ++checked;
+          if (!(got == p.expected)) {
+            ++mismatches;
+            ADD_FAILURE() << name_ << " [" << set_name << "] mismatch #" << mismatches
+                          << " (record " << p.tag << ")\n  input:    " << show(p.r)
+                          << "\n  expected: " << show(p.expected) << "\n  got:      " << show(got);
+          }
+        }
+      } else if (++idle > 1000u + 64u * lat) {
+        ADD_FAILURE() << name_ << ": no output for " << idle << " cycles with " << inflight.size()
+                      << " in flight (deadlock)";
+        break;
+      }
+      clock();
+      ++cycles;
+    }
+    EXPECT_GT(checked, 0u) << "no vectors checked";
+    EXPECT_EQ(mismatches, 0u);
+    if (checked > 0) {
+      EXPECT_GE(min_lat, lat) << "latency below 3*STAGES";
+      if (full) {
+        EXPECT_EQ(max_lat, lat) << "full-rate latency != 3*STAGES";
+        EXPECT_EQ(cycles, count + lat) << "full rate: not one record per cycle";
+      }
+    }
+    std::printf("VTUSUM %s %s vectors=%llu mismatches=%llu cycles=%llu latency=%llu..%llu\n",
+                name_.c_str(), set_name.c_str(), static_cast<unsigned long long>(checked),
+                static_cast<unsigned long long>(mismatches),
+                static_cast<unsigned long long>(cycles), static_cast<unsigned long long>(min_lat),
+                static_cast<unsigned long long>(max_lat));
+    return checked;
+  }
+
+ private:
+  void clock() {
+    m_->clk_i = 1;
+    m_->eval();
+    m_->clk_i = 0;
+    m_->eval();
+  }
+
+  std::string name_;
+  int stages_;
+  Gen<F, R> gen_;
+  std::unique_ptr<VerilatedContext> ctx_;
+  std::unique_ptr<V> m_;
+};
+
+template <class V, class F, Rounding R>
+void run_variant(const char* name, int stages) {
+  const uint64_t seed = std::hash<std::string>{}(name);
+  VtuCosim<V, F, R> sim(name, stages, seed);
+  EXPECT_EQ(sim.run("fullrate", 4096, true), 4096u);
+  const uint64_t n = random_count();
+  EXPECT_EQ(sim.run("random", n, false), n);
+}
+
+#define RAYCORE_RTL_VTU_VARIANT(V, fmt, mode, stages) \
+  TEST(RtlVtu, V) { run_variant<V, fmt, Rounding::mode>(#V, stages); }
+#include "rtl_vtu_variants.h"
+#undef RAYCORE_RTL_VTU_VARIANT
+
+}  // namespace
+}  // namespace raycore::rtltest
