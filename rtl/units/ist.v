@@ -1,0 +1,366 @@
+// ist - the intersection unit's datapath: Wald's projected ray/triangle test, fully pipelined,
+// one test per cycle.
+//
+// Bit-exact twin of hls::ist_wald (hls/ist.h): same operations in the same order, each rounded
+// once by the rtl/fp operators, so {exit, t, den} equal the C++ reference's for every input.
+// In hardware every phase is computed for every test; the early exits of the reference only
+// decide the reported exit code (the first failing phase):
+//   0 hit, 1 distance (not tmin < t < tmax), 2 beta (< 0), 3 gamma (< 0), 4 sum (1 < beta+gamma).
+// k (the projection axis) selects u = (k+1)%3, v = (k+2)%3 with operand muxes; k = 3 is not a
+// valid record and is treated as k = 0.
+//
+// Levels (every FP operator has STAGES pipeline registers; all operators of a level run side by
+// side and a per-level fp_pipe of the same depth carries the values needed later, the tag and the
+// phase flags):
+//    1  m_nud = n_u*d_u, m_nvd = n_v*d_v, m_nuo = n_u*o_u, m_nvo = n_v*o_v, s1 = n_d - o_k
+//    2  den = add3(d_k, m_nud, m_nvd), s2 = m_nuo + m_nvo
+//    3  num = s1 - s2, rcp = 1 / den (fp_div)
+//    4  t = num * rcp
+//    5  lt(tmin, t), lt(t, tmax) (fp_cmp), t*d_u, t*d_v
+//    6  hu = o_u + t*d_u, hv = o_v + t*d_v
+//    7  b_nu*hu, b_nv*hv, c_nu*hu, c_nv*hv
+//    8  beta = add3(b_nu*hu, b_nv*hv, b_d), gamma = add3(c_nu*hu, c_nv*hv, c_d)
+//    9  sum = beta + gamma
+//   10  lt(1, sum) (fp_cmp); the exit code is decoded combinationally at the output.
+// Latency = 10 * STAGES cycles (STAGES = 0: combinational), throughput one test per cycle.
+//
+// Handshake: valid/ready as every rtl/fp operator. The operators of a level receive the same
+// in_valid and out_ready and have the same depth, so their fp_pipe registers hold the same valid
+// bits at all times (lockstep): the level's carry pipe stands for all of them (its in_ready and
+// out_valid are the level's), and the operators' own handshake outputs are equal copies, left
+// unused. Back-pressure stalls the whole chain (a register takes a new item if it is empty or its
+// item leaves), so in_ready_o depends combinationally on out_ready_i.
+module ist #(
+  parameter integer EXP_BITS = 7,
+  parameter integer MAN_BITS = 16,
+  parameter integer RNE      = 0,
+  parameter integer STAGES   = 2,
+  parameter integer TAG_BITS = 16
+) (
+  input  wire                       clk_i,
+  input  wire                       rst_ni,
+  input  wire                       in_valid_i,
+  output wire                       in_ready_o,
+  input  wire [1:0]                 in_k_i,     // projection axis 0..2
+  input  wire [EXP_BITS+MAN_BITS:0] in_c0_i,    // n_u
+  input  wire [EXP_BITS+MAN_BITS:0] in_c1_i,    // n_v
+  input  wire [EXP_BITS+MAN_BITS:0] in_c2_i,    // n_d
+  input  wire [EXP_BITS+MAN_BITS:0] in_c3_i,    // b_nu
+  input  wire [EXP_BITS+MAN_BITS:0] in_c4_i,    // b_nv
+  input  wire [EXP_BITS+MAN_BITS:0] in_c5_i,    // b_d
+  input  wire [EXP_BITS+MAN_BITS:0] in_c6_i,    // c_nu
+  input  wire [EXP_BITS+MAN_BITS:0] in_c7_i,    // c_nv
+  input  wire [EXP_BITS+MAN_BITS:0] in_c8_i,    // c_d
+  input  wire [EXP_BITS+MAN_BITS:0] in_o_x_i,
+  input  wire [EXP_BITS+MAN_BITS:0] in_o_y_i,
+  input  wire [EXP_BITS+MAN_BITS:0] in_o_z_i,
+  input  wire [EXP_BITS+MAN_BITS:0] in_d_x_i,
+  input  wire [EXP_BITS+MAN_BITS:0] in_d_y_i,
+  input  wire [EXP_BITS+MAN_BITS:0] in_d_z_i,
+  input  wire [EXP_BITS+MAN_BITS:0] in_tmin_i,
+  input  wire [EXP_BITS+MAN_BITS:0] in_tmax_i,
+  input  wire [TAG_BITS-1:0]        in_tag_i,   // sideband, returned with the result
+  output wire                       out_valid_o,
+  input  wire                       out_ready_i,
+  output wire [2:0]                 out_exit_o, // hls::IstExit
+  output wire [EXP_BITS+MAN_BITS:0] out_t_o,
+  output wire [EXP_BITS+MAN_BITS:0] out_den_o,
+  output wire [TAG_BITS-1:0]        out_tag_o
+);
+
+  localparam integer E = EXP_BITS;
+  localparam integer M = MAN_BITS;
+  localparam integer W = 1 + E + M;
+  localparam integer BIAS = (1 << (E - 1)) - 1;
+  localparam [W-1:0] ONE = {1'b0, BIAS[E-1:0], {M{1'b0}}};  // 1.0
+
+  // Level handshakes: v[L] / r[L] = valid / ready at the output of level L (index 0 = the input).
+  wire [10:0] v;
+  wire [11:1] r;
+  assign v[0]       = in_valid_i;
+  assign in_ready_o = r[1];
+
+  // ---- operand muxes (u = (k+1)%3, v = (k+2)%3) ----------------------------------------------
+  reg [W-1:0] o_k, o_u, o_v, d_k, d_u, d_v;
+  always @* begin
+    case (in_k_i)
+      2'd1: begin
+        o_k = in_o_y_i; o_u = in_o_z_i; o_v = in_o_x_i;
+        d_k = in_d_y_i; d_u = in_d_z_i; d_v = in_d_x_i;
+      end
+      2'd2: begin
+        o_k = in_o_z_i; o_u = in_o_x_i; o_v = in_o_y_i;
+        d_k = in_d_z_i; d_u = in_d_x_i; d_v = in_d_y_i;
+      end
+      default: begin
+        o_k = in_o_x_i; o_u = in_o_y_i; o_v = in_o_z_i;
+        d_k = in_d_x_i; d_u = in_d_y_i; d_v = in_d_z_i;
+      end
+    endcase
+  end
+
+  // ---- level 1 ----------------------------------------------------------------------------------
+  wire [W-1:0] l1_nud, l1_nvd, l1_nuo, l1_nvo, l1_s1;
+  wire [4:0]   l1_unused_v, l1_unused_r;
+  localparam integer C1_W = TAG_BITS + 13 * W;
+  wire [TAG_BITS-1:0] c1_tag;
+  wire [W-1:0] c1_tmin, c1_tmax, c1_dk, c1_du, c1_dv, c1_ou, c1_ov;
+  wire [W-1:0] c1_bnu, c1_bnv, c1_bd, c1_cnu, c1_cnv, c1_cd;
+  fp_pipe #(.WIDTH(C1_W), .STAGES(STAGES)) u_carry1 (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(r[1]),
+    .in_data_i({in_tag_i, in_tmin_i, in_tmax_i, d_k, d_u, d_v, o_u, o_v,
+                in_c3_i, in_c4_i, in_c5_i, in_c6_i, in_c7_i, in_c8_i}),
+    .out_valid_o(v[1]), .out_ready_i(r[2]),
+    .out_data_o({c1_tag, c1_tmin, c1_tmax, c1_dk, c1_du, c1_dv, c1_ou, c1_ov,
+                 c1_bnu, c1_bnv, c1_bd, c1_cnu, c1_cnv, c1_cd})
+  );
+  ist_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l1_nud (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[0]),
+    .in_a_i(in_c0_i), .in_b_i(d_u), .out_valid_o(l1_unused_v[0]), .out_ready_i(r[2]),
+    .out_res_o(l1_nud));
+  ist_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l1_nvd (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[1]),
+    .in_a_i(in_c1_i), .in_b_i(d_v), .out_valid_o(l1_unused_v[1]), .out_ready_i(r[2]),
+    .out_res_o(l1_nvd));
+  ist_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l1_nuo (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[2]),
+    .in_a_i(in_c0_i), .in_b_i(o_u), .out_valid_o(l1_unused_v[2]), .out_ready_i(r[2]),
+    .out_res_o(l1_nuo));
+  ist_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l1_nvo (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[3]),
+    .in_a_i(in_c1_i), .in_b_i(o_v), .out_valid_o(l1_unused_v[3]), .out_ready_i(r[2]),
+    .out_res_o(l1_nvo));
+  ist_add #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l1_s1 (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[4]),
+    .in_a_i(in_c2_i), .in_b_i(o_k), .in_sub_i(1'b1), .out_valid_o(l1_unused_v[4]),
+    .out_ready_i(r[2]), .out_res_o(l1_s1));
+
+  // ---- level 2 ----------------------------------------------------------------------------------
+  wire [W-1:0] l2_den, l2_s2;
+  wire [1:0]   l2_unused_v, l2_unused_r;
+  localparam integer C2_W = TAG_BITS + 13 * W;
+  wire [TAG_BITS-1:0] c2_tag;
+  wire [W-1:0] c2_tmin, c2_tmax, c2_du, c2_dv, c2_ou, c2_ov, c2_s1;
+  wire [W-1:0] c2_bnu, c2_bnv, c2_bd, c2_cnu, c2_cnv, c2_cd;
+  fp_pipe #(.WIDTH(C2_W), .STAGES(STAGES)) u_carry2 (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(r[2]),
+    .in_data_i({c1_tag, c1_tmin, c1_tmax, c1_du, c1_dv, c1_ou, c1_ov, l1_s1,
+                c1_bnu, c1_bnv, c1_bd, c1_cnu, c1_cnv, c1_cd}),
+    .out_valid_o(v[2]), .out_ready_i(r[3]),
+    .out_data_o({c2_tag, c2_tmin, c2_tmax, c2_du, c2_dv, c2_ou, c2_ov, c2_s1,
+                 c2_bnu, c2_bnv, c2_bd, c2_cnu, c2_cnv, c2_cd})
+  );
+  ist_add3 #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l2_den (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[0]),
+    .in_a_i(c1_dk), .in_b_i(l1_nud), .in_c_i(l1_nvd), .out_valid_o(l2_unused_v[0]),
+    .out_ready_i(r[3]), .out_res_o(l2_den));
+  ist_add #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l2_s2 (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[1]),
+    .in_a_i(l1_nuo), .in_b_i(l1_nvo), .in_sub_i(1'b0), .out_valid_o(l2_unused_v[1]),
+    .out_ready_i(r[3]), .out_res_o(l2_s2));
+
+  // ---- level 3 ----------------------------------------------------------------------------------
+  wire [W-1:0] l3_num, l3_rcp;
+  wire [1:0]   l3_unused_v, l3_unused_r;
+  localparam integer C3_W = TAG_BITS + 13 * W;
+  wire [TAG_BITS-1:0] c3_tag;
+  wire [W-1:0] c3_tmin, c3_tmax, c3_du, c3_dv, c3_ou, c3_ov, c3_den;
+  wire [W-1:0] c3_bnu, c3_bnv, c3_bd, c3_cnu, c3_cnv, c3_cd;
+  fp_pipe #(.WIDTH(C3_W), .STAGES(STAGES)) u_carry3 (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(r[3]),
+    .in_data_i({c2_tag, c2_tmin, c2_tmax, c2_du, c2_dv, c2_ou, c2_ov, l2_den,
+                c2_bnu, c2_bnv, c2_bd, c2_cnu, c2_cnv, c2_cd}),
+    .out_valid_o(v[3]), .out_ready_i(r[4]),
+    .out_data_o({c3_tag, c3_tmin, c3_tmax, c3_du, c3_dv, c3_ou, c3_ov, c3_den,
+                 c3_bnu, c3_bnv, c3_bd, c3_cnu, c3_cnv, c3_cd})
+  );
+  ist_add #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l3_num (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[0]),
+    .in_a_i(c2_s1), .in_b_i(l2_s2), .in_sub_i(1'b1), .out_valid_o(l3_unused_v[0]),
+    .out_ready_i(r[4]), .out_res_o(l3_num));
+  ist_div #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l3_rcp (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[1]),
+    .in_a_i(ONE), .in_b_i(l2_den), .out_valid_o(l3_unused_v[1]),
+    .out_ready_i(r[4]), .out_res_o(l3_rcp));
+
+  // ---- level 4 ----------------------------------------------------------------------------------
+  wire [W-1:0] l4_t;
+  wire         l4_unused_v, l4_unused_r;
+  localparam integer C4_W = TAG_BITS + 13 * W;
+  wire [TAG_BITS-1:0] c4_tag;
+  wire [W-1:0] c4_tmin, c4_tmax, c4_du, c4_dv, c4_ou, c4_ov, c4_den;
+  wire [W-1:0] c4_bnu, c4_bnv, c4_bd, c4_cnu, c4_cnv, c4_cd;
+  fp_pipe #(.WIDTH(C4_W), .STAGES(STAGES)) u_carry4 (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(r[4]),
+    .in_data_i({c3_tag, c3_tmin, c3_tmax, c3_du, c3_dv, c3_ou, c3_ov, c3_den,
+                c3_bnu, c3_bnv, c3_bd, c3_cnu, c3_cnv, c3_cd}),
+    .out_valid_o(v[4]), .out_ready_i(r[5]),
+    .out_data_o({c4_tag, c4_tmin, c4_tmax, c4_du, c4_dv, c4_ou, c4_ov, c4_den,
+                 c4_bnu, c4_bnv, c4_bd, c4_cnu, c4_cnv, c4_cd})
+  );
+  ist_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l4_t (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(l4_unused_r),
+    .in_a_i(l3_num), .in_b_i(l3_rcp), .out_valid_o(l4_unused_v), .out_ready_i(r[5]),
+    .out_res_o(l4_t));
+
+  // ---- level 5 ----------------------------------------------------------------------------------
+  wire [W-1:0] l5_tdu, l5_tdv;
+  wire         l5_lo, l5_hi;  // tmin < t, t < tmax
+  wire [3:0]   l5_unused_v, l5_unused_r;
+  localparam integer C5_W = TAG_BITS + 10 * W;
+  wire [TAG_BITS-1:0] c5_tag;
+  wire [W-1:0] c5_ou, c5_ov, c5_den, c5_t;
+  wire [W-1:0] c5_bnu, c5_bnv, c5_bd, c5_cnu, c5_cnv, c5_cd;
+  fp_pipe #(.WIDTH(C5_W), .STAGES(STAGES)) u_carry5 (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(r[5]),
+    .in_data_i({c4_tag, c4_ou, c4_ov, c4_den, l4_t,
+                c4_bnu, c4_bnv, c4_bd, c4_cnu, c4_cnv, c4_cd}),
+    .out_valid_o(v[5]), .out_ready_i(r[6]),
+    .out_data_o({c5_tag, c5_ou, c5_ov, c5_den, c5_t,
+                 c5_bnu, c5_bnv, c5_bd, c5_cnu, c5_cnv, c5_cd})
+  );
+  ist_lt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(STAGES)) u_l5_lo (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(l5_unused_r[0]),
+    .in_a_i(c4_tmin), .in_b_i(l4_t), .out_valid_o(l5_unused_v[0]), .out_ready_i(r[6]),
+    .out_lt_o(l5_lo));
+  ist_lt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(STAGES)) u_l5_hi (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(l5_unused_r[1]),
+    .in_a_i(l4_t), .in_b_i(c4_tmax), .out_valid_o(l5_unused_v[1]), .out_ready_i(r[6]),
+    .out_lt_o(l5_hi));
+  ist_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l5_tdu (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(l5_unused_r[2]),
+    .in_a_i(l4_t), .in_b_i(c4_du), .out_valid_o(l5_unused_v[2]), .out_ready_i(r[6]),
+    .out_res_o(l5_tdu));
+  ist_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l5_tdv (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(l5_unused_r[3]),
+    .in_a_i(l4_t), .in_b_i(c4_dv), .out_valid_o(l5_unused_v[3]), .out_ready_i(r[6]),
+    .out_res_o(l5_tdv));
+
+  // ---- level 6 ----------------------------------------------------------------------------------
+  wire [W-1:0] l6_hu, l6_hv;
+  wire [1:0]   l6_unused_v, l6_unused_r;
+  localparam integer C6_W = TAG_BITS + 8 * W + 1;
+  wire [TAG_BITS-1:0] c6_tag;
+  wire [W-1:0] c6_den, c6_t, c6_bnu, c6_bnv, c6_bd, c6_cnu, c6_cnv, c6_cd;
+  wire         c6_p1;  // phase 1 passed: tmin < t < tmax
+  fp_pipe #(.WIDTH(C6_W), .STAGES(STAGES)) u_carry6 (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(r[6]),
+    .in_data_i({c5_tag, c5_den, c5_t, c5_bnu, c5_bnv, c5_bd, c5_cnu, c5_cnv, c5_cd,
+                l5_lo & l5_hi}),
+    .out_valid_o(v[6]), .out_ready_i(r[7]),
+    .out_data_o({c6_tag, c6_den, c6_t, c6_bnu, c6_bnv, c6_bd, c6_cnu, c6_cnv, c6_cd, c6_p1})
+  );
+  ist_add #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l6_hu (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(l6_unused_r[0]),
+    .in_a_i(c5_ou), .in_b_i(l5_tdu), .in_sub_i(1'b0), .out_valid_o(l6_unused_v[0]),
+    .out_ready_i(r[7]), .out_res_o(l6_hu));
+  ist_add #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l6_hv (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(l6_unused_r[1]),
+    .in_a_i(c5_ov), .in_b_i(l5_tdv), .in_sub_i(1'b0), .out_valid_o(l6_unused_v[1]),
+    .out_ready_i(r[7]), .out_res_o(l6_hv));
+
+  // ---- level 7 ----------------------------------------------------------------------------------
+  wire [W-1:0] l7_bu, l7_bv, l7_cu, l7_cv;
+  wire [3:0]   l7_unused_v, l7_unused_r;
+  localparam integer C7_W = TAG_BITS + 4 * W + 1;
+  wire [TAG_BITS-1:0] c7_tag;
+  wire [W-1:0] c7_den, c7_t, c7_bd, c7_cd;
+  wire         c7_p1;
+  fp_pipe #(.WIDTH(C7_W), .STAGES(STAGES)) u_carry7 (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(r[7]),
+    .in_data_i({c6_tag, c6_den, c6_t, c6_bd, c6_cd, c6_p1}),
+    .out_valid_o(v[7]), .out_ready_i(r[8]),
+    .out_data_o({c7_tag, c7_den, c7_t, c7_bd, c7_cd, c7_p1})
+  );
+  ist_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l7_bu (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(l7_unused_r[0]),
+    .in_a_i(c6_bnu), .in_b_i(l6_hu), .out_valid_o(l7_unused_v[0]), .out_ready_i(r[8]),
+    .out_res_o(l7_bu));
+  ist_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l7_bv (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(l7_unused_r[1]),
+    .in_a_i(c6_bnv), .in_b_i(l6_hv), .out_valid_o(l7_unused_v[1]), .out_ready_i(r[8]),
+    .out_res_o(l7_bv));
+  ist_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l7_cu (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(l7_unused_r[2]),
+    .in_a_i(c6_cnu), .in_b_i(l6_hu), .out_valid_o(l7_unused_v[2]), .out_ready_i(r[8]),
+    .out_res_o(l7_cu));
+  ist_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l7_cv (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(l7_unused_r[3]),
+    .in_a_i(c6_cnv), .in_b_i(l6_hv), .out_valid_o(l7_unused_v[3]), .out_ready_i(r[8]),
+    .out_res_o(l7_cv));
+
+  // ---- level 8 ----------------------------------------------------------------------------------
+  wire [W-1:0] l8_beta, l8_gamma;
+  wire [1:0]   l8_unused_v, l8_unused_r;
+  localparam integer C8_W = TAG_BITS + 2 * W + 1;
+  wire [TAG_BITS-1:0] c8_tag;
+  wire [W-1:0] c8_den, c8_t;
+  wire         c8_p1;
+  fp_pipe #(.WIDTH(C8_W), .STAGES(STAGES)) u_carry8 (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(r[8]),
+    .in_data_i({c7_tag, c7_den, c7_t, c7_p1}),
+    .out_valid_o(v[8]), .out_ready_i(r[9]),
+    .out_data_o({c8_tag, c8_den, c8_t, c8_p1})
+  );
+  ist_add3 #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l8_beta (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(l8_unused_r[0]),
+    .in_a_i(l7_bu), .in_b_i(l7_bv), .in_c_i(c7_bd), .out_valid_o(l8_unused_v[0]),
+    .out_ready_i(r[9]), .out_res_o(l8_beta));
+  ist_add3 #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l8_gamma (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(l8_unused_r[1]),
+    .in_a_i(l7_cu), .in_b_i(l7_cv), .in_c_i(c7_cd), .out_valid_o(l8_unused_v[1]),
+    .out_ready_i(r[9]), .out_res_o(l8_gamma));
+
+  // ---- level 9 ----------------------------------------------------------------------------------
+  // A coordinate fails if it is negative and nonzero (hls: sign(x) && !is_zero(x)).
+  wire l8_bfail = l8_beta[W-1] & (|l8_beta[W-2:M]);
+  wire l8_gfail = l8_gamma[W-1] & (|l8_gamma[W-2:M]);
+  wire [W-1:0] l9_sum;
+  wire         l9_unused_v, l9_unused_r;
+  localparam integer C9_W = TAG_BITS + 2 * W + 3;
+  wire [TAG_BITS-1:0] c9_tag;
+  wire [W-1:0] c9_den, c9_t;
+  wire         c9_p1, c9_bfail, c9_gfail;
+  fp_pipe #(.WIDTH(C9_W), .STAGES(STAGES)) u_carry9 (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[8]), .in_ready_o(r[9]),
+    .in_data_i({c8_tag, c8_den, c8_t, c8_p1, l8_bfail, l8_gfail}),
+    .out_valid_o(v[9]), .out_ready_i(r[10]),
+    .out_data_o({c9_tag, c9_den, c9_t, c9_p1, c9_bfail, c9_gfail})
+  );
+  ist_add #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l9_sum (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[8]), .in_ready_o(l9_unused_r),
+    .in_a_i(l8_beta), .in_b_i(l8_gamma), .in_sub_i(1'b0), .out_valid_o(l9_unused_v),
+    .out_ready_i(r[10]), .out_res_o(l9_sum));
+
+  // ---- level 10 ---------------------------------------------------------------------------------
+  wire         l10_sfail;  // 1 < beta + gamma
+  wire         l10_unused_v, l10_unused_r;
+  localparam integer C10_W = TAG_BITS + 2 * W + 3;
+  wire         c10_p1, c10_bfail, c10_gfail;
+  fp_pipe #(.WIDTH(C10_W), .STAGES(STAGES)) u_carry10 (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[9]), .in_ready_o(r[10]),
+    .in_data_i({c9_tag, c9_den, c9_t, c9_p1, c9_bfail, c9_gfail}),
+    .out_valid_o(v[10]), .out_ready_i(r[11]),
+    .out_data_o({out_tag_o, out_den_o, out_t_o, c10_p1, c10_bfail, c10_gfail})
+  );
+  ist_lt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(STAGES)) u_l10_sum (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[9]), .in_ready_o(l10_unused_r),
+    .in_a_i(ONE), .in_b_i(l9_sum), .out_valid_o(l10_unused_v), .out_ready_i(r[11]),
+    .out_lt_o(l10_sfail));
+
+  assign r[11]       = out_ready_i;
+  assign out_valid_o = v[10];
+  // The first failing phase, as hls::ist_wald returns it.
+  assign out_exit_o  = !c10_p1   ? 3'd1 :
+                       c10_bfail ? 3'd2 :
+                       c10_gfail ? 3'd3 :
+                       l10_sfail ? 3'd4 : 3'd0;
+
+  // The operators' handshake outputs equal their level's carry pipe's (lockstep, see header).
+  wire unused_hs;
+  assign unused_hs = ^{l1_unused_v, l1_unused_r, l2_unused_v, l2_unused_r, l3_unused_v,
+                       l3_unused_r, l4_unused_v, l4_unused_r, l5_unused_v, l5_unused_r,
+                       l6_unused_v, l6_unused_r, l7_unused_v, l7_unused_r, l8_unused_v,
+                       l8_unused_r, l9_unused_v, l9_unused_r, l10_unused_v, l10_unused_r};
+
+endmodule

@@ -1,0 +1,369 @@
+// tb/rtl/test_rtl_ist.cpp - co-simulation of rtl/units/ist.v (the pipelined Wald test) against
+// hls::ist_wald (hls/ist.h), bit for bit: exit code, t, den and the tag, in order.
+//
+// One test per Verilated variant (format, rounding, STAGES), listed once in rtl/CMakeLists.txt
+// (RAYCORE_RTL_IST_VARIANTS). Each test streams, through the unit's valid/ready handshake:
+//   1. fullrate: 4096 tests with no stalls (checks one test per cycle and latency == 10*STAGES),
+//   2. random: RAYCORE_RTL_IST_N tests (default 5*10^5) with random input gaps and random output
+//      back-pressure (bursty rates, new ones every 256 cycles).
+// Stimulus: triangles from random vertices (hls::make_wald, including near-degenerate and
+// degenerate ones) with rays aimed at random barycentric points inside, outside and on the edges,
+// and random tmin/tmax around the hit distance (every exit code occurs often; each must reach 2 %
+// of the vectors), plus 10 % fully random bit patterns (k = 0..2). A 16-bit sequence number rides
+// in the tag. The first mismatches print all inputs, the expected and the received outputs.
+#include <gtest/gtest.h>
+#include <verilated.h>
+
+#include <array>
+#include <cinttypes>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <deque>
+#include <memory>
+#include <random>
+#include <sstream>
+#include <string>
+
+#include "hls/fp.h"
+#include "hls/geom.h"
+#include "hls/ist.h"
+#include "hls/wald.h"
+#include "tb/fp/fp_check.h"
+
+#include "rtl_ist_models.h"
+
+namespace raycore::rtltest {
+namespace {
+
+using hls::Rounding;
+
+uint64_t ist_count() { return fptest::env_count("RAYCORE_RTL_IST_N", 500000); }
+
+struct IstIn {
+  uint32_t k = 0;
+  uint32_t c[9] = {};
+  uint32_t o[3] = {}, d[3] = {};
+  uint32_t tmin = 0, tmax = 0;
+};
+
+struct IstRes {
+  uint32_t exit = 0, t = 0, den = 0;
+  bool operator==(const IstRes& x) const { return exit == x.exit && t == x.t && den == x.den; }
+};
+
+template <class F>
+std::string show(uint32_t x) {
+  return fptest::show<F>(x);
+}
+
+template <class F>
+std::string describe(const IstIn& x) {
+  std::ostringstream s;
+  s << "k=" << x.k << " c=[";
+  for (int i = 0; i < 9; ++i) s << (i ? " " : "") << show<F>(x.c[i]);
+  s << "] o=[" << show<F>(x.o[0]) << " " << show<F>(x.o[1]) << " " << show<F>(x.o[2]) << "] d=["
+    << show<F>(x.d[0]) << " " << show<F>(x.d[1]) << " " << show<F>(x.d[2])
+    << "] tmin=" << show<F>(x.tmin) << " tmax=" << show<F>(x.tmax);
+  return s.str();
+}
+
+template <class F>
+std::string describe(const IstRes& r) {
+  return "exit=" + std::to_string(r.exit) + " t=" + show<F>(r.t) + " den=" + show<F>(r.den);
+}
+
+// Random Wald-test inputs: mostly a ray aimed at a chosen barycentric point of a random triangle.
+template <class F, Rounding R>
+class Stimulus {
+ public:
+  explicit Stimulus(uint64_t seed) : rng_(seed) {}
+
+  IstIn next() {
+    IstIn x;
+    const uint32_t kind = uint32_t(rng_() % 100);
+    if (kind < 10) {  // fully random bit patterns
+      x.k = uint32_t(rng_() % 3);
+      for (uint32_t& c : x.c) c = bits();
+      for (int i = 0; i < 3; ++i) {
+        x.o[i] = bits();
+        x.d[i] = bits();
+      }
+      x.tmin = bits();
+      x.tmax = bits();
+      return x;
+    }
+    const double scale = std::ldexp(1.0, int(rng_() % 13) - 6);  // 2^-6 .. 2^6
+    hls::Tri tri;
+    for (hls::Vec3& p : tri) p = {uni(-scale, scale), uni(-scale, scale), uni(-scale, scale)};
+    if (kind < 13) tri[2] = tri[0] + (tri[1] - tri[0]) * uni(-1, 2);  // degenerate (collinear)
+    const hls::WaldTri<F> w = hls::make_wald<F, R>(tri, 0);
+    x.k = w.k;
+    for (int i = 0; i < 9; ++i) x.c[i] = w.c[i];
+    // The aimed-at barycentric point: inside, outside, or on an edge.
+    double b = uni(0, 1), g = uni(0, 1);
+    switch (rng_() % 6) {
+      case 0:
+      case 1:  // inside
+        if (b + g > 1) {
+          b = 1 - b;
+          g = 1 - g;
+        }
+        break;
+      case 2:  // outside beyond one edge (or two)
+        b = uni(-1, 2);
+        g = uni(-1, 2);
+        break;
+      case 3:  // on an edge
+        switch (rng_() % 3) {
+          case 0: b = 0; break;
+          case 1: g = 0; break;
+          default: g = 1 - b; break;
+        }
+        break;
+      case 4:  // just outside an edge
+        switch (rng_() % 3) {
+          case 0: b = -std::ldexp(uni(0, 1), -int(rng_() % 20)); break;
+          case 1: g = -std::ldexp(uni(0, 1), -int(rng_() % 20)); break;
+          default: g = 1 - b + std::ldexp(uni(0, 1), -int(rng_() % 20)); break;
+        }
+        break;
+      default:  // a vertex
+        b = double(rng_() % 2);
+        g = b > 0 ? 0 : double(rng_() % 2);
+        break;
+    }
+    const hls::Vec3 p = tri[0] + (tri[1] - tri[0]) * b + (tri[2] - tri[0]) * g;
+    const double oscale = scale * std::ldexp(1.0, int(rng_() % 5));
+    const hls::Vec3 o = {p.x + uni(-oscale, oscale), p.y + uni(-oscale, oscale),
+                         p.z + uni(-oscale, oscale)};
+    const double dlen = std::ldexp(uni(0.5, 1), int(rng_() % 9) - 4);  // t_hit ~ 1 / dlen
+    const hls::Vec3 d = (p - o) * dlen;
+    for (int i = 0; i < 3; ++i) {
+      x.o[i] = hls::from_double<F, R>(o[i]);
+      x.d[i] = hls::from_double<F, R>(d[i]);
+    }
+    const double th = 1 / dlen;
+    switch (rng_() % 5) {
+      case 0:  // wide interval
+        x.tmin = 0;
+        x.tmax = F::max_mag;
+        break;
+      case 1:  // the hit lies beyond tmax or before tmin
+        x.tmin = hls::from_double<F, R>(th * uni(0.5, 1.5));
+        x.tmax = hls::from_double<F, R>(th * uni(0.5, 2));
+        break;
+      case 2:  // tight around the hit
+        x.tmin = hls::from_double<F, R>(th * (1 - std::ldexp(1.0, -int(rng_() % 20))));
+        x.tmax = hls::from_double<F, R>(th * (1 + std::ldexp(1.0, -int(rng_() % 20))));
+        break;
+      default:  // usual: tmin small, tmax above the hit
+        x.tmin = hls::from_double<F, R>(std::ldexp(uni(0, 1), -10) * th);
+        x.tmax = hls::from_double<F, R>(th * uni(1.01, 4));
+        break;
+    }
+    return x;
+  }
+
+  uint64_t raw() { return rng_(); }
+
+ private:
+  double uni(double a, double b) { return a + (b - a) * (double(rng_() >> 11) * 0x1p-53); }
+  uint32_t bits() { return uint32_t(rng_()) & F::mask; }
+  std::mt19937_64 rng_;
+};
+
+template <class V, class F>
+void drive(V& m, const IstIn& x) {
+  m.in_k_i = uint8_t(x.k & 3u);
+  m.in_c0_i = x.c[0];
+  m.in_c1_i = x.c[1];
+  m.in_c2_i = x.c[2];
+  m.in_c3_i = x.c[3];
+  m.in_c4_i = x.c[4];
+  m.in_c5_i = x.c[5];
+  m.in_c6_i = x.c[6];
+  m.in_c7_i = x.c[7];
+  m.in_c8_i = x.c[8];
+  m.in_o_x_i = x.o[0];
+  m.in_o_y_i = x.o[1];
+  m.in_o_z_i = x.o[2];
+  m.in_d_x_i = x.d[0];
+  m.in_d_y_i = x.d[1];
+  m.in_d_z_i = x.d[2];
+  m.in_tmin_i = x.tmin;
+  m.in_tmax_i = x.tmax;
+}
+
+template <class V, class F, Rounding R>
+class IstCosim {
+ public:
+  IstCosim(std::string name, int stages, uint64_t seed)
+      : name_(std::move(name)), stages_(stages), stim_(seed), rng_(seed ^ 0x9e3779b97f4a7c15ull) {
+    ctx_ = std::make_unique<VerilatedContext>();
+    ctx_->randReset(2);  // registers without reset start random: results must not depend on them
+    ctx_->randSeed(int(seed & 0x7fffffffu) | 1);
+    m_ = std::make_unique<V>(ctx_.get(), "top");
+  }
+
+  // Streams `count` tests; returns the number checked. full: no gaps, no back-pressure.
+  uint64_t run(const char* set, uint64_t count, bool full) {
+    reset();
+    using A = hls::Arith<F, R>;
+    std::deque<Pending> inflight;
+    std::array<uint64_t, 5> by_exit{};
+    uint64_t issued = 0, checked = 0, cycles = 0, idle = 0, mismatches = 0;
+    uint64_t min_lat = ~uint64_t(0), max_lat = 0;
+    const uint64_t latency = 10u * uint64_t(stages_);
+    bool holding = false;
+    Pending cur;
+    uint32_t p_gap = 0, p_stall = 0;
+    while ((issued < count || !inflight.empty()) && mismatches < 5) {
+      if (!full && (cycles & 255u) == 0) {
+        static constexpr uint32_t kRates[] = {0, 1, 4, 7};  // in 1/8
+        p_gap = kRates[stim_.raw() & 3u];
+        p_stall = kRates[(stim_.raw() >> 2) & 3u];
+      }
+      if (!holding) {
+        if (issued < count && (full || (rng_() & 7u) >= p_gap)) {
+          cur.x = stim_.next();
+          const hls::IstOut e =
+              hls::ist_wald<A>(cur.x.k, cur.x.c, cur.x.o, cur.x.d, cur.x.tmin, cur.x.tmax);
+          cur.expected = IstRes{uint32_t(e.exit), e.t, e.den};
+          cur.tag = uint16_t(issued);
+          holding = true;
+          drive<V, F>(*m_, cur.x);
+          m_->in_tag_i = cur.tag;
+          m_->in_valid_i = 1;
+        } else {  // a bubble with junk inputs (must be ignored)
+          IstIn junk;
+          junk.k = uint32_t(rng_() & 3u);
+          for (uint32_t& c : junk.c) c = uint32_t(rng_()) & F::mask;
+          junk.tmax = uint32_t(rng_()) & F::mask;
+          drive<V, F>(*m_, junk);
+          m_->in_tag_i = uint16_t(rng_());
+          m_->in_valid_i = 0;
+        }
+      }
+      m_->out_ready_i = (full || (rng_() & 7u) >= p_stall) ? 1 : 0;
+      m_->eval();
+      if (m_->in_valid_i && m_->in_ready_o) {
+        cur.cycle = cycles;
+        inflight.push_back(cur);
+        ++issued;
+        holding = false;
+      } else if (full && holding) {
+        ADD_FAILURE() << name_ << ": in_ready_o low at cycle " << cycles
+                      << " with the output always ready";
+        return checked;
+      }
+      if (m_->out_valid_o && m_->out_ready_i) {
+        idle = 0;
+        if (inflight.empty()) {
+          ADD_FAILURE() << name_ << ": out_valid_o at cycle " << cycles << " with nothing in flight";
+          return checked;
+        }
+        const Pending p = inflight.front();
+        inflight.pop_front();
+        const uint64_t lat = cycles - p.cycle;
+        min_lat = std::min(min_lat, lat);
+        max_lat = std::max(max_lat, lat);
+        const IstRes got{uint32_t(m_->out_exit_o), uint32_t(m_->out_t_o), uint32_t(m_->out_den_o)};
+        const uint16_t tag = uint16_t(m_->out_tag_o);
+        ++checked;
+        if (p.expected.exit < 5) ++by_exit[p.expected.exit];
+        if (!(got == p.expected) || tag != p.tag) {
+          ++mismatches;
+          ADD_FAILURE() << name_ << " " << set << ": mismatch at test " << p.tag << " (cycle "
+                        << cycles << ")\n  inputs:   " << describe<F>(p.x)
+                        << "\n  expected: " << describe<F>(p.expected) << " tag=" << p.tag
+                        << "\n  got:      " << describe<F>(got) << " tag=" << tag;
+        }
+      } else if (++idle > 2000u + 64u * unsigned(stages_)) {
+        ADD_FAILURE() << name_ << ": no result for " << idle << " cycles with " << inflight.size()
+                      << " in flight (deadlock)";
+        return checked;
+      }
+      clock();
+      ++cycles;
+    }
+    if (issued > 0) {
+      EXPECT_GE(min_lat, latency) << name_ << ": latency below 10*STAGES";
+      if (full) {
+        EXPECT_EQ(max_lat, latency) << name_ << ": full-rate latency != 10*STAGES";
+        EXPECT_EQ(cycles, count + latency) << name_ << ": full rate is not one test per cycle";
+      }
+    }
+    std::printf("ISTSUM %s %s vectors=%" PRIu64 " mismatches=%" PRIu64 " hit=%" PRIu64
+                " distance=%" PRIu64 " beta=%" PRIu64 " gamma=%" PRIu64 " sum=%" PRIu64
+                " cycles=%" PRIu64 " latency=%" PRIu64 "..%" PRIu64 "\n",
+                name_.c_str(), set, checked, mismatches, by_exit[0], by_exit[1], by_exit[2],
+                by_exit[3], by_exit[4], cycles, min_lat, max_lat);
+    EXPECT_GT(checked, 0u) << name_ << " " << set << ": no vectors checked";
+    EXPECT_EQ(checked, count) << name_ << " " << set << ": not every test came back";
+    last_by_exit_ = by_exit;
+    return checked;
+  }
+
+  const std::array<uint64_t, 5>& by_exit() const { return last_by_exit_; }
+
+ private:
+  struct Pending {
+    IstIn x;
+    IstRes expected;
+    uint16_t tag = 0;
+    uint64_t cycle = 0;
+  };
+  void reset() {
+    m_->clk_i = 0;
+    m_->rst_ni = 1;
+    m_->in_valid_i = 0;
+    m_->out_ready_i = 0;
+    m_->eval();
+    m_->rst_ni = 0;
+    m_->eval();
+    clock();
+    clock();
+    m_->rst_ni = 1;
+    m_->eval();
+  }
+  void clock() {
+    m_->clk_i = 1;
+    m_->eval();
+    m_->clk_i = 0;
+    m_->eval();
+  }
+
+  std::string name_;
+  int stages_;
+  Stimulus<F, R> stim_;
+  std::mt19937_64 rng_;
+  std::unique_ptr<VerilatedContext> ctx_;
+  std::unique_ptr<V> m_;
+  std::array<uint64_t, 5> last_by_exit_{};
+};
+
+template <class V, class F, Rounding R>
+void run_variant(const std::string& name, int stages) {
+  IstCosim<V, F, R> sim(name, stages, fptest::seed_for("rtl.ist." + name));
+  sim.run("fullrate", 4096, true);
+  const uint64_t n = ist_count();
+  const uint64_t checked = sim.run("random", n, false);
+  ASSERT_EQ(checked, n);
+  static const char* kNames[] = {"hit", "distance", "beta", "gamma", "sum"};
+  for (int e = 0; e < 5; ++e)
+    EXPECT_GE(sim.by_exit()[size_t(e)], n / 50)
+        << name << ": exit code " << e << " (" << kNames[e] << ") exercised too rarely";
+}
+
+#define RAYCORE_RTL_IST_VARIANT(prefix, fmt, mode, stages)                   \
+  TEST(RtlIst, prefix) {                                                      \
+    run_variant<prefix, hls::fmt, Rounding::mode>(#fmt "_" #mode "_s" #stages, \
+                                                  stages);                    \
+  }
+#include "rtl_ist_variants.h"
+#undef RAYCORE_RTL_IST_VARIANT
+
+}  // namespace
+}  // namespace raycore::rtltest
