@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # make area: yosys `synth` + `stat` of every floating-point module of rtl/fp/ and of the units of
-# rtl/units/ (vtu) for FP24 and FP32, each rounding mode, at a fixed pipeline depth (STAGES=2
+# rtl/units/ (vtu, ist) for FP24 and FP32, each rounding mode, at a fixed pipeline depth (STAGES=2
 # unless RAYCORE_AREA_STAGES says otherwise), written as a markdown table to docs/area.md (or the
 # file given as $1).
 #
@@ -15,7 +15,7 @@ command -v yosys >/dev/null || { echo "area: yosys is needed (make deps)" >&2; e
 
 STAGES=${RAYCORE_AREA_STAGES:-2}
 OUT=${1:-docs/area.md}
-MODULES=(fp_add fp_add3 fp_mul fp_div fp_cmp vtu)
+MODULES=(fp_add fp_add3 fp_mul fp_div fp_cmp vtu ist)
 # The sources a module is read from: rtl/fp/*.v, plus for a unit rtl/units/<unit>.v and its
 # helpers rtl/units/<unit>_*.v (so an unfinished file of another unit cannot break this one).
 srcs_for() {
