@@ -86,7 +86,7 @@ done
   echo
   echo "Each module is synthesised alone: \`read_verilog rtl/fp/*.v [rtl/units/<unit>*.v]; chparam -set EXP_BITS E -set MAN_BITS M"
   echo "-set STAGES $STAGES [-set RNE 0|1] <module>; synth -flatten -top <module>; stat; ltp -noff\`."
-  echo "TAG_BITS = 1 (the sideband tag costs one flip-flop per pipeline register). A unit's STAGES"
+  echo "TAG_BITS = each module's default (fp_* and vtu 1; ist 16: its ray/slot tag). A unit's STAGES"
   echo "is per FP operator (vtu: 3 operator levels, latency 3 x STAGES, flattened with its operators)."
   echo
   echo "- **cells**: yosys generic gates and flip-flops after \`synth\` (\`stat\`)."
