@@ -113,15 +113,15 @@ class Tracer {
  private:
   int depth() const {
     int maxd = 0;
-    std::vector<std::pair<uint32_t, int>> todo{{0u, 0}};
+    std::vector<std::pair<uint32_t, int>> pending{{0u, 0}};
     if (nodes_.empty()) return 0;
-    while (!todo.empty()) {
-      const auto [n, d] = todo.back();
-      todo.pop_back();
+    while (!pending.empty()) {
+      const auto [n, d] = pending.back();
+      pending.pop_back();
       maxd = std::max(maxd, d);
       if (nodes_[n].axis != 3) {
-        todo.push_back({n + 1, d + 1});
-        todo.push_back({nodes_[n].index, d + 1});
+        pending.push_back({n + 1, d + 1});
+        pending.push_back({nodes_[n].index, d + 1});
       }
     }
     return maxd;
