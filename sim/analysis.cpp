@@ -16,20 +16,14 @@ HitSideStats hit_side_stats(const Frame& f, const hls::Image& image, const scene
     constexpr hls::Rounding R = decltype(rnd)::value;
     using A = hls::Arith<F, R>;
     HitSideStats s;
-    uint32_t c[3], l[3];
-    for (int i = 0; i < 3; ++i) {
-      c[i] = A::from_double(cam.position[i]);
-      l[i] = A::from_double(light.position[i]);
-    }
-    double off[3] = {0, 0, 0};
+    const auto setup = hls::FrameSetup<F, R>::make(cam.position, light.position, cfg.vtu);
+    const uint32_t* l = setup.light;
+    const double* off = setup.offset;
     hls::Image moved;
     const hls::Image* img = &image;
     if (cfg.vtu) {
-      const hls::Vtu<F, R> vtu{{c[0], c[1], c[2]}};
-      moved = hls::transform_image(image, vtu);
+      moved = hls::transform_image(image, setup.vtu);
       img = &moved;
-      vtu.point(l);
-      for (int i = 0; i < 3; ++i) off[i] = A::to_double(c[i]);
     }
     std::vector<double> dist;
     for (const PixelResult& p : f.px) {

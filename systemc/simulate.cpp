@@ -39,25 +39,18 @@ SimResult run(const hls::Image& image, const scenes::Camera& cam, const scenes::
   fc.primary_retired.assign(res.frame.px.size(), 0);
   fc.shadow_retired.assign(res.frame.px.size(), 0);
   fc.empty_tree = fc.header.node_count == 0;
-  // The host's set-up registers, as the golden tracer forms them.
-  uint32_t c[3];
-  for (int i = 0; i < 3; ++i) c[i] = A::from_double(cam.position[i]);
-  for (int i = 0; i < 3; ++i) fc.light[i] = A::from_double(light.position[i]);
+  // The host's set-up registers, formed as for the golden tracer (hls::FrameSetup).
+  const auto setup = hls::FrameSetup<F, R>::make(cam.position, light.position, tc.vtu);
+  const hls::Vtu<F, R>& vtu = setup.vtu;
   image.box(fc.box_lo, fc.box_hi);
-  const hls::Vtu<F, R> vtu{{c[0], c[1], c[2]}};
-  for (int i = 0; i < 3; ++i) fc.origin[i] = c[i];
-  if (tc.vtu) {
-    vtu.box_outward(fc.box_lo, fc.box_hi);
-    vtu.point(fc.light);
-    for (int i = 0; i < 3; ++i) {
-      fc.origin[i] = A::zero;
-      fc.offset[i] = A::to_double(c[i]);
-    }
+  if (tc.vtu) vtu.box_outward(fc.box_lo, fc.box_hi);  // as transform_image translates the box
+  for (int i = 0; i < 3; ++i) {
+    fc.origin[i] = setup.origin[i];
+    fc.light[i] = setup.light[i];
+    fc.offset[i] = setup.offset[i];
   }
   fc.tmin = A::from_double(tc.tmin);
-  fc.spawn = tc.spawn;
-  if (fc.spawn.spawn == hls::Spawn::ulp_offset && fc.spawn.ulps == 0)
-    fc.spawn.ulps = sim::default_spawn_ulps(tc.format);
+  fc.spawn = sim::resolved_spawn(tc);
   const uint32_t rb = uint32_t(hls::tri_record_bytes<F>());
   fc.tri_line_records = std::max<uint32_t>(1, (cfg.tri_cache.line_bytes + rb / 2) / rb);
   res.tri_line_bytes = fc.tri_line_records * rb;

@@ -139,28 +139,19 @@ Frame trace_t(const hls::Image& image_in, const scenes::Camera& cam, const scene
   using F = typename A::Fmt;
   constexpr hls::Rounding R = A::rounding;
   const auto t0 = std::chrono::steady_clock::now();
-  uint32_t c[3];
-  for (int i = 0; i < 3; ++i) c[i] = A::from_double(cam.position[i]);
-  uint32_t l[3];
-  for (int i = 0; i < 3; ++i) l[i] = A::from_double(light.position[i]);
-  uint32_t origin[3] = {c[0], c[1], c[2]};
-  double offset[3] = {0, 0, 0};  // added back to hit points for world-space output
+  const auto setup = hls::FrameSetup<F, R>::make(cam.position, light.position, cfg.vtu);
+  const uint32_t* origin = setup.origin;
+  const uint32_t* l = setup.light;
+  const double* offset = setup.offset;
   const hls::Image* img = &image_in;
   hls::Image moved;
   if (cfg.vtu) {
-    const hls::Vtu<F, R> vtu{{c[0], c[1], c[2]}};
-    moved = hls::transform_image(image_in, vtu);
+    moved = hls::transform_image(image_in, setup.vtu);
     img = &moved;
-    vtu.point(l);
-    for (int i = 0; i < 3; ++i) {
-      origin[i] = A::zero;
-      offset[i] = A::to_double(c[i]);
-    }
   }
   const Tracer<A> tracer(*img);
   const uint32_t tmin = A::from_double(cfg.tmin);
-  hls::SpawnParams sp = cfg.spawn;
-  if (sp.spawn == hls::Spawn::ulp_offset && sp.ulps == 0) sp.ulps = default_spawn_ulps(cfg.format);
+  const hls::SpawnParams sp = resolved_spawn(cfg);
 
   Frame f;
   f.width = cfg.width;
@@ -231,15 +222,10 @@ Frame trace_t(const hls::Image& image_in, const scenes::Camera& cam, const scene
 
 }  // namespace
 
-void camera_in_format(const TraceConfig& cfg, const hls::Vec3& pos, uint32_t out[3]) {
-  for (int i = 0; i < 3; ++i) {
-    if (cfg.format == hls::FormatId::fp24)
-      out[i] = cfg.rounding == hls::Rounding::rtz ? hls::from_double<hls::FP24, hls::Rounding::rtz>(pos[i])
-                                                  : hls::from_double<hls::FP24, hls::Rounding::rne>(pos[i]);
-    else
-      out[i] = cfg.rounding == hls::Rounding::rtz ? hls::from_double<hls::FP32, hls::Rounding::rtz>(pos[i])
-                                                  : hls::from_double<hls::FP32, hls::Rounding::rne>(pos[i]);
-  }
+hls::SpawnParams resolved_spawn(const TraceConfig& cfg) {
+  hls::SpawnParams sp = cfg.spawn;
+  if (sp.spawn == hls::Spawn::ulp_offset && sp.ulps == 0) sp.ulps = default_spawn_ulps(cfg.format);
+  return sp;
 }
 
 int32_t default_spawn_ulps(hls::FormatId f) {

@@ -35,12 +35,12 @@ struct TraceStats {
   double seconds = 0;
 };
 
-// The camera position as the hardware holds it (the VTU's register), in the run's format.
-void camera_in_format(const TraceConfig& cfg, const hls::Vec3& pos, uint32_t out[3]);
-
 // Default ulps for ulp_offset when SpawnParams::ulps is 0: Waechter & Binder's 256 FP32 ulps,
 // scaled to the format's precision (2 ulps for FP24).
 int32_t default_spawn_ulps(hls::FormatId f);
+
+// cfg.spawn with the default ulps filled in (the spawn parameters every model uses).
+hls::SpawnParams resolved_spawn(const TraceConfig& cfg);
 
 Frame trace_golden(const hls::Image& image, const scenes::Camera& cam, const scenes::Light& light,
                    const TraceConfig& cfg, TraceStats* stats = nullptr);
