@@ -357,7 +357,7 @@ void run_variant(const std::string& name, int stages) {
         << name << ": exit code " << e << " (" << kNames[e] << ") exercised too rarely";
 }
 
-#define RAYCORE_RTL_IST_VARIANT(prefix, fmt, mode, stages)                   \
+#define RAYCORE_RTL_IST_VARIANT(prefix, module, fmt, mode, stages)                   \
   TEST(RtlIst, prefix) {                                                      \
     run_variant<prefix, hls::fmt, Rounding::mode>(#fmt "_" #mode "_s" #stages, \
                                                   stages);                    \

@@ -360,7 +360,7 @@ void run_variant(const char* name, int stages) {
   EXPECT_EQ(sim.run("random", n, false), n);
 }
 
-#define RAYCORE_RTL_VTU_VARIANT(V, fmt, mode, stages) \
+#define RAYCORE_RTL_VTU_VARIANT(V, module, fmt, mode, stages) \
   TEST(RtlVtu, V) { run_variant<V, fmt, Rounding::mode>(#V, stages); }
 #include "rtl_vtu_variants.h"
 #undef RAYCORE_RTL_VTU_VARIANT
