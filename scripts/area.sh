@@ -15,7 +15,17 @@ command -v yosys >/dev/null || { echo "area: yosys is needed (make deps)" >&2; e
 
 STAGES=${RAYCORE_AREA_STAGES:-2}
 OUT=${1:-docs/area.md}
-MODULES=(fp_add fp_add3 fp_mul fp_div fp_cmp vtu ist)
+# Units: every rtl/units/<unit>.v whose name is not <another unit>_* (those are its helpers).
+UNITS=()
+for f in rtl/units/*.v; do
+  n=$(basename "$f" .v) helper=0
+  for g in rtl/units/*.v; do
+    p=$(basename "$g" .v)
+    [ "$p" != "$n" ] && [[ "$n" == "${p}_"* ]] && helper=1
+  done
+  [ $helper -eq 0 ] && UNITS+=("$n")
+done
+MODULES=(fp_add fp_add3 fp_mul fp_div fp_cmp "${UNITS[@]}")
 # The sources a module is read from: rtl/fp/*.v, plus for a unit rtl/units/<unit>.v and its
 # helpers rtl/units/<unit>_*.v (so an unfinished file of another unit cannot break this one).
 srcs_for() {
