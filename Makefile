@@ -8,7 +8,7 @@ CTEST      := ctest --output-on-failure -j $(JOBS)
 RAYCORE    := $(BUILD)/bin/raycore
 export SYSTEMC_DISABLE_COPYRIGHT_MESSAGE := 1
 
-.PHONY: all deps configure build run test test-release test-asan lint bench area fuzz table3 clean
+.PHONY: all deps configure build run test test-release test-asan lint bench area fuzz table3 sweep clean
 
 all: build
 
@@ -52,6 +52,11 @@ bench: build
 table3: build
 	$(RAYCORE) table3
 	$(RAYCORE) table3 --shadow-ray segment --json out/table3-segment.json
+
+# The speed-against-error sweep (scenes x format x VTU x spawn, GNU parallel): out/sweep/ and
+# docs/sweep.md; SWEEP_JOBS, SWEEP_SSHLOGIN and options after ARGS (see docs/sweep.md).
+sweep: build
+	./scripts/sweep.sh $(BUILD) $(ARGS)
 
 # libFuzzer on the glTF loader (clang), bounded time: FUZZ_SECONDS (default 60).
 fuzz: deps
