@@ -1,0 +1,253 @@
+// tb/rtl/test_rtl_trv.cpp - co-simulation of rtl/units/trv.v (the traversal datapath) against
+// hls::trv_split / hls::trv_clip_box (hls/trv.h) and systemc/trv.h's child order and interval
+// update, bit for bit, in order.
+//
+// One test per Verilated --cc variant (rtl/units/trv.cmake, RAYCORE_RTL_TRV variants). Each test
+// streams through the unit's valid/ready handshake:
+//   1. fullrate: 4096 random items with no stalls (one step per cycle, latency == 4*STAGES),
+//   2. directed: TrvStim::directed_count() items (every combination of the edge cases: d = +-0 on
+//      the axis, the origin on the plane, the plane one ulp off, +-0 planes, the plane at tnear /
+//      tfar exactly, -0 interval ends, point intervals, inverted and empty boxes), random stalls,
+//   3. random: RAYCORE_RTL_TRV_N items (default 2*10^5; split and clip, 10 % random bit patterns)
+//      with random input gaps and bursty random output back-pressure.
+// A 16-bit sequence number rides in the tag. The first mismatches print the inputs, the expected
+// and the received outputs. TRVSUM lines count items per op and per split visit.
+#include <gtest/gtest.h>
+#include <verilated.h>
+
+#include <array>
+#include <cinttypes>
+#include <cstdint>
+#include <cstdio>
+#include <deque>
+#include <memory>
+#include <random>
+#include <string>
+
+#include "hls/fp.h"
+#include "tb/fp/fp_check.h"
+#include "tb/rtl/trv_stim.h"
+
+#include "rtl_trv_models.h"
+
+namespace raycore::rtltest {
+namespace {
+
+using hls::Rounding;
+
+uint64_t trv_count() { return fptest::env_count("RAYCORE_RTL_TRV_N", 200000); }
+
+template <class V>
+void drive(V& m, const TrvIn& x) {
+  m.in_op_i = uint8_t(x.op & 1u);
+  m.in_axis_i = uint8_t(x.axis & 3u);
+  m.in_split_i = x.split;
+  m.in_node_i = x.node;
+  m.in_child_i = x.child;
+  m.in_o_x_i = x.o[0];
+  m.in_o_y_i = x.o[1];
+  m.in_o_z_i = x.o[2];
+  m.in_d_x_i = x.d[0];
+  m.in_d_y_i = x.d[1];
+  m.in_d_z_i = x.d[2];
+  m.in_inv_x_i = x.inv[0];
+  m.in_inv_y_i = x.inv[1];
+  m.in_inv_z_i = x.inv[2];
+  m.in_tnear_i = x.tnear;
+  m.in_tfar_i = x.tfar;
+  m.in_lo_x_i = x.lo[0];
+  m.in_lo_y_i = x.lo[1];
+  m.in_lo_z_i = x.lo[2];
+  m.in_hi_x_i = x.hi[0];
+  m.in_hi_y_i = x.hi[1];
+  m.in_hi_z_i = x.hi[2];
+}
+
+template <class V>
+TrvOut read(const V& m) {
+  TrvOut r;
+  r.op = m.out_op_o;
+  r.hit = m.out_hit_o;
+  r.visit = m.out_visit_o;
+  r.below = m.out_below_o;
+  r.tsplit = m.out_tsplit_o;
+  r.tnear = m.out_tnear_o;
+  r.tfar = m.out_tfar_o;
+  r.node = m.out_node_o;
+  r.far_node = m.out_far_node_o;
+  r.far_tfar = m.out_far_tfar_o;
+  return r;
+}
+
+enum class Set { fullrate, directed, random };
+
+template <class V, class F, Rounding R>
+class TrvCosim {
+  using A = hls::Arith<F, R>;
+
+ public:
+  TrvCosim(std::string name, int stages, uint64_t seed)
+      : name_(std::move(name)), stages_(stages), stim_(seed), rng_(seed ^ 0x9e3779b97f4a7c15ull) {
+    ctx_ = std::make_unique<VerilatedContext>();
+    ctx_->randReset(2);  // registers without reset start random: results must not depend on them
+    ctx_->randSeed(int(seed & 0x7fffffffu) | 1);
+    m_ = std::make_unique<V>(ctx_.get(), "top");
+  }
+
+  // Streams `count` items of the set; returns the number checked.
+  uint64_t run(Set set, uint64_t count) {
+    const char* set_name = set == Set::fullrate ? "fullrate" : set == Set::directed ? "directed"
+                                                                                      : "random";
+    const bool full = set == Set::fullrate;
+    reset();
+    std::deque<Pending> inflight;
+    std::array<uint64_t, 6> by_kind{};  // split first/second/both, clip miss/hit, other
+    uint64_t issued = 0, checked = 0, cycles = 0, idle = 0, mismatches = 0;
+    uint64_t min_lat = ~uint64_t(0), max_lat = 0;
+    const uint64_t latency = 4u * uint64_t(stages_);
+    bool holding = false;
+    Pending cur;
+    uint32_t p_gap = 0, p_stall = 0;
+    while ((issued < count || !inflight.empty()) && mismatches < 5) {
+      if (!full && (cycles & 255u) == 0) {
+        static constexpr uint32_t kRates[] = {0, 1, 4, 7};  // in 1/8
+        p_gap = kRates[rng_() & 3u];
+        p_stall = kRates[(rng_() >> 2) & 3u];
+      }
+      if (!holding) {
+        if (issued < count && (full || (rng_() & 7u) >= p_gap)) {
+          cur.x = set == Set::directed ? stim_.directed(issued) : stim_.random();
+          cur.expected = trv_expect<A>(cur.x);
+          cur.tag = uint16_t(issued);
+          holding = true;
+          drive(*m_, cur.x);
+          m_->in_tag_i = cur.tag;
+          m_->in_valid_i = 1;
+        } else {  // a bubble with junk inputs (must be ignored)
+          drive(*m_, stim_.random());
+          m_->in_tag_i = uint16_t(rng_());
+          m_->in_valid_i = 0;
+        }
+      }
+      m_->out_ready_i = (full || (rng_() & 7u) >= p_stall) ? 1 : 0;
+      m_->eval();
+      if (m_->in_valid_i && m_->in_ready_o) {
+        cur.cycle = cycles;
+        inflight.push_back(cur);
+        ++issued;
+        holding = false;
+      } else if (full && holding) {
+        ADD_FAILURE() << name_ << ": in_ready_o low at cycle " << cycles
+                      << " with the output always ready";
+        return checked;
+      }
+      if (m_->out_valid_o && m_->out_ready_i) {
+        idle = 0;
+        if (inflight.empty()) {
+          ADD_FAILURE() << name_ << ": out_valid_o at cycle " << cycles << " with nothing in flight";
+          return checked;
+        }
+        const Pending p = inflight.front();
+        inflight.pop_front();
+        const uint64_t lat = cycles - p.cycle;
+        min_lat = std::min(min_lat, lat);
+        max_lat = std::max(max_lat, lat);
+        const TrvOut got = read(*m_);
+        const uint16_t tag = uint16_t(m_->out_tag_o);
+        ++checked;
+        const TrvOut& e = p.expected;
+        ++by_kind[e.op == 0 ? (e.visit < 3 ? e.visit : 5) : 3 + e.hit];
+        if (!same(got, e) || tag != p.tag) {
+          ++mismatches;
+          ADD_FAILURE() << name_ << " " << set_name << ": mismatch at item " << p.tag << " (cycle "
+                        << cycles << ")\n  inputs:   " << describe<F>(p.x)
+                        << "\n  expected: " << describe<F>(e) << " tag=" << p.tag
+                        << "\n  got:      " << describe<F>(got) << " tag=" << tag;
+        }
+      } else if (++idle > 2000u + 64u * unsigned(stages_)) {
+        ADD_FAILURE() << name_ << ": no result for " << idle << " cycles with " << inflight.size()
+                      << " in flight (deadlock)";
+        return checked;
+      }
+      clock();
+      ++cycles;
+    }
+    if (issued > 0) {
+      EXPECT_GE(min_lat, latency) << name_ << ": latency below 4*STAGES";
+      if (full) {
+        EXPECT_EQ(max_lat, latency) << name_ << ": full-rate latency != 4*STAGES";
+        EXPECT_EQ(cycles, count + latency) << name_ << ": full rate is not one step per cycle";
+      }
+    }
+    std::printf("TRVSUM %s %s vectors=%" PRIu64 " mismatches=%" PRIu64 " split_first=%" PRIu64
+                " split_second=%" PRIu64 " split_both=%" PRIu64 " clip_miss=%" PRIu64
+                " clip_hit=%" PRIu64 " cycles=%" PRIu64 " latency=%" PRIu64 "..%" PRIu64 "\n",
+                name_.c_str(), set_name, checked, mismatches, by_kind[0], by_kind[1], by_kind[2],
+                by_kind[3], by_kind[4], cycles, min_lat, max_lat);
+    EXPECT_EQ(mismatches, 0u);
+    EXPECT_EQ(checked, count) << name_ << " " << set_name << ": not every item came back";
+    last_ = by_kind;
+    return checked;
+  }
+  const std::array<uint64_t, 6>& by_kind() const { return last_; }
+
+ private:
+  struct Pending {
+    TrvIn x;
+    TrvOut expected;
+    uint16_t tag = 0;
+    uint64_t cycle = 0;
+  };
+  void reset() {
+    m_->clk_i = 0;
+    m_->rst_ni = 1;
+    m_->in_valid_i = 0;
+    m_->out_ready_i = 0;
+    m_->eval();
+    m_->rst_ni = 0;
+    m_->eval();
+    clock();
+    clock();
+    m_->rst_ni = 1;
+    m_->eval();
+  }
+  void clock() {
+    m_->clk_i = 1;
+    m_->eval();
+    m_->clk_i = 0;
+    m_->eval();
+  }
+
+  std::string name_;
+  int stages_;
+  TrvStim<F, R> stim_;
+  std::mt19937_64 rng_;
+  std::unique_ptr<VerilatedContext> ctx_;
+  std::unique_ptr<V> m_;
+  std::array<uint64_t, 6> last_{};
+};
+
+template <class V, class F, Rounding R>
+void run_variant(const std::string& name, int stages) {
+  TrvCosim<V, F, R> sim(name, stages, fptest::seed_for("rtl.trv." + name));
+  sim.run(Set::fullrate, 4096);
+  const uint64_t nd = TrvStim<F, R>::directed_count();
+  ASSERT_EQ(sim.run(Set::directed, nd), nd);
+  const uint64_t n = trv_count();
+  ASSERT_EQ(sim.run(Set::random, n), n);
+  // Every outcome must be exercised: each split visit and both clip results.
+  static const char* kNames[] = {"split first", "split second", "split both", "clip miss",
+                                 "clip hit"};
+  for (int k = 0; k < 5; ++k)
+    EXPECT_GE(sim.by_kind()[size_t(k)], n / 50) << name << ": " << kNames[k] << " too rare";
+}
+
+#define RAYCORE_RTL_TRV_VARIANT(prefix, module, fmt, mode, stages)                  \
+  TEST(RtlTrv, prefix) {                                                              \
+    run_variant<prefix, hls::fmt, Rounding::mode>(#fmt "_" #mode "_s" #stages, stages); \
+  }
+#include "rtl_trv_variants.h"
+#undef RAYCORE_RTL_TRV_VARIANT
+
+}  // namespace
+}  // namespace raycore::rtltest
