@@ -40,6 +40,8 @@ using sc::pins::TrvStepIn;
 using sc::pins::TrvStepOut;
 using sc::pins::TrvTwin;
 
+bool g_simulated = false;  // one SystemC simulation per process (toolchain.md pitfall 8)
+
 uint64_t lockstep_count() { return fptest::env_count("RAYCORE_LOCKSTEP_TRV_N", 100000); }
 
 TrvStepIn to_step(const TrvIn& x, uint32_t tag) {
@@ -228,6 +230,10 @@ class Lockstep : public sc_core::sc_module {
 
 template <class V, class F, Rounding R>
 void run_variant(const std::string& name, unsigned stages) {
+  if (g_simulated)
+    GTEST_SKIP() << "one SystemC simulation per process: run one test per process "
+                    "(ctest does; or --gtest_filter)";
+  g_simulated = true;
   const uint64_t n = lockstep_count();
   auto* ls = new Lockstep<V, F, R>("lockstep", name, stages, n);  // owned by the simulation
   const auto t0 = std::chrono::steady_clock::now();

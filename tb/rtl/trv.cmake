@@ -21,3 +21,8 @@ foreach(unit trv membus_if)
       ENVIRONMENT "SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1" DISCOVERY_TIMEOUT 60)
   endif()
 endforeach()
+# The membus_if test also runs the cycle model's bus (systemc/membus.cpp, self-contained: only
+# SystemC and systemc/fifo.h) on the same requests.
+if(TARGET test_lockstep_membus_if)
+  target_sources(test_lockstep_membus_if PRIVATE ${CMAKE_SOURCE_DIR}/systemc/membus.cpp)
+endif()
