@@ -38,6 +38,7 @@ class Ascache : public sc_core::sc_module {
   uint32_t sets() const { return sets_; }
   uint32_t ways() const { return ways_; }
   uint32_t mshrs_busy() const { return busy_; }
+  uint32_t mshrs_total() const { return uint32_t(mshr_.size()); }
   CacheStats& stats() { return st_; }
   const CacheStats& stats() const { return st_; }
   Cycle now = 0;  // set by the owner each cycle (request timestamps)

@@ -60,6 +60,25 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
   kb("--node-cache-kb", &SimConfig::node_cache, "node cache size per RTU (KiB)");
   kb("--list-cache-kb", &SimConfig::list_cache, "list cache size per RTU (KiB)");
   kb("--tri-cache-kb", &SimConfig::tri_cache, "triangle cache size per RTU (KiB)");
+  // Pin-level units: --rtl binds the Verilated model, --pins the SystemC twin, in the unit's place.
+  auto views = [&](const char* name, UnitView view, const char* help) {
+    auto list = std::make_shared<std::vector<std::string>>();
+    c.add_option(name, *list, help)
+        ->delimiter(',')
+        ->check(CLI::IsMember({"vtu", "ist"}))
+        ->each([&o, list, view](const std::string& unit) {
+          o.overrides.push_back([unit, view](SimConfig& s) {
+            UnitView& v = unit == "vtu" ? s.vtu_view : s.ist_view;
+            if (v != UnitView::model && v != view)
+              throw raycore::cli::UserError("unit '" + unit + "' given to both --rtl and --pins");
+            v = view;
+          });
+        });
+  };
+  views("--rtl", UnitView::rtl,
+        "units (vtu,ist) simulated by their Verilated RTL, bound to the unit's pins in the frame");
+  views("--pins", UnitView::twin,
+        "units (vtu,ist) simulated by their pin-level SystemC twin (same ports as the RTL)");
   c.add_option("--trace", o.cfg.trace_file, "write a VCD of the top-level handshakes and counters");
   c.add_option("--config", o.config_file, "JSON file with the model's parameters (options override it)");
 }

@@ -15,6 +15,12 @@ struct CacheConfig {
   uint32_t hit_latency = 1;  // cycles added to the requester's loop on a hit
 };
 
+// How a unit with a pin-level form is modelled in the frame: the fast transaction-level model
+// (default), its SystemC twin at pin level (systemc/pins/), or its Verilated RTL bound to the same
+// pins. All three give the same cycles and bits (tests: tb/systemc).
+enum class UnitView : uint8_t { model, twin, rtl };
+const char* unit_view_name(UnitView v);  // "model" / "twin" / "rtl"
+
 struct SimConfig {
   int rtus = 6;
   double clock_mhz = 500;  // an assumption, stated in the report
@@ -23,8 +29,10 @@ struct SimConfig {
   uint32_t mem_bandwidth = 16;    // bytes per cycle on the shared data bus
   uint32_t mem_queue_depth = 32;  // requests accepted and not yet returned
   uint64_t seed = 0;              // 0: fixed latency; else latency uniform in [L, 2L] per request
-  // vtu: pipeline depth (one 8-byte node or one triangle record per cycle).
-  uint32_t vtu_depth = 4;
+  // vtu: pipeline depth (one 8-byte node or one triangle record per cycle); rtl/units/vtu.v has
+  // 3 operator levels of STAGES registers: 6 = STAGES 2, as in docs/area.md.
+  uint32_t vtu_depth = 6;
+  UnitView vtu_view = UnitView::model;
   // ascache, per RTU.
   CacheConfig node_cache{16 * 1024, 4, 64, 8, 1};
   CacheConfig list_cache{8 * 1024, 4, 64, 8, 1};
@@ -32,7 +40,8 @@ struct SimConfig {
   // rgu / trv / ist / hit.
   uint32_t rays_in_flight = 64;  // ray slots per RTU (each with its own 64-entry stack)
   uint32_t trv_latency = 4;      // cycles of one traversal step (loop back to the ready queue)
-  uint32_t ist_latency = 24;     // sum of the ist's stage latencies (phase 1: 11, 2: 6, 3: 7)
+  uint32_t ist_latency = 20;     // rtl/units/ist.v: 10 operator levels x STAGES 2
+  UnitView ist_view = UnitView::model;
   uint32_t ist_queue = 32;       // ist input queue (triangle tests waiting)
   uint32_t hit_latency = 20;     // hit point + shadow set-up (sqrt, rcp)
   uint32_t tile = 8;             // rgu: square tiles of tile x tile pixels, round-robin over RTUs

@@ -5,13 +5,22 @@
 // leaf-entry tmax; results are reduced in list order (closest, ties to the earliest entry) so the
 // outcome equals the golden tracer's sequential tests with tmax updated after each hit. A record
 // whose id is the ray's skip_id (skip-origin) is not tested (as the golden tracer).
+//
+// Two views (SimConfig::ist_view): the transaction model (hls::ist_wald at issue, the result
+// delayed by the latency; default) or a pin-level unit with rtl/units/ist.v's ports
+// (systemc/pins/ist.h: the SystemC twin or the Verilated RTL), driven one test per cycle; its
+// result, latency cycles later, joins the same result queue. A skipped record still occupies its
+// issue slot (its result is ignored). Same cycles and bits.
 #pragma once
 
 #include <systemc>
 
 #include "hls/ist.h"
 #include "hls/wald.h"
+#include "systemc/pins/ist.h"
 #include "systemc/slot.h"
+
+#include <array>
 
 namespace raycore::sc {
 
@@ -23,8 +32,32 @@ class Ist : public sc_core::sc_module {
   Ist(sc_core::sc_module_name name, FrameCtx& fc, RtuChannels& ch, RtuStats& st, uint32_t latency)
       : sc_core::sc_module(name), fc_(fc), ch_(ch), st_(st), lat_(latency) {}
 
+  void bind(pins::IstPort* p) { port_ = p; }
+  bool wants_edge() const { return edge_; }
+
   bool tick(Cycle now) {
     bool active = false;
+    edge_ = false;
+    if (port_ && port_->out_valid()) {  // a result the pin-level unit put out at the last edge
+      const pins::IstOutRec x = port_->out();
+      const Side& e = side_[x.tag % side_.size()];
+      IstRes o;
+      o.slot = e.slot;
+      o.pos = e.pos;
+      if (!e.skip && x.exit == uint32_t(hls::IstExit::hit)) {
+        o.hit = true;
+        o.t = x.t;
+        o.den = x.den;
+        o.id = e.id;
+        o.k = e.k;
+        o.nu = e.nu;
+        o.nv = e.nv;
+        o.nd = e.nd;
+      }
+      ch_.ist_pipe.push(o, now + ch_.tri->hit_latency);
+      --in_flight_;
+      edge_ = true;
+    }
     // Results leaving the pipeline.
     while (ch_.ist_pipe.can_pop(now)) {
       const IstRes o = ch_.ist_pipe.pop();
@@ -41,7 +74,7 @@ class Ist : public sc_core::sc_module {
       active = true;
     }
     // Issue one test.
-    if (!ch_.ist_q.can_pop(now)) return active;
+    if (!ch_.ist_q.can_pop(now)) return idle_pins() || active;
     constexpr uint32_t rb = uint32_t(hls::tri_record_bytes<F>());
     const IstReq q = ch_.ist_q.front();
     const uint32_t lb = ch_.tri->line_bytes();
@@ -51,12 +84,17 @@ class Ist : public sc_core::sc_module {
       ++st_.ist_tri_miss;
       ch_.ist_q.pop();
       ch_.ist_q.push(q, now + 1);  // loop: try again behind the others
+      idle_pins();
       return true;
     }
     ch_.ist_q.pop();
     ++st_.ist_busy;
     const hls::WaldTri<F> w = hls::decode_tri<F>(line + byte % lb);
     const Slot& r = ch_.slots[q.slot];
+    if (port_) {
+      drive_pins(q, w, r);
+      return true;
+    }
     IstRes o;
     o.slot = q.slot;
     o.pos = q.pos;
@@ -78,13 +116,53 @@ class Ist : public sc_core::sc_module {
     return true;
   }
 
-  Cycle next_event() const { return std::min(ch_.ist_pipe.head_ready(), ch_.ist_q.head_ready()); }
+  Cycle next_event(Cycle now) const {
+    if (port_ && in_flight_ != 0) return now + 1;
+    return std::min(ch_.ist_pipe.head_ready(), ch_.ist_q.head_ready());
+  }
 
  private:
+  struct Side {  // what travels beside a test in the pin-level unit (its tag indexes this ring)
+    uint16_t slot = 0;
+    bool skip = false;
+    uint32_t pos = 0, id = 0, k = 0, nu = 0, nv = 0, nd = 0;
+  };
+
+  void drive_pins(const IstReq& q, const hls::WaldTri<F>& w, const Slot& r) {
+    if (!port_->in_ready()) throw std::logic_error("ist: pin-level unit not ready with out_ready high");
+    pins::IstIn in;
+    in.k = w.k;
+    for (int i = 0; i < 9; ++i) in.c[i] = w.c[i];
+    for (int i = 0; i < 3; ++i) {
+      in.o[i] = r.ray.o[i];
+      in.d[i] = r.ray.d[i];
+    }
+    in.tmin = r.ray.tmin;
+    in.tmax = r.tmax;
+    in.tag = next_tag_;
+    Side& e = side_[next_tag_ % side_.size()];
+    e = Side{q.slot, w.id == r.skip_id, q.pos, w.id, w.k, w.c[hls::kNU], w.c[hls::kNV], w.c[hls::kND]};
+    if (!e.skip) ++st_.tri_tests;
+    next_tag_ = (next_tag_ + 1) & 0xFFFFu;  // TAG_BITS 16
+    port_->drive(in);
+    ++in_flight_;
+    edge_ = true;
+  }
+  bool idle_pins() {
+    if (!port_) return false;
+    port_->idle();
+    edge_ |= in_flight_ != 0;
+    return edge_;
+  }
+
   FrameCtx& fc_;
   RtuChannels& ch_;
   RtuStats& st_;
   uint32_t lat_;
+  pins::IstPort* port_ = nullptr;
+  std::array<Side, 1024> side_{};
+  uint32_t next_tag_ = 0, in_flight_ = 0;
+  bool edge_ = false;
 };
 
 }  // namespace raycore::sc

@@ -15,6 +15,8 @@
 #include "systemc/hit.h"
 #include "systemc/ist.h"
 #include "systemc/membus.h"
+#include "systemc/pins/clock.h"
+#include "systemc/pins/rtl.h"
 #include "systemc/rgu.h"
 #include "systemc/slot.h"
 #include "systemc/trv.h"
@@ -29,7 +31,7 @@ class Rtu : public sc_core::sc_module {
 
  public:
   Rtu(sc_core::sc_module_name name, FrameCtx& fc, const SimConfig& cfg, int index, bool vtu_on,
-      const hls::Vtu<F, R>& vtu, Membus& bus)
+      const hls::Vtu<F, R>& vtu, Membus& bus, pins::PinClock* clock)
       : sc_core::sc_module(name),
         node("node_cache", cfg.node_cache, fc.header.node_offset, cfg.node_cache.line_bytes),
         list("list_cache", cfg.list_cache, fc.header.list_offset, cfg.list_cache.line_bytes),
@@ -49,7 +51,37 @@ class Rtu : public sc_core::sc_module {
     bus.add_requester(&node.req(), &vtu_unit, kNodePort);
     bus.add_requester(&list.req(), &vtu_unit, kListPort);
     bus.add_requester(&tri.req(), &vtu_unit, kTriPort);
+    bind_pins(cfg, clock);
   }
+
+  // The pin-level units of this RTU (SystemC twins or Verilated RTL in the units' places).
+  void bind_pins(const SimConfig& cfg, pins::PinClock* clock) {
+    if (cfg.vtu_view != UnitView::model) {
+      const unsigned stages = pin_stages("vtu", cfg.vtu_depth, 3, "--vtu-depth");
+      if (cfg.vtu_view == UnitView::twin)
+        vtu_port_ = std::make_unique<pins::VtuPortT<pins::VtuTwin<F, R>>>(
+            "vtu_pins", "SystemC twin", clock->clk, clock->rst_n, stages);
+      else
+        vtu_port_ = pins::make_rtl_vtu(hls::format_id<F>(), R, stages, "vtu_rtl", clock->clk,
+                                       clock->rst_n);
+      if (!vtu_port_) no_rtl("vtu", stages);
+      vtu_unit.bind(vtu_port_.get());
+    }
+    if (cfg.ist_view != UnitView::model) {
+      const unsigned stages = pin_stages("ist", cfg.ist_latency, 10, "--ist-latency");
+      if (cfg.ist_view == UnitView::twin)
+        ist_port_ = std::make_unique<pins::IstPortT<pins::IstTwin<A>>>(
+            "ist_pins", "SystemC twin", clock->clk, clock->rst_n, stages);
+      else
+        ist_port_ = pins::make_rtl_ist(hls::format_id<F>(), R, stages, "ist_rtl", clock->clk,
+                                       clock->rst_n);
+      if (!ist_port_) no_rtl("ist", stages);
+      ist.bind(ist_port_.get());
+    }
+  }
+  pins::VtuPort* vtu_port() { return vtu_port_.get(); }
+  pins::IstPort* ist_port() { return ist_port_.get(); }
+  bool wants_edge() const { return vtu_unit.wants_edge() || ist.wants_edge(); }
 
   bool tick(Cycle now) {
     node.now = list.now = tri.now = now;
@@ -61,8 +93,8 @@ class Rtu : public sc_core::sc_module {
     return a;
   }
   Cycle next_event(Cycle now) const {
-    Cycle t = std::min({vtu_unit.next_event(), hit.next_event(), ist.next_event(), trv.next_event(),
-                        rgu.next_event(now)});
+    Cycle t = std::min({vtu_unit.next_event(now), hit.next_event(), ist.next_event(now),
+                        trv.next_event(), rgu.next_event(now)});
     return t;
   }
   bool done() const { return !rgu.primaries_left() && ch_.free_slots.size() == slots_; }
@@ -81,6 +113,23 @@ class Rtu : public sc_core::sc_module {
   VtuUnit<F, R> vtu_unit;
 
  private:
+  // A pin-level unit has levels x STAGES registers: the model's latency must be such a multiple.
+  static unsigned pin_stages(const char* unit, uint32_t latency, uint32_t levels, const char* opt) {
+    if (latency == 0 || latency % levels != 0 || latency / levels > 64)
+      throw std::invalid_argument(std::string(unit) + " at pin level has " + std::to_string(levels) +
+                                  " operator levels of STAGES registers: " + opt + " must be " +
+                                  std::to_string(levels) + " x STAGES (STAGES 1..64), not " +
+                                  std::to_string(latency));
+    return latency / levels;
+  }
+  static void no_rtl(const char* unit, unsigned stages) {
+    throw std::invalid_argument(std::string("no Verilated ") + unit + " for " +
+                                hls::format_name(hls::format_id<F>()) + " " +
+                                (R == hls::Rounding::rne ? "rne" : "rtz") + " STAGES=" +
+                                std::to_string(stages) + " in this build; built: " +
+                                pins::rtl_models_built());
+  }
+
   static RtuChannels make_channels(const SimConfig& cfg) {
     if (cfg.rays_in_flight == 0 || cfg.rays_in_flight > 65535)
       throw std::invalid_argument("rays in flight must be 1..65535");
@@ -97,6 +146,8 @@ class Rtu : public sc_core::sc_module {
 
   RtuStats st_;
   RtuChannels ch_;
+  std::unique_ptr<pins::VtuPort> vtu_port_;
+  std::unique_ptr<pins::IstPort> ist_port_;
 
  public:
   Rgu<A> rgu;

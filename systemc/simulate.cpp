@@ -43,6 +43,12 @@ SimResult run(const hls::Image& image, const scenes::Camera& cam, const scenes::
   const auto setup = hls::FrameSetup<F, R>::make(cam.position, light.position, tc.vtu);
   const hls::Vtu<F, R>& vtu = setup.vtu;
   image.box(fc.box_lo, fc.box_hi);
+  fc.vtu_on = tc.vtu;
+  for (int i = 0; i < 3; ++i) {
+    fc.box_world_lo[i] = fc.box_lo[i];
+    fc.box_world_hi[i] = fc.box_hi[i];
+    fc.light_world[i] = A::from_double(light.position[i]);
+  }
   if (tc.vtu) vtu.box_outward(fc.box_lo, fc.box_hi);  // as transform_image translates the box
   for (int i = 0; i < 3; ++i) {
     fc.origin[i] = setup.origin[i];
@@ -61,6 +67,7 @@ SimResult run(const hls::Image& image, const scenes::Camera& cam, const scenes::
     throw std::runtime_error("cycle model: no ray retired");
 
   res.cycles = top.cycles;
+  res.pin_edges = top.pin_edges;
   for (const auto& r : top.rtus) {
     res.rtus.push_back(r->stats());
     res.primary_rays += res.rtus.back().primary_rays;
@@ -200,7 +207,16 @@ nlohmann::json sim_json(const SimResult& r) {
   return {{"wall_seconds", r.wall_seconds},
           {"user_cpu_seconds", r.user_seconds},
           {"cycles_per_second", r.wall_seconds > 0 ? double(r.cycles) / r.wall_seconds : 0.0},
-          {"rays_per_second", r.wall_seconds > 0 ? rays / r.wall_seconds : 0.0}};
+          {"rays_per_second", r.wall_seconds > 0 ? rays / r.wall_seconds : 0.0},
+          {"pin_clock_edges", r.pin_edges}};
+}
+
+const char* unit_view_name(UnitView v) {
+  switch (v) {
+    case UnitView::twin: return "twin";
+    case UnitView::rtl: return "rtl";
+    default: return "model";
+  }
 }
 
 nlohmann::json config_json(const SimConfig& c) {
@@ -215,12 +231,14 @@ nlohmann::json config_json(const SimConfig& c) {
           {"mem_queue_depth", c.mem_queue_depth},
           {"seed", c.seed},
           {"vtu_depth", c.vtu_depth},
+          {"vtu_view", unit_view_name(c.vtu_view)},
           {"node_cache", cache(c.node_cache)},
           {"list_cache", cache(c.list_cache)},
           {"tri_cache", cache(c.tri_cache)},
           {"rays_in_flight", c.rays_in_flight},
           {"trv_latency", c.trv_latency},
           {"ist_latency", c.ist_latency},
+          {"ist_view", unit_view_name(c.ist_view)},
           {"ist_queue", c.ist_queue},
           {"hit_latency", c.hit_latency},
           {"tile", c.tile}};
@@ -235,6 +253,14 @@ void config_from_json(const nlohmann::json& j, SimConfig& c) {
     return d;
   };
   auto u32 = [&](const nlohmann::json& v, const std::string& key) { return uint32_t(num(v, key)); };
+  auto unit_view = [](const nlohmann::json& v, const std::string& key) {
+    if (v.is_string()) {
+      const std::string s = v.get<std::string>();
+      for (UnitView u : {UnitView::model, UnitView::twin, UnitView::rtl})
+        if (s == unit_view_name(u)) return u;
+    }
+    throw std::runtime_error("config: '" + key + "' must be \"model\", \"twin\" or \"rtl\"");
+  };
   auto cache = [&](const nlohmann::json& v, const std::string& key, CacheConfig& k) {
     if (!v.is_object()) throw std::runtime_error("config: '" + key + "' must be an object");
     for (auto it = v.begin(); it != v.end(); ++it) {
@@ -265,6 +291,8 @@ void config_from_json(const nlohmann::json& j, SimConfig& c) {
     else if (k == "ist_queue") c.ist_queue = u32(*it, k);
     else if (k == "hit_latency") c.hit_latency = u32(*it, k);
     else if (k == "tile") c.tile = u32(*it, k);
+    else if (k == "vtu_view") c.vtu_view = unit_view(*it, k);
+    else if (k == "ist_view") c.ist_view = unit_view(*it, k);
     else throw std::runtime_error("config: unknown key '" + k + "'");
   }
 }

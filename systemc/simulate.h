@@ -28,6 +28,7 @@ struct SimResult {
   std::vector<uint8_t> primary_retired, shadow_retired;  // per pixel: times retired
   double wall_seconds = 0, user_seconds = 0;
   uint32_t tri_line_bytes = 0;
+  uint64_t pin_edges = 0;  // clock edges given to pin-level units (--pins / --rtl)
 };
 
 SimResult simulate(const hls::Image& image, const scenes::Camera& cam, const scenes::Light& light,

@@ -67,6 +67,9 @@ struct FrameCtx {
   uint32_t origin[3] = {0, 0, 0};
   uint32_t light[3] = {0, 0, 0};
   uint32_t box_lo[3] = {0, 0, 0}, box_hi[3] = {0, 0, 0};
+  // Before the VTU (world space, in the format): a pin-level VTU translates these at set-up.
+  bool vtu_on = false;
+  uint32_t light_world[3] = {0, 0, 0}, box_world_lo[3] = {0, 0, 0}, box_world_hi[3] = {0, 0, 0};
   double offset[3] = {0, 0, 0};
   uint32_t tmin = 0;
   hls::SpawnParams spawn;

@@ -3,6 +3,9 @@
 // Cycles in which nothing can happen are skipped to the next event (idle units cost no host time).
 // With a trace file the thread waits one clock period per cycle and writes the top-level
 // handshakes and counters to a VCD; without, it waits in chunks (no per-cycle kernel switches).
+// Pin-level units (--pins / --rtl: SystemC twins or Verilated RTL) share one clock: the thread
+// resets them before cycle 0, and gives a clock edge in every cycle in which one of them has work
+// (inputs driven in that cycle's ticks are sampled at its edge; outputs are read in the next).
 #pragma once
 
 #include <systemc>
@@ -15,6 +18,7 @@
 #include <vector>
 
 #include "systemc/membus.h"
+#include "systemc/pins/clock.h"
 #include "systemc/rtu.h"
 
 namespace raycore::sc {
@@ -25,6 +29,7 @@ class Top : public sc_core::sc_module {
   static constexpr hls::Rounding R = A::rounding;
   FrameCtx& fc_;
   const SimConfig& cfg_;
+  std::unique_ptr<pins::PinClock> clock_;  // before the units bound to it (destroyed after them)
 
  public:
   SC_HAS_PROCESS(Top);
@@ -36,9 +41,11 @@ class Top : public sc_core::sc_module {
         bus("membus", mem, cfg.mem_latency, cfg.mem_bandwidth, cfg.mem_queue_depth, cfg.seed),
         period_(1000.0 / cfg.clock_mhz, sc_core::SC_NS) {
     if (cfg.rtus < 1 || cfg.rtus > 64) throw std::invalid_argument("rtus must be 1..64");
+    if (cfg.vtu_view != UnitView::model || cfg.ist_view != UnitView::model)
+      clock_ = std::make_unique<pins::PinClock>(period_);
     for (int i = 0; i < cfg.rtus; ++i)
       rtus.push_back(std::make_unique<Rtu<A>>(("rtu" + std::to_string(i)).c_str(), fc, cfg, i,
-                                              vtu_on, vtu, bus));
+                                              vtu_on, vtu, bus, clock_.get()));
     if (!cfg.trace_file.empty()) {
       std::string base = cfg.trace_file;
       if (base.size() > 4 && base.substr(base.size() - 4) == ".vcd") base.resize(base.size() - 4);
@@ -70,6 +77,7 @@ class Top : public sc_core::sc_module {
   Membus bus;
   std::vector<std::unique_ptr<Rtu<A>>> rtus;
   Cycle cycles = 0;
+  uint64_t pin_edges = 0;  // clock edges given to the pin-level units (frame, without set-up)
 
  private:
   struct RtuSignals {
@@ -91,13 +99,28 @@ class Top : public sc_core::sc_module {
     const uint64_t pixels = uint64_t(fc_.width) * uint64_t(fc_.height);
     Cycle now = 0, synced = 0;
     std::vector<bool> act(rtus.size());
+    if (clock_) setup_pins();
+    const sc_core::sc_time t0_sim = sc_core::sc_time_stamp();
+    auto sync = [&](Cycle c) {  // SystemC time = t0_sim + c periods
+      const sc_core::sc_time t = t0_sim + period_ * double(c);
+      if (t > sc_core::sc_time_stamp()) wait(t - sc_core::sc_time_stamp());
+      synced = c;
+    };
     while (!all_done()) {
       bool active = bus.tick(now);
+      bool edge = false;
       for (size_t i = 0; i < rtus.size(); ++i) {
         act[i] = rtus[i]->tick(now);
         active |= act[i];
+        if (clock_) edge |= rtus[i]->wants_edge();
       }
       if (tf_) trace(now, act);
+      if (edge) {
+        sync(now);
+        clock_->edge();
+        ++pin_edges;
+        synced = now + 1;
+      }
       Cycle next = now + 1;
       if (!active && !all_done()) {
         Cycle t = bus.next_event(now);
@@ -107,14 +130,10 @@ class Top : public sc_core::sc_module {
                                    " (no unit can make progress)");
         next = std::max(next, t);
       }
-      if (tf_) {  // the trace sees every cycle boundary the model stops at
-        wait(period_ * double(next - synced));
-        synced = next;
-      }
+      if (tf_) sync(next);  // the trace sees every cycle boundary the model stops at
       now = next;
       if (!tf_ && now - synced >= (Cycle(1) << 16)) {
-        wait(period_ * double(now - synced));
-        synced = now;
+        sync(now);
         if (tty) {
           const auto tn = std::chrono::steady_clock::now();
           if (std::chrono::duration<double>(tn - last).count() > 0.5) {
@@ -130,7 +149,46 @@ class Top : public sc_core::sc_module {
     }
     if (tty) std::fprintf(stderr, "\r%100s\r", "");
     cycles = fc_.last_retire + 1;
-    if (now > synced) wait(period_ * double(now - synced));
+    if (now > synced) sync(now);
+  }
+
+  // Before cycle 0: reset the pin-level units; with the VTU on and at pin level, the set-up
+  // registers (scene box and light) are translated by RTU 0's VTU, as pseudo-nodes (an inner node
+  // of axis i with split x leaves as sub(x, c[i])); the box then steps outward one ulp
+  // (hls::Vtu::box_outward's incrementers).
+  void setup_pins() {
+    clock_->reset();
+    pins::VtuPort* p = rtus[0]->vtu_port();
+    if (!p || !fc_.vtu_on) return;
+    uint32_t* dst[9];
+    uint32_t src[9];
+    for (int i = 0; i < 3; ++i) {
+      src[i] = fc_.box_world_lo[i], dst[i] = &fc_.box_lo[i];
+      src[3 + i] = fc_.box_world_hi[i], dst[3 + i] = &fc_.box_hi[i];
+      src[6 + i] = fc_.light_world[i], dst[6 + i] = &fc_.light[i];
+    }
+    int sent = 0, got = 0;
+    for (int cycle = 0; got < 9; ++cycle) {
+      if (cycle > 9 + 1000) throw std::runtime_error("vtu: set-up records did not come out");
+      if (p->out_valid()) {
+        const pins::VtuRec o = p->out();
+        *dst[o.tag] = uint32_t(o.node);
+        ++got;
+      }
+      if (sent < 9) {
+        pins::VtuRec r;
+        r.node = (uint64_t(sent % 3) << 56) | src[sent];
+        r.tag = uint32_t(sent++);
+        p->drive(r);
+      } else {
+        p->idle();
+      }
+      clock_->edge();
+    }
+    for (int i = 0; i < 3; ++i) {
+      fc_.box_lo[i] = A::next_down(fc_.box_lo[i]);
+      fc_.box_hi[i] = A::next_up(fc_.box_hi[i]);
+    }
   }
 
   uint64_t count_primaries() const {
