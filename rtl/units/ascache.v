@@ -218,10 +218,14 @@ module ascache #(
   // Tags, MSHR lines and queue entries are meaningful only under a valid bit and are not reset.
   // The set arrays take the fill's update, then the access's LRU update (a_rank_new already
   // includes the fill's when both are in the same set, so the later assignment is the whole one).
-  reg [WAYS*RW-1:0] rank_reset;
-  always @* begin
-    for (w = 0; w < WAYS; w = w + 1) rank_reset[w*RW +: RW] = w[RW-1:0];
-  end
+  wire [WAYS*RW-1:0] rank_reset;
+  genvar gw;
+  generate
+    for (gw = 0; gw < WAYS; gw = gw + 1) begin : g_rank_reset
+      localparam integer RANK = gw;
+      assign rank_reset[gw*RW +: RW] = RANK[RW-1:0];
+    end
+  endgenerate
 
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
