@@ -77,7 +77,7 @@ for mod in "${MODULES[@]}"; do
       [ "$mode" = rne ] && set_rne="-set RNE 1"
       log="$TMP/$mod-$fmt-$mode"
       yosys -q -l "$log.log" -p "read_verilog $(srcs_for "$mod"); \
-        chparam -set EXP_BITS $e -set MAN_BITS $m -set STAGES $STAGES $set_rne $mod; \
+        $(grep -Eq "parameter +integer +EXP_BITS" "$(file_of "$mod")" && echo "chparam -set EXP_BITS $e -set MAN_BITS $m -set STAGES $STAGES $set_rne $mod;") \
         synth -flatten -top $mod; tee -q -o $log.stat stat; tee -q -o $log.ltp ltp -noff" >/dev/null ||
         { echo "area: yosys failed for $mod $fmt $mode, see:" >&2; tail -20 "$log.log" >&2; exit 1; }
       read -r cells ffs ge < <(awk "$WEIGHTS_AWK" "$log.stat")

@@ -44,8 +44,8 @@ for src in "${SRCS[@]}"; do
     for rne in 0 1; do
       for st in 0 1 2 4; do
         g=$(params_for "$src" G ${FMT[$fmt]} RNE=$rne STAGES=$st)
-        [ -n "${seen[$g]:-}" ] && continue  # same parameters as an earlier run
-        seen[$g]=1
+        [ -n "${seen["x$g"]:-}" ] && continue  # same parameters as an earlier run
+        seen["x$g"]=1
         runs=$((runs + 1))
         if ! verilator --lint-only -Wall --default-language 1364-2005 --top-module "$top" \
              $g "$WAIVERS" "${SRCS[@]}" >"$LOG/v.txt" 2>&1; then

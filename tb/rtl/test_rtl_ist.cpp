@@ -31,6 +31,7 @@
 #include "hls/ist.h"
 #include "hls/wald.h"
 #include "tb/fp/fp_check.h"
+#include "tb/rtl/stimulus.h"
 
 #include "rtl_ist_models.h"
 
@@ -40,13 +41,6 @@ namespace {
 using hls::Rounding;
 
 uint64_t ist_count() { return fptest::env_count("RAYCORE_RTL_IST_N", 500000); }
-
-struct IstIn {
-  uint32_t k = 0;
-  uint32_t c[9] = {};
-  uint32_t o[3] = {}, d[3] = {};
-  uint32_t tmin = 0, tmax = 0;
-};
 
 struct IstRes {
   uint32_t exit = 0, t = 0, den = 0;
@@ -73,106 +67,6 @@ template <class F>
 std::string describe(const IstRes& r) {
   return "exit=" + std::to_string(r.exit) + " t=" + show<F>(r.t) + " den=" + show<F>(r.den);
 }
-
-// Random Wald-test inputs: mostly a ray aimed at a chosen barycentric point of a random triangle.
-template <class F, Rounding R>
-class Stimulus {
- public:
-  explicit Stimulus(uint64_t seed) : rng_(seed) {}
-
-  IstIn next() {
-    IstIn x;
-    const uint32_t kind = uint32_t(rng_() % 100);
-    if (kind < 10) {  // fully random bit patterns
-      x.k = uint32_t(rng_() % 3);
-      for (uint32_t& c : x.c) c = bits();
-      for (int i = 0; i < 3; ++i) {
-        x.o[i] = bits();
-        x.d[i] = bits();
-      }
-      x.tmin = bits();
-      x.tmax = bits();
-      return x;
-    }
-    const double scale = std::ldexp(1.0, int(rng_() % 13) - 6);  // 2^-6 .. 2^6
-    hls::Tri tri;
-    for (hls::Vec3& p : tri) p = {uni(-scale, scale), uni(-scale, scale), uni(-scale, scale)};
-    if (kind < 13) tri[2] = tri[0] + (tri[1] - tri[0]) * uni(-1, 2);  // degenerate (collinear)
-    const hls::WaldTri<F> w = hls::make_wald<F, R>(tri, 0);
-    x.k = w.k;
-    for (int i = 0; i < 9; ++i) x.c[i] = w.c[i];
-    // The aimed-at barycentric point: inside, outside, or on an edge.
-    double b = uni(0, 1), g = uni(0, 1);
-    switch (rng_() % 6) {
-      case 0:
-      case 1:  // inside
-        if (b + g > 1) {
-          b = 1 - b;
-          g = 1 - g;
-        }
-        break;
-      case 2:  // outside beyond one edge (or two)
-        b = uni(-1, 2);
-        g = uni(-1, 2);
-        break;
-      case 3:  // on an edge
-        switch (rng_() % 3) {
-          case 0: b = 0; break;
-          case 1: g = 0; break;
-          default: g = 1 - b; break;
-        }
-        break;
-      case 4:  // just outside an edge
-        switch (rng_() % 3) {
-          case 0: b = -std::ldexp(uni(0, 1), -int(rng_() % 20)); break;
-          case 1: g = -std::ldexp(uni(0, 1), -int(rng_() % 20)); break;
-          default: g = 1 - b + std::ldexp(uni(0, 1), -int(rng_() % 20)); break;
-        }
-        break;
-      default:  // a vertex
-        b = double(rng_() % 2);
-        g = b > 0 ? 0 : double(rng_() % 2);
-        break;
-    }
-    const hls::Vec3 p = tri[0] + (tri[1] - tri[0]) * b + (tri[2] - tri[0]) * g;
-    const double oscale = scale * std::ldexp(1.0, int(rng_() % 5));
-    const hls::Vec3 o = {p.x + uni(-oscale, oscale), p.y + uni(-oscale, oscale),
-                         p.z + uni(-oscale, oscale)};
-    const double dlen = std::ldexp(uni(0.5, 1), int(rng_() % 9) - 4);  // t_hit ~ 1 / dlen
-    const hls::Vec3 d = (p - o) * dlen;
-    for (int i = 0; i < 3; ++i) {
-      x.o[i] = hls::from_double<F, R>(o[i]);
-      x.d[i] = hls::from_double<F, R>(d[i]);
-    }
-    const double th = 1 / dlen;
-    switch (rng_() % 5) {
-      case 0:  // wide interval
-        x.tmin = 0;
-        x.tmax = F::max_mag;
-        break;
-      case 1:  // the hit lies beyond tmax or before tmin
-        x.tmin = hls::from_double<F, R>(th * uni(0.5, 1.5));
-        x.tmax = hls::from_double<F, R>(th * uni(0.5, 2));
-        break;
-      case 2:  // tight around the hit
-        x.tmin = hls::from_double<F, R>(th * (1 - std::ldexp(1.0, -int(rng_() % 20))));
-        x.tmax = hls::from_double<F, R>(th * (1 + std::ldexp(1.0, -int(rng_() % 20))));
-        break;
-      default:  // usual: tmin small, tmax above the hit
-        x.tmin = hls::from_double<F, R>(std::ldexp(uni(0, 1), -10) * th);
-        x.tmax = hls::from_double<F, R>(th * uni(1.01, 4));
-        break;
-    }
-    return x;
-  }
-
-  uint64_t raw() { return rng_(); }
-
- private:
-  double uni(double a, double b) { return a + (b - a) * (double(rng_() >> 11) * 0x1p-53); }
-  uint32_t bits() { return uint32_t(rng_()) & F::mask; }
-  std::mt19937_64 rng_;
-};
 
 template <class V, class F>
 void drive(V& m, const IstIn& x) {

@@ -30,6 +30,7 @@
 #include "hls/image.h"
 #include "hls/vtu.h"
 #include "hls/wald.h"
+#include "tb/rtl/stimulus.h"
 
 #include "rtl_vtu_models.h"
 
@@ -51,15 +52,6 @@ template <class P, class U>
 void set(P& port, U v) {
   port = static_cast<P>(v);
 }
-
-template <class F>
-struct Record {
-  bool tri = false;
-  uint64_t node = 0;
-  hls::WaldTri<F> t;
-  uint32_t cam[3] = {0, 0, 0};
-  bool on = true;
-};
 
 template <class F>
 struct Out {
@@ -120,52 +112,6 @@ Out<F> expect(const Record<F>& r) {
     o.node = v.node(r.node);
   return o;
 }
-
-template <class F, Rounding R>
-class Gen {
- public:
-  explicit Gen(uint64_t seed) : rng_(seed) {}
-  // A format value: magnitude 1e-3..1e4 (log-uniform), random sign; 1/32 a signed zero, 1/64 a
-  // raw bit pattern of the format (any exponent, incl. the zero field with a nonzero mantissa).
-  uint32_t value() {
-    const uint32_t sel = uint32_t(rng_() & 63u);
-    if (sel == 0) return uint32_t(rng_()) & F::mask;
-    if (sel <= 2) return (rng_() & 1u) ? F::sign_mask : 0u;
-    const double mag = std::pow(10.0, std::uniform_real_distribution<double>(-3.0, 4.0)(rng_));
-    return hls::Arith<F, R>::from_double((rng_() & 1u) ? -mag : mag);
-  }
-  uint32_t cam_coord() { return (rng_() & 15u) == 0 ? 0u : value(); }
-  Record<F> next() {
-    if ((rng_() & 7u) == 0)
-      for (uint32_t& c : cam_) c = cam_coord();
-    if ((rng_() & 255u) == 0) on_ = !on_;
-    if (!on_ && (rng_() & 7u) != 0) on_ = true;  // off for short stretches
-    Record<F> r;
-    for (int i = 0; i < 3; ++i) r.cam[i] = cam_[i];
-    r.on = on_;
-    r.tri = (rng_() & 1u) != 0;
-    if (r.tri) {
-      r.t.k = uint32_t(rng_() % 3u);
-      r.t.flags = uint32_t(rng_() & 0xFFu);
-      r.t.id = uint32_t(rng_());
-      for (uint32_t& c : r.t.c) c = value();
-    } else {
-      const uint64_t axis = rng_() & 3u;
-      uint64_t hi = (uint64_t(rng_()) << 32) & ~(uint64_t(3) << 56);
-      hi |= axis << 56;
-      // Leaves: any count; inner nodes: a split in the format (bits above its width zero).
-      const uint32_t lo = axis == hls::node_leaf_axis ? uint32_t(rng_()) : value();
-      r.node = hi | lo;
-    }
-    return r;
-  }
-  std::mt19937_64& rng() { return rng_; }
-
- private:
-  std::mt19937_64 rng_;
-  uint32_t cam_[3] = {0, 0, 0};
-  bool on_ = true;
-};
 
 template <class V, class F, Rounding R>
 class VtuCosim {

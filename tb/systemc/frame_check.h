@@ -1,0 +1,173 @@
+// tb/systemc/frame_check.h - runs the cycle model on a small frame in a forked child (SystemC
+// allows one elaboration per process) and checks it against the golden tracer: every pixel's tri,
+// t bits, shadow decision and shade, every ray retired exactly once. Shared by test_systemc and
+// test_pins.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstring>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "hls/image.h"
+#include "scenes/generate.h"
+#include "scenes/scene.h"
+#include "sim/golden/golden.h"
+#include "systemc/simulate.h"
+
+namespace raycore::tb {
+
+namespace hls = raycore::hls;
+namespace sim = raycore::sim;
+namespace sc = raycore::sc;
+namespace scenes = raycore::scenes;
+using hls::FormatId;
+using hls::Rounding;
+using hls::Vec3;
+
+struct Summary {
+  bool ok = false;
+  char error[256] = {};
+  uint64_t cycles = 0, issued = 0, retired = 0, primary = 0, shadow = 0;
+  uint64_t mismatches = 0, bad_retire = 0;  // pixels retired other than exactly once per ray
+  uint64_t hash = 0;                        // of every pixel's results
+  uint64_t tri_tests = 0, bus_bytes = 0;
+  int first_x = -1, first_y = -1;
+};
+
+inline uint64_t frame_hash(const sim::Frame& f) {
+  uint64_t h = 1469598103934665603ull;
+  auto mix = [&](uint64_t v) {
+    h ^= v;
+    h *= 1099511628211ull;
+  };
+  for (const auto& p : f.px) {
+    mix(uint64_t(uint32_t(p.tri)));
+    mix(p.t_bits);
+    mix(uint64_t(p.shadow_ray) | uint64_t(p.lit) << 1 | uint64_t(p.shade) << 8);
+    mix(uint64_t(uint32_t(p.shadow_tri)));
+  }
+  return h;
+}
+
+struct Case {
+  const scenes::Scene* scene;
+  const hls::Image* image;
+  sim::TraceConfig tc;
+  sc::SimConfig cfg;
+};
+
+// Runs the cycle model in a child process and compares with `golden` there.
+inline Summary run_child(const Case& c, const sim::Frame& golden) {
+  int fd[2];
+  if (pipe(fd) != 0) throw std::runtime_error("pipe");
+  const pid_t pid = fork();
+  if (pid == 0) {
+    close(fd[0]);
+    Summary s;
+    try {
+      const sc::SimResult r = sc::simulate(*c.image, c.scene->camera, c.scene->light, c.tc, c.cfg);
+      s.cycles = r.cycles;
+      s.issued = r.issued;
+      s.retired = r.retired;
+      s.primary = r.primary_rays;
+      s.shadow = r.shadow_rays;
+      s.hash = frame_hash(r.frame);
+      s.bus_bytes = r.bus.bytes;
+      for (const auto& u : r.rtus) s.tri_tests += u.tri_tests;
+      std::vector<sc::PixelDiff> d = sc::diff_frames(r.frame, golden, 1, &s.mismatches);
+      if (!d.empty()) {
+        s.first_x = d[0].x;
+        s.first_y = d[0].y;
+      }
+      for (size_t i = 0; i < r.frame.px.size(); ++i)
+        if (r.primary_retired[i] != 1 || r.shadow_retired[i] != (r.frame.px[i].shadow_ray ? 1 : 0))
+          ++s.bad_retire;
+      s.ok = true;
+    } catch (const std::exception& e) {
+      std::strncpy(s.error, e.what(), sizeof s.error - 1);
+    }
+    if (write(fd[1], &s, sizeof s) != ssize_t(sizeof s)) _exit(3);
+    close(fd[1]);
+    _exit(0);
+  }
+  close(fd[1]);
+  Summary s;
+  const ssize_t n = read(fd[0], &s, sizeof s);
+  close(fd[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  if (n != ssize_t(sizeof s)) {
+    s = Summary{};
+    std::snprintf(s.error, sizeof s.error, "child died (status %d)", status);
+  }
+  return s;
+}
+
+inline sim::TraceConfig config(FormatId f, Rounding r, bool vtu, int w, int h) {
+  sim::TraceConfig c;
+  c.format = f;
+  c.rounding = r;
+  c.vtu = vtu;
+  c.width = w;
+  c.height = h;
+  c.threads = 1;
+  return c;
+}
+
+inline const scenes::Scene& corridor() {
+  static const scenes::Scene s = scenes::generate("corridor");
+  return s;
+}
+
+// A floor, a box standing on it and a wall behind: shadows, edges, a light above one side.
+inline scenes::Scene tiny_scene() {
+  scenes::Scene s;
+  s.name = "tiny";
+  auto quad = [&](Vec3 a, Vec3 b, Vec3 c, Vec3 d) {
+    s.tris.push_back({a, b, c});
+    s.tris.push_back({a, c, d});
+  };
+  quad({-4, 0, -8}, {4, 0, -8}, {4, 0, 0}, {-4, 0, 0});      // floor
+  quad({-4, 0, -8}, {-4, 4, -8}, {4, 4, -8}, {4, 0, -8});    // back wall
+  const double x0 = -1, x1 = 0.5, z0 = -5, z1 = -3.5, y1 = 1.5;  // box
+  quad({x0, y1, z0}, {x1, y1, z0}, {x1, y1, z1}, {x0, y1, z1});
+  quad({x0, 0, z1}, {x1, 0, z1}, {x1, y1, z1}, {x0, y1, z1});
+  quad({x1, 0, z1}, {x1, 0, z0}, {x1, y1, z0}, {x1, y1, z1});
+  quad({x0, 0, z0}, {x0, 0, z1}, {x0, y1, z1}, {x0, y1, z0});
+  s.camera.present = true;
+  s.camera.position = {0.3, 1.7, 2.5};
+  s.light.present = true;
+  s.light.position = {2.5, 5, -2};
+  return s;
+}
+
+// Golden tracer in this process, cycle model in a child; asserts golden_match and that every ray
+// retired exactly once.
+inline Summary expect_match(const scenes::Scene& s, const sim::TraceConfig& tc, sc::SimConfig cfg = {}) {
+  static std::map<std::string, hls::Image> images;  // built once per scene, format and policy
+  const std::string key = s.name + hls::format_name(tc.format) + hls::rounding_name(tc.rounding);
+  if (!images.count(key)) images[key] = hls::build_image(s.tris, tc.format, tc.rounding);
+  const hls::Image& img = images[key];
+  const sim::Frame golden = sim::trace_golden(img, s.camera, s.light, tc);
+  const Summary r = run_child({&s, &img, tc, cfg}, golden);
+  const std::string what = s.name + " " + hls::format_name(tc.format) + "-" + hls::rounding_name(tc.rounding) +
+                           (tc.vtu ? "-vtu-" : "-novtu-") + sim::to_string(tc.spawn.spawn) +
+                           (tc.spawn.segment ? "-segment" : "") + " seed " + std::to_string(cfg.seed) +
+                           " rtus " + std::to_string(cfg.rtus);
+  EXPECT_TRUE(r.ok) << what << ": " << r.error;
+  EXPECT_EQ(r.mismatches, 0u) << what << ": first differing pixel (" << r.first_x << ", "
+                              << r.first_y << ") (run `raycore compare` for details)";
+  EXPECT_EQ(r.bad_retire, 0u) << what;
+  EXPECT_EQ(r.issued, r.retired) << what;
+  EXPECT_EQ(r.primary, uint64_t(tc.width) * uint64_t(tc.height)) << what;
+  EXPECT_GT(r.cycles, 0u) << what;
+  return r;
+}
+
+}  // namespace raycore::tb

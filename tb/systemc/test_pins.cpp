@@ -1,0 +1,358 @@
+// tb/systemc/test_pins.cpp - the pin-level units of the cycle model (systemc/pins/).
+//
+// Built twice (tb/systemc/CMakeLists.txt):
+//   test_pins      (label unit): frames with the SystemC twins (--pins vtu,ist) in the units'
+//                  places give the same cycles, bus bytes, tests and bits as the transaction model
+//                  (and the golden tracer's frame), across formats, roundings, STAGES, VTU on/off
+//                  and randomised memory latency; bad latencies are refused with a message.
+//   test_pins_rtl  (label rtl, RAYCORE_TEST_RTL): the same with the Verilated RTL (--rtl) bound in
+//                  place, every subset of {vtu, ist}; and unit lockstep tests: the SystemC twin and
+//                  the Verilated --sc model side by side on the same clock, the same random
+//                  stimulus (tb/rtl/stimulus.h) with random input gaps and random out_ready
+//                  back-pressure; in_ready_o, out_valid_o and every output transaction are compared
+//                  cycle by cycle, and the first difference is printed.
+#define SC_INCLUDE_DYNAMIC_PROCESSES  // sc_spawn
+#include <gtest/gtest.h>
+
+#include <systemc>
+
+#include <cstdlib>
+#include <functional>
+#include <random>
+#include <sstream>
+#include <string>
+
+#include "systemc/pins/clock.h"
+#include "systemc/pins/ist.h"
+#include "systemc/pins/rtl.h"
+#include "systemc/pins/vtu.h"
+#include "tb/systemc/frame_check.h"
+
+#ifdef RAYCORE_TEST_RTL
+#include "rtl_frame_models.h"
+#include "tb/rtl/stimulus.h"
+#endif
+
+namespace {
+
+using namespace raycore::tb;  // NOLINT: the frame-check helpers
+namespace pins = raycore::sc::pins;
+using raycore::sc::UnitView;
+
+// The transaction model's frame, then the same configuration with the given views: equal.
+void expect_same_frame(const scenes::Scene& s, const sim::TraceConfig& tc, sc::SimConfig cfg,
+                       UnitView vtu, UnitView ist) {
+  const Summary model = expect_match(s, tc, cfg);
+  cfg.vtu_view = vtu;
+  cfg.ist_view = ist;
+  const Summary p = expect_match(s, tc, cfg);
+  const std::string what = std::string("vtu ") + sc::unit_view_name(vtu) + ", ist " +
+                           sc::unit_view_name(ist);
+  EXPECT_EQ(p.cycles, model.cycles) << what;
+  EXPECT_EQ(p.hash, model.hash) << what;
+  EXPECT_EQ(p.bus_bytes, model.bus_bytes) << what;
+  EXPECT_EQ(p.tri_tests, model.tri_tests) << what;
+}
+
+#ifndef RAYCORE_TEST_RTL
+
+TEST(PinsFrame, TwinsFp24RtzVtuOn) {
+  expect_same_frame(corridor(), config(FormatId::fp24, Rounding::rtz, true, 48, 30), {},
+                    UnitView::twin, UnitView::twin);
+}
+TEST(PinsFrame, TwinsEachUnitFp24RneRandomLatency) {
+  sc::SimConfig cfg;
+  cfg.seed = 5;
+  cfg.rtus = 2;
+  const auto tc = config(FormatId::fp24, Rounding::rne, true, 32, 20);
+  expect_same_frame(corridor(), tc, cfg, UnitView::twin, UnitView::model);
+  expect_same_frame(corridor(), tc, cfg, UnitView::model, UnitView::twin);
+}
+TEST(PinsFrame, TwinsFp32StagesOneAndThree) {
+  sc::SimConfig cfg;
+  cfg.vtu_depth = 3;
+  cfg.ist_latency = 10;
+  expect_same_frame(tiny_scene(), config(FormatId::fp32, Rounding::rne, true, 32, 24), cfg,
+                    UnitView::twin, UnitView::twin);
+  cfg.vtu_depth = 9;
+  cfg.ist_latency = 30;
+  expect_same_frame(tiny_scene(), config(FormatId::fp24, Rounding::rtz, true, 32, 24), cfg,
+                    UnitView::twin, UnitView::twin);
+}
+TEST(PinsFrame, TwinsVtuOffBypassesTheUnit) {
+  expect_same_frame(corridor(), config(FormatId::fp24, Rounding::rtz, false, 32, 20), {},
+                    UnitView::twin, UnitView::twin);
+}
+TEST(PinsFrame, LatencyNotAMultipleOfTheLevelsIsRefused) {
+  static const scenes::Scene s = tiny_scene();
+  const auto tc = config(FormatId::fp24, Rounding::rtz, true, 8, 8);
+  const hls::Image img = hls::build_image(s.tris, tc.format, tc.rounding);
+  const sim::Frame golden = sim::trace_golden(img, s.camera, s.light, tc);
+  sc::SimConfig cfg;
+  cfg.vtu_view = UnitView::twin;
+  cfg.vtu_depth = 4;
+  Summary r = run_child({&s, &img, tc, cfg}, golden);
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(std::string(r.error).find("--vtu-depth must be 3 x STAGES"), std::string::npos) << r.error;
+  cfg = {};
+  cfg.ist_view = UnitView::twin;
+  cfg.ist_latency = 24;
+  r = run_child({&s, &img, tc, cfg}, golden);
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(std::string(r.error).find("--ist-latency must be 10 x STAGES"), std::string::npos)
+      << r.error;
+}
+
+#else  // RAYCORE_TEST_RTL
+
+TEST(PinsFrameRtl, VtuAndIstFp24RtzVtuOn) {
+  expect_same_frame(corridor(), config(FormatId::fp24, Rounding::rtz, true, 48, 30), {},
+                    UnitView::rtl, UnitView::rtl);
+}
+TEST(PinsFrameRtl, EachSubsetFp24RneRandomLatency) {
+  sc::SimConfig cfg;
+  cfg.seed = 7;
+  cfg.rtus = 2;
+  const auto tc = config(FormatId::fp24, Rounding::rne, true, 32, 20);
+  expect_same_frame(corridor(), tc, cfg, UnitView::rtl, UnitView::model);
+  expect_same_frame(corridor(), tc, cfg, UnitView::model, UnitView::rtl);
+  expect_same_frame(corridor(), tc, cfg, UnitView::rtl, UnitView::twin);
+}
+TEST(PinsFrameRtl, MissingVariantIsNamed) {
+  static const scenes::Scene s = tiny_scene();
+  const auto tc = config(FormatId::fp32, Rounding::rne, false, 8, 8);
+  const hls::Image img = hls::build_image(s.tris, tc.format, tc.rounding);
+  const sim::Frame golden = sim::trace_golden(img, s.camera, s.light, tc);
+  sc::SimConfig cfg;
+  cfg.ist_view = UnitView::rtl;
+  const Summary r = run_child({&s, &img, tc, cfg}, golden);
+  EXPECT_FALSE(r.ok);
+  EXPECT_NE(std::string(r.error).find("no Verilated ist for fp32 rne STAGES=2"), std::string::npos)
+      << r.error;
+  EXPECT_NE(std::string(r.error).find("built: "), std::string::npos) << r.error;
+}
+
+// ---- lockstep: twin vs Verilated model --------------------------------------------------------
+
+uint64_t lockstep_count() {
+  const char* s = std::getenv("RAYCORE_LOCKSTEP_N");
+  return s && *s ? std::strtoull(s, nullptr, 10) : 20000;
+}
+
+struct LockResult {
+  uint64_t sent = 0, received = 0, cycles = 0, stalled_out = 0, stalled_in = 0;
+  std::string failure;  // the first difference
+  double seconds = 0;
+};
+
+// Runs n items through a and b (same clock, same inputs); Item has a tag. drive(port, item)
+// writes the inputs, same(a_out, b_out) compares transactions, show() prints one.
+template <class Port, class Item, class Next, class Drive, class Same, class Show>
+LockResult lockstep(pins::PinClock& clk, Port& a, Port& b, uint64_t n, std::mt19937_64& rng,
+                    Next next, Drive drive, Same same, Show show) {
+  LockResult r;
+  const auto t0 = std::chrono::steady_clock::now();
+  clk.reset();
+  Item cur{};
+  bool have = false;
+  unsigned rate_in = 100, rate_out = 100;
+  while (r.received < n) {
+    if (r.cycles % 256 == 0) {  // bursty: new rates (some full rate)
+      rate_in = (rng() & 3) == 0 ? 100 : unsigned(20 + rng() % 81);
+      rate_out = (rng() & 3) == 0 ? 100 : unsigned(10 + rng() % 91);
+    }
+    const bool ready = rng() % 100 < rate_out;
+    a.out_ready(ready);
+    b.out_ready(ready);
+    if (!have && r.sent < n && rng() % 100 < rate_in) {
+      cur = next();
+      cur.tag = uint32_t(r.sent & 0xFFFFu);
+      have = true;
+    }
+    if (have) {
+      drive(a, cur);
+      drive(b, cur);
+    } else {
+      a.idle();
+      b.idle();
+    }
+    pins::PinClock::settle();
+    std::ostringstream where;
+    where << "cycle " << r.cycles << " (item " << r.sent << " waiting, " << r.received
+          << " out): ";
+    if (a.in_ready() != b.in_ready()) {
+      r.failure = where.str() + "in_ready_o twin " + std::to_string(a.in_ready()) + " rtl " +
+                  std::to_string(b.in_ready());
+      break;
+    }
+    if (a.out_valid() != b.out_valid()) {
+      r.failure = where.str() + "out_valid_o twin " + std::to_string(a.out_valid()) + " rtl " +
+                  std::to_string(b.out_valid());
+      break;
+    }
+    if (a.out_valid() && ready) {
+      const auto oa = a.out(), ob = b.out();
+      if (!same(oa, ob)) {
+        r.failure = where.str() + "output transaction " + std::to_string(r.received) +
+                    " differs:\n  twin " + show(oa) + "\n  rtl  " + show(ob);
+        break;
+      }
+      if (oa.tag != uint32_t(r.received & 0xFFFFu)) {
+        r.failure = where.str() + "out of order: tag " + std::to_string(oa.tag);
+        break;
+      }
+      ++r.received;
+    }
+    if (a.out_valid() && !ready) ++r.stalled_out;
+    if (have && !a.in_ready()) ++r.stalled_in;
+    if (have && a.in_ready()) {
+      have = false;
+      ++r.sent;
+    }
+    clk.edge();
+    if (++r.cycles > 100 * n + 1000) {
+      r.failure = where.str() + "no progress";
+      break;
+    }
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return r;
+}
+
+void report(const char* name, const LockResult& r, uint64_t n) {
+  std::printf("LOCKSTEP %s transactions=%llu cycles=%llu out_stalls=%llu in_stalls=%llu "
+              "%.0f cycles/s (two models)\n",
+              name, (unsigned long long)r.received, (unsigned long long)r.cycles,
+              (unsigned long long)r.stalled_out, (unsigned long long)r.stalled_in,
+              r.seconds > 0 ? double(r.cycles) / r.seconds : 0.0);
+  EXPECT_EQ(r.failure, "") << name;
+  EXPECT_EQ(r.received, n) << name;
+  EXPECT_GT(r.stalled_out, n / 20) << name << ": back-pressure exercised too rarely";
+}
+
+std::string hex(uint64_t v) {
+  char b[24];
+  std::snprintf(b, sizeof b, "%llx", (unsigned long long)v);
+  return b;
+}
+
+template <class F, Rounding R, class V>
+void vtu_lockstep(const char* name) {
+  const uint64_t n = lockstep_count();
+  pins::PinClock clk(sc_core::sc_time(2, sc_core::SC_NS));
+  pins::VtuPortT<pins::VtuTwin<F, R>> twin("twin", "twin", clk.clk, clk.rst_n, 2u);
+  pins::VtuPortT<V> rtl("rtl", "rtl", clk.clk, clk.rst_n);
+  LockResult res;
+  sc_core::sc_spawn([&] {
+    std::mt19937_64 rng(2026);
+    raycore::rtltest::Gen<F, R> gen(11);
+    struct Item {
+      pins::VtuRec rec;
+      bool on = true;
+      uint32_t cam[3] = {0, 0, 0};
+      uint32_t tag = 0;
+    };
+    auto next = [&] {
+      const auto g = gen.next();
+      Item it;
+      it.rec.kind = g.tri;
+      it.rec.node = g.node;
+      it.rec.k = g.t.k;
+      it.rec.flags = g.t.flags;
+      for (int i = 0; i < 9; ++i) it.rec.c[i] = g.t.c[i];
+      it.rec.id = g.t.id;
+      it.on = g.on;
+      for (int i = 0; i < 3; ++i) it.cam[i] = g.cam[i];
+      return it;
+    };
+    auto drive = [](pins::VtuPort& p, const Item& it) {
+      pins::VtuRec r = it.rec;
+      r.tag = it.tag;
+      p.config(it.on, it.cam);
+      p.drive(r);
+    };
+    auto same = [](const pins::VtuRec& x, const pins::VtuRec& y) {
+      if (x.kind != y.kind || x.tag != y.tag) return false;
+      if (!x.kind) return x.node == y.node;
+      if (x.k != y.k || x.flags != y.flags || x.id != y.id) return false;
+      for (int i = 0; i < 9; ++i)
+        if (x.c[i] != y.c[i]) return false;
+      return true;
+    };
+    auto show = [](const pins::VtuRec& x) {
+      std::string s = "tag " + std::to_string(x.tag) + (x.kind ? " tri k " : " node ");
+      if (!x.kind) return s + hex(x.node);
+      s += std::to_string(x.k) + " flags " + hex(x.flags) + " id " + std::to_string(x.id) + " c";
+      for (uint32_t c : x.c) s += " " + hex(c);
+      return s;
+    };
+    res = lockstep<pins::VtuPort, Item>(clk, twin, rtl, n, rng, next, drive, same, show);
+    sc_core::sc_stop();
+  });
+  sc_core::sc_start();
+  report(name, res, n);
+}
+
+template <class A, class V>
+void ist_lockstep(const char* name) {
+  using F = typename A::Fmt;
+  const uint64_t n = lockstep_count();
+  pins::PinClock clk(sc_core::sc_time(2, sc_core::SC_NS));
+  pins::IstPortT<pins::IstTwin<A>> twin("twin", "twin", clk.clk, clk.rst_n, 2u);
+  pins::IstPortT<V> rtl("rtl", "rtl", clk.clk, clk.rst_n);
+  LockResult res;
+  uint64_t by_exit[5] = {};
+  sc_core::sc_spawn([&] {
+    std::mt19937_64 rng(2027);
+    raycore::rtltest::Stimulus<F, A::rounding> gen(13);
+    auto next = [&] {
+      const raycore::rtltest::IstIn g = gen.next();
+      pins::IstIn in;
+      in.k = g.k;
+      for (int i = 0; i < 9; ++i) in.c[i] = g.c[i];
+      for (int i = 0; i < 3; ++i) {
+        in.o[i] = g.o[i];
+        in.d[i] = g.d[i];
+      }
+      in.tmin = g.tmin;
+      in.tmax = g.tmax;
+      return in;
+    };
+    auto drive = [](pins::IstPort& p, const pins::IstIn& in) { p.drive(in); };
+    auto same = [&](const pins::IstOutRec& x, const pins::IstOutRec& y) {
+      if (x.exit < 5) ++by_exit[x.exit];
+      return x.exit == y.exit && x.t == y.t && x.den == y.den && x.tag == y.tag;
+    };
+    auto show = [](const pins::IstOutRec& x) {
+      return "tag " + std::to_string(x.tag) + " exit " + std::to_string(x.exit) + " t " +
+             hex(x.t) + " den " + hex(x.den);
+    };
+    res = lockstep<pins::IstPort, pins::IstIn>(clk, twin, rtl, n, rng, next, drive, same, show);
+    sc_core::sc_stop();
+  });
+  sc_core::sc_start();
+  report(name, res, n);
+  for (int e = 0; e < 5; ++e) EXPECT_GT(by_exit[e], n / 100) << name << ": exit code " << e;
+}
+
+TEST(Lockstep, VtuFp24Rtz) {
+  vtu_lockstep<hls::FP24, Rounding::rtz, Vvtu_fp24_rtz_s2_sc>("vtu_fp24_rtz_s2");
+}
+TEST(Lockstep, VtuFp24Rne) {
+  vtu_lockstep<hls::FP24, Rounding::rne, Vvtu_fp24_rne_s2_sc>("vtu_fp24_rne_s2");
+}
+TEST(Lockstep, IstFp24Rtz) {
+  ist_lockstep<hls::Arith<hls::FP24, Rounding::rtz>, Vist_fp24_rtz_s2_sc>("ist_fp24_rtz_s2");
+}
+TEST(Lockstep, IstFp24Rne) {
+  ist_lockstep<hls::Arith<hls::FP24, Rounding::rne>, Vist_fp24_rne_s2_sc>("ist_fp24_rne_s2");
+}
+
+#endif  // RAYCORE_TEST_RTL
+
+}  // namespace
+
+extern "C" int sc_main(int argc, char* argv[]) {
+  ::testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
