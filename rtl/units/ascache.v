@@ -14,7 +14,7 @@
 // A fill (fill_valid_i, fill_tag_i = the MSHR index, fill_data_i = the whole line) installs the
 // MSHR's line in the set's victim way (ascache_victim: first invalid way, else LRU) and frees the
 // MSHR; a fill of a free MSHR is ignored (Ascache::fill throws). Fill has no ready: it is always
-// taken, as Ascache::fill.
+// taken, as Ascache::fill. A fill comes after its request was taken (req_valid_o && req_ready_i).
 //
 // Order within one clock edge (the cycle model ticks the vtu's fills before the requesters'
 // accesses): request pop, fill, then access. So an access sees the line installed by the fill of
