@@ -17,11 +17,23 @@ namespace raycore::hls {
 //                (Waechter & Binder 2019, adapted to the format; fixed offset near zero)
 //   error_bound  origin moved along the normal just past a conservative bound of the hit point's
 //                distance from the plane, derived from the operations and the rounding mode used
-enum class Spawn : uint8_t { none, skip_origin, ulp_offset, error_bound };
+//   skip_offset  skip_origin and ulp_offset together (the own triangle by id; neighbours and
+//                coplanar triangles by the small offset)
+//   skip_slab    skip_origin, and t_min raised so the ray starts `ulps` ulps of the hit point's
+//                largest coordinate above the plane (detail::slab_tmin): occluders crossed within
+//                that slab (the neighbours and coplanar triangles the rounded hit point lies
+//                behind) are not hit; the origin stays where it is
+//   skip_back    skip_slab with a slab of kBackSlabUlps, and the hit point computed at t backed
+//                off by `ulps` ulps of t (on the bit pattern): a point on the primary ray just
+//                before the surface, on the side the ray came from (the light's side whenever a
+//                shadow ray is spawned), in front of the neighbours the camera sees around it.
+//                Meant for rne, whose hit points lie on either side of the plane.
+enum class Spawn : uint8_t { none, skip_origin, ulp_offset, error_bound, skip_offset, skip_slab, skip_back };
 
 struct SpawnParams {
   Spawn spawn = Spawn::none;
-  int32_t ulps = 0;  // ulp_offset: offset in ulps of the format for a unit normal component
+  int32_t ulps = 0;  // ulp_offset, skip_offset: offset in ulps of the format for a unit normal
+                     // component; skip_slab: slab height in ulps of max |h_i|
   bool segment = false;  // shadow ray as the segment h + t (light - h), t < 1; else unit direction
 };
 
@@ -62,7 +74,26 @@ inline uint32_t add_ulps(uint32_t p, int32_t ulps) {
   return signed_zero<F>(neg) | uint32_t(m);
 }
 
+// skip_slab's t_min: the shadow ray (direction d, dens = n . d) is at height t |dens| / |n| above
+// the plane, |n| = |(1, n_u, n_v)| in [1, sqrt 3]; so t_min' = 2 slab / max(|dens|, 1/16), slab =
+// ulps ulps of max_i |h_i|, clears a slab of at least that height (the neighbours and coplanar
+// triangles the rounded hit point lies behind), for the unit direction and the segment alike.
+// |dens| is floored at 1/16 (a grazing light would otherwise skip a long stretch of the ray:
+// measured, that leaks light through real occluders). Hardware: a max of three exponents, a max, one
+// reciprocal, two multiplies, a comparison (returns the larger of t_min and t_min').
+template <class A>
+inline uint32_t slab_tmin(const uint32_t h[3], uint32_t dens, int32_t ulps, uint32_t tmin) {
+  using F = typename A::Fmt;
+  const uint32_t hmax = A::max(A::max(A::abs(h[0]), A::abs(h[1])), A::abs(h[2]));
+  const uint32_t slab = A::mul(A::from_double(2.0 * double(ulps)), ulp<F>(hmax));
+  const uint32_t t0 = A::mul(slab, A::rcp(A::max(A::abs(dens), A::from_double(1.0 / 16))));
+  return A::lt(tmin, t0) ? t0 : tmin;
+}
+
 }  // namespace detail
+
+// skip_back's slab (skip_slab's default): the back-off alone leaves the grazing-light neighbours.
+constexpr int32_t kBackSlabUlps = 4;
 
 // The unit roundoff of the rounding policy as a number of the format: 2^-M (rtz), 2^-(M+1) (rne).
 template <class A>
@@ -77,8 +108,9 @@ inline ShadowSetup hit_shadow(const Ray& pr, uint32_t t, const HitTri& tri, cons
                               uint32_t tmin, const SpawnParams& sp) {
   using F = typename A::Fmt;
   ShadowSetup s{};
-  // Hit point.
-  for (int i = 0; i < 3; ++i) s.h[i] = A::add(pr.o[i], A::mul(t, pr.d[i]));
+  // Hit point (skip_back: at t - ulps ulps of t, on the bit pattern).
+  const uint32_t th = sp.spawn == Spawn::skip_back ? detail::add_ulps<F>(t, -sp.ulps) : t;
+  for (int i = 0; i < 3; ++i) s.h[i] = A::add(pr.o[i], A::mul(th, pr.d[i]));
   // Direction to the light. unit (default): normalised, t in (tmin, distance to the light), so
   // t_min is in world units; segment: light - h unnormalised, t in (tmin, 1), so t_min is a
   // fraction of the distance to the light and no square root is needed.
@@ -116,6 +148,17 @@ inline ShadowSetup hit_shadow(const Ray& pr, uint32_t t, const HitTri& tri, cons
     case Spawn::skip_origin:
       s.skip_id = tri.id;
       break;
+    case Spawn::skip_slab:
+      s.skip_id = tri.id;
+      r.tmin = detail::slab_tmin<A>(s.h, s.dens, sp.ulps, r.tmin);
+      break;
+    case Spawn::skip_back:  // the back-off is in the hit point above
+      s.skip_id = tri.id;
+      r.tmin = detail::slab_tmin<A>(s.h, s.dens, kBackSlabUlps, r.tmin);
+      break;
+    case Spawn::skip_offset:
+      s.skip_id = tri.id;
+      [[fallthrough]];
     case Spawn::ulp_offset: {
       // Waechter & Binder: of_i = int(ulps * n_i) ulps of p_i; near zero (|p_i| < 2^-5) a fixed
       // offset of ulps * n_i * ulp(2^-5) instead.

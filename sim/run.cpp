@@ -26,11 +26,20 @@ void add_run_options(CLI::App& c, RunOptions& o) {
   c.add_option("--vtu", o.vtu, "viewport transfer unit: on or off")
       ->check(CLI::IsMember({"on", "off"}))
       ->capture_default_str();
-  c.add_option("--spawn", o.spawn, "shadow-ray spawn: none, skip-origin, ulp-offset, error-bound")
-      ->check(CLI::IsMember({"none", "skip-origin", "ulp-offset", "error-bound"}))
+  c.add_option("--spawn", o.spawn,
+               "shadow-ray spawn: none (t_min only, the paper's), skip-origin (skip the hit "
+               "triangle by id), ulp-offset (origin moved along the normal by --spawn-ulps ulps), "
+               "error-bound (origin moved past a conservative error bound), skip-offset "
+               "(skip-origin + ulp-offset), skip-slab (skip-origin + t_min raised to clear a slab "
+               "of --spawn-ulps ulps of the hit point above the plane), skip-back (skip-slab with "
+               "a 4-ulp slab + the hit point backed off along the primary ray by --spawn-ulps "
+               "ulps of t; for rne)")
+      ->check(CLI::IsMember({"none", "skip-origin", "ulp-offset", "error-bound", "skip-offset", "skip-slab", "skip-back"}))
       ->capture_default_str();
   c.add_option("--spawn-ulps", o.spawn_ulps,
-               "ulp-offset: ulps for a unit normal component (0: 2 for fp24, 256 for fp32)")
+               "ulp-offset, skip-offset: ulps for a unit normal component (0: 2 for fp24, 256 for "
+               "fp32); skip-slab: slab height in ulps of the hit point's largest coordinate (0: 4); "
+               "skip-back: back-off in ulps of t (0: 1)")
       ->check(CLI::Range(0, 1 << 20));
   c.add_option("--shadow-ray", o.shadow_ray,
                "shadow-ray direction: unit (normalised; t_min in world units) or segment "
@@ -59,7 +68,7 @@ TraceConfig trace_config(const RunOptions& o) {
   c.rounding = hls::rounding_from_string(o.rounding);
   c.vtu = o.vtu == "on";
   c.spawn.spawn = spawn_from_string(o.spawn);
-  c.spawn.ulps = o.spawn_ulps > 0 ? o.spawn_ulps : default_spawn_ulps(c.format);
+  c.spawn.ulps = o.spawn_ulps > 0 ? o.spawn_ulps : default_spawn_ulps(c.format, c.spawn.spawn);
   c.spawn.segment = o.shadow_ray == "segment";
   if (!std::isfinite(o.tmin) || o.tmin < 0) throw cli::UserError("--tmin must be a finite number >= 0");
   c.tmin = o.tmin;
@@ -140,7 +149,7 @@ nlohmann::json config_json(const TraceConfig& c) {
                       {"shadow_ray", c.spawn.segment ? "segment" : "unit"},
                       {"width", c.width},
                       {"height", c.height}};
-  if (c.spawn.spawn == hls::Spawn::ulp_offset) j["spawn_ulps"] = c.spawn.ulps;
+  if (spawn_uses_ulps(c.spawn.spawn)) j["spawn_ulps"] = c.spawn.ulps;
   return j;
 }
 

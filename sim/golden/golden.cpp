@@ -224,13 +224,32 @@ Frame trace_t(const hls::Image& image_in, const scenes::Camera& cam, const scene
 
 hls::SpawnParams resolved_spawn(const TraceConfig& cfg) {
   hls::SpawnParams sp = cfg.spawn;
-  if (sp.spawn == hls::Spawn::ulp_offset && sp.ulps == 0) sp.ulps = default_spawn_ulps(cfg.format);
+  if (sp.ulps == 0) sp.ulps = default_spawn_ulps(cfg.format, sp.spawn);
   return sp;
 }
 
 int32_t default_spawn_ulps(hls::FormatId f) {
   // 256 FP32 ulps = 256 * 2^-23 relative = 2 * 2^-16: two FP24 ulps.
   return f == hls::FormatId::fp24 ? 2 : 256;
+}
+
+int32_t default_spawn_ulps(hls::FormatId f, hls::Spawn s) {
+  switch (s) {
+    case hls::Spawn::ulp_offset:
+    case hls::Spawn::skip_offset:
+      return default_spawn_ulps(f);
+    case hls::Spawn::skip_slab:
+      return 4;
+    case hls::Spawn::skip_back:
+      return 1;  // ulps of the hit point: the format's own rounding, whatever the precision
+    default:
+      return 0;
+  }
+}
+
+bool spawn_uses_ulps(hls::Spawn s) {
+  return s == hls::Spawn::ulp_offset || s == hls::Spawn::skip_offset || s == hls::Spawn::skip_slab ||
+         s == hls::Spawn::skip_back;
 }
 
 uint8_t shade_pixel(bool hit, bool lit, double cos_light) {
@@ -246,6 +265,9 @@ std::string to_string(hls::Spawn s) {
     case hls::Spawn::skip_origin: return "skip-origin";
     case hls::Spawn::ulp_offset: return "ulp-offset";
     case hls::Spawn::error_bound: return "error-bound";
+    case hls::Spawn::skip_offset: return "skip-offset";
+    case hls::Spawn::skip_slab: return "skip-slab";
+    case hls::Spawn::skip_back: return "skip-back";
   }
   return "?";
 }
@@ -255,8 +277,14 @@ hls::Spawn spawn_from_string(const std::string& s) {
   if (s == "skip-origin") return hls::Spawn::skip_origin;
   if (s == "ulp-offset") return hls::Spawn::ulp_offset;
   if (s == "error-bound") return hls::Spawn::error_bound;
-  throw std::invalid_argument("unknown spawn strategy '" + s +
-                              "' (none, skip-origin, ulp-offset, error-bound)");
+  if (s == "skip-offset") return hls::Spawn::skip_offset;
+  if (s == "skip-slab") return hls::Spawn::skip_slab;
+  if (s == "skip-back") return hls::Spawn::skip_back;
+  throw std::invalid_argument("unknown spawn strategy '" + s + "' (" + spawn_choices() + ")");
+}
+
+std::string spawn_choices() {
+  return "none, skip-origin, ulp-offset, error-bound, skip-offset, skip-slab, skip-back";
 }
 
 Frame trace_golden(const hls::Image& image, const scenes::Camera& cam, const scenes::Light& light,

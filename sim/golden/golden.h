@@ -39,6 +39,14 @@ struct TraceStats {
 // scaled to the format's precision (2 ulps for FP24).
 int32_t default_spawn_ulps(hls::FormatId f);
 
+// The default ulps of a strategy when SpawnParams::ulps is 0: default_spawn_ulps(f) for
+// ulp_offset and skip_offset, 4 for skip_slab (a slab of 4 ulps of the hit point in any format),
+// 1 for skip_back (the back-off), 0 for the others (unused).
+int32_t default_spawn_ulps(hls::FormatId f, hls::Spawn s);
+
+// Whether a strategy reads SpawnParams::ulps (ulp_offset, skip_offset, skip_slab, skip_back).
+bool spawn_uses_ulps(hls::Spawn s);
+
 // cfg.spawn with the default ulps filled in (the spawn parameters every model uses).
 hls::SpawnParams resolved_spawn(const TraceConfig& cfg);
 
@@ -50,5 +58,6 @@ uint8_t shade_pixel(bool hit, bool lit, double cos_light);
 
 std::string to_string(hls::Spawn s);
 hls::Spawn spawn_from_string(const std::string& s);  // throws std::invalid_argument
+std::string spawn_choices();  // "none, skip-origin, ..." (every --spawn value)
 
 }  // namespace raycore::sim
