@@ -17,7 +17,7 @@
 #   SHARED_SCENES       where sponza-paper.glb is (default: ../shared/scenes next to the repo)
 set -uo pipefail
 
-SECTIONS=(fp_bench frames fp_oracle)
+SECTIONS=(fp_bench frames cosim fp_oracle)
 
 usage() { echo "usage: $0 BUILD_DIR [--list | SECTION ...]; sections: ${SECTIONS[*]}" >&2; exit 2; }
 [ $# -ge 1 ] || usage
@@ -131,6 +131,43 @@ section_frames() {
   fi
   for v in off on; do
     [ "$(json_get "$OUT/simulate-vtu-$v.json" golden_match)" = "True" ] || { echo "golden_match false (VTU $v)"; rc=1; }
+  done
+  return $rc
+}
+
+# ---- cosim: the frame with pin-level units (SystemC twins, then Verilated RTL) in place ---------
+# sponza-paper 800x480, 6 RTUs, VTU on: the vtu and ist as SystemC twins (--pins) and as Verilated
+# --sc RTL (--rtl) must give the transaction model's cycle count (frames section) and golden_match;
+# reports each run's simulated cycles/s and rays/s. Needs `frames` first (its VTU-on report).
+section_cosim() {
+  header "cosim: sponza-paper 800x480 with vtu+ist as pin-level twins and as Verilated RTL"
+  local rc_bin="$BUILD/bin/raycore"
+  local scenes=${SHARED_SCENES:-$(cd "$(dirname "$0")/.." && pwd)/../shared/scenes}
+  local sponza="$scenes/sponza-paper.glb"
+  if [ ! -x "$rc_bin" ]; then echo "raycore not built: skipped"; return 0; fi
+  if [ ! -f "$sponza" ]; then echo "sponza-paper.glb not found in $scenes (set SHARED_SCENES): skipped"; return 0; fi
+  machine
+  export SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1
+  local rc=0 ref="$OUT/simulate-vtu-on.json" view
+  if [ ! -f "$ref" ]; then
+    "$rc_bin" simulate "$sponza" --vtu on --no-reference --out-dir "$OUT" --report "$ref" \
+      --png "$OUT/simulate-vtu-on.png" || return 1
+  fi
+  for view in pins rtl; do
+    echo "command: $rc_bin simulate $sponza --vtu on --$view vtu,ist --no-reference --out-dir $OUT"
+    "$rc_bin" simulate "$sponza" --vtu on --"$view" vtu,ist --no-reference --out-dir "$OUT" \
+      --report "$OUT/simulate-$view.json" --png "$OUT/simulate-$view.png" || { rc=1; continue; }
+    local c0 c1
+    c0=$(json_get "$ref" hardware.cycles)
+    c1=$(json_get "$OUT/simulate-$view.json" hardware.cycles)
+    printf '%-5s cycles %s (model %s) golden_match %s wall %.1f s, %.0f cycles/s, %.0f rays/s, %s pin clock edges\n' \
+      "$view" "$c1" "$c0" "$(json_get "$OUT/simulate-$view.json" golden_match)" \
+      "$(json_get "$OUT/simulate-$view.json" sim.wall_seconds)" \
+      "$(json_get "$OUT/simulate-$view.json" sim.cycles_per_second)" \
+      "$(json_get "$OUT/simulate-$view.json" sim.rays_per_second)" \
+      "$(json_get "$OUT/simulate-$view.json" sim.pin_clock_edges)"
+    [ "$c0" = "$c1" ] || { echo "cycles differ from the transaction model ($view)"; rc=1; }
+    [ "$(json_get "$OUT/simulate-$view.json" golden_match)" = "True" ] || { echo "golden_match false ($view)"; rc=1; }
   done
   return $rc
 }

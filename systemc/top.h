@@ -67,6 +67,27 @@ class Top : public sc_core::sc_module {
         sc_core::sc_trace(tf_, p->tri_miss, n + "tri_misses");
         rsig_.push_back(std::move(p));
       }
+      // RTU 0's pin-level units: their clock and handshakes (the signals the RTL sees).
+      if (clock_) {
+        sc_core::sc_trace(tf_, clock_->clk, "clk_i");
+        sc_core::sc_trace(tf_, clock_->rst_n, "rst_ni");
+      }
+      if (pins::VtuPort* v = rtus[0]->vtu_port()) {
+        sc_core::sc_trace(tf_, v->s.in_valid, "rtu0_vtu_in_valid_i");
+        sc_core::sc_trace(tf_, v->s.in_kind, "rtu0_vtu_in_kind_i");
+        sc_core::sc_trace(tf_, v->s.in_tag, "rtu0_vtu_in_tag_i");
+        sc_core::sc_trace(tf_, v->s.out_valid, "rtu0_vtu_out_valid_o");
+        sc_core::sc_trace(tf_, v->s.out_tag, "rtu0_vtu_out_tag_o");
+        sc_core::sc_trace(tf_, v->s.out_node, "rtu0_vtu_out_node_o");
+      }
+      if (pins::IstPort* t = rtus[0]->ist_port()) {
+        sc_core::sc_trace(tf_, t->s.in_valid, "rtu0_ist_in_valid_i");
+        sc_core::sc_trace(tf_, t->s.in_tag, "rtu0_ist_in_tag_i");
+        sc_core::sc_trace(tf_, t->s.out_valid, "rtu0_ist_out_valid_o");
+        sc_core::sc_trace(tf_, t->s.out_tag, "rtu0_ist_out_tag_o");
+        sc_core::sc_trace(tf_, t->s.out_exit, "rtu0_ist_out_exit_o");
+        sc_core::sc_trace(tf_, t->s.out_t, "rtu0_ist_out_t_o");
+      }
     }
     SC_THREAD(run);
   }
