@@ -1,7 +1,7 @@
 // tb/robust/pixel_errors.cpp - `robust_pixels`: every shadow error of one golden frame against the
 // reference, pixel by pixel, with what explains it (docs/robustness.md, "Beating the paper").
 //
-//   robust_pixels SCENE [raycore render options]
+//   robust_pixels SCENE [raycore render options] [--literal]
 //
 // Per error pixel (classes as in sim/reference/metrics.h):
 //   no_ray   the hit unit found the light behind (false_shadow_no_ray): same triangle as the
@@ -19,6 +19,7 @@
 #include <map>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -79,7 +80,8 @@ const char* exit_name(hls::IstExit e) {
 }
 
 template <class A>
-void analyse(const sim::RunOptions& o) {
+void analyse(const sim::RunOptions& o, bool literal, const std::vector<int>& pick_in) {
+  const int pick[2] = {pick_in.size() == 2 ? pick_in[0] : -1, pick_in.size() == 2 ? pick_in[1] : -1};
   using F = typename A::Fmt;
   const sim::TraceConfig cfg = sim::trace_config(o);
   const sim::Prepared p = sim::prepare(o, cfg);
@@ -113,7 +115,9 @@ void analyse(const sim::RunOptions& o) {
       const auto& b = r.at(x, y);
       if (a.tri < 0 || b.tri < 0 || !(std::fabs(a.t - b.t) <= ref::kPrimaryDistanceTolerance * b.t)) continue;
       const bool la = a.shadow_ray && a.lit, lr = b.shadow_ray && b.lit;
-      if (la == lr) continue;
+      const bool picked = pick[0] == x && pick[1] == y;
+      if (pick[0] >= 0 && !picked) continue;
+      if (la == lr && !picked) continue;
       const Tri& T = sc.tris[size_t(a.tri)];
       const Vec3 n = hls::normalize(hls::cross(T[1] - T[0], T[2] - T[0]));
       const Vec3 P = a.hit;
@@ -211,6 +215,45 @@ void analyse(const sim::RunOptions& o) {
         rel = exactly_coplanar(T, U) || pd < 1e-6 * (1 + hls::length(P)) ? "same-plane" : "other-surface";
       }
       const std::string kind = !a.shadow_ray ? "no_ray" : near ? "near" : "far";
+      if (picked) {
+        const int32_t occ = a.shadow_tri >= 0 ? a.shadow_tri : b.shadow_tri;
+        std::printf("pixel %d %d: golden tri %d lit %d shadow_tri %d; reference tri %d lit %d shadow_tri %d\n", x, y,
+                    a.tri, int(la), a.shadow_tri, b.tri, int(lr), b.shadow_tri);
+        const auto oi = occ >= 0 ? wt.find(uint32_t(occ)) : wt.end();
+        auto c9 = [](const hls::WaldTri<F>& q) {
+          std::string out = std::to_string(q.k) + ", {";
+          for (int i = 0; i < 9; ++i) {
+            char h[16];
+            std::snprintf(h, sizeof h, "%s%#x", i ? ", " : "", q.c[i]);
+            out += h;
+          }
+          return out + "}";
+        };
+        std::printf("literal %d %d: tri {%s} occ {%s} d {%#x, %#x, %#x} light {%#x, %#x, %#x}\n", x, y,
+                    c9(w).c_str(), oi != wt.end() ? c9(oi->second).c_str() : "none", pr.d[0], pr.d[1],
+                    pr.d[2], setup.light[0], setup.light[1], setup.light[2]);
+        if (la == lr) continue;
+      } else if (literal && a.shadow_ray) {
+        // The bit patterns of this pixel, for a literal regression test (tb/robust): primary ray,
+        // hit triangle, the occluder (the unit's for a false shadow, the reference's for a leak),
+        // the light in the datapath's frame.
+        const int32_t occ = la ? b.shadow_tri : a.shadow_tri;
+        const auto oi = occ >= 0 ? wt.find(uint32_t(occ)) : wt.end();
+        if (oi != wt.end()) {
+          auto c9 = [](const hls::WaldTri<F>& q) {
+            std::string out = std::to_string(q.k) + ", {";
+            for (int i = 0; i < 9; ++i) {
+              char h[16];
+              std::snprintf(h, sizeof h, "%s%#x", i ? ", " : "", q.c[i]);
+              out += h;
+            }
+            return out + "}";
+          };
+          std::printf("literal %d %d: tri {%s} occ {%s} d {%#x, %#x, %#x} light {%#x, %#x, %#x}\n", x, y,
+                      c9(w).c_str(), c9(oi->second).c_str(), pr.d[0], pr.d[1], pr.d[2], setup.light[0],
+                      setup.light[1], setup.light[2]);
+        }
+      }
       ++summary[rel + ": " + cls];
       ++kinds[kind];
       if (kind != "near") ++floor_by_rel[rel];
@@ -238,11 +281,15 @@ int main(int argc, char** argv) {
   CLI::App app{"robust_pixels: every shadow error of a golden frame, explained pixel by pixel"};
   sim::RunOptions o;
   sim::add_run_options(app, o);
+  bool literal = false;
+  app.add_flag("--literal", literal, "also print each error pixel's bit patterns (VTU on: origin 0)");
+  std::vector<int> pick;
+  app.add_option("--pixel", pick, "only this pixel (x y), with its bit patterns, error or not")->expected(2);
   try {
     app.parse(argc, argv);
     const sim::TraceConfig cfg = sim::trace_config(o);
     hls::visit_format(cfg.format, cfg.rounding, [&](auto f, auto rr) {
-      analyse<hls::Arith<decltype(f), decltype(rr)::value>>(o);
+      analyse<hls::Arith<decltype(f), decltype(rr)::value>>(o, literal, pick);
     });
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
