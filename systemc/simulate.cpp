@@ -162,6 +162,9 @@ nlohmann::json hardware_json(const SimResult& r, const SimConfig& cfg) {
   const double cyc = double(r.cycles);
   const double unit_cycles = cyc * double(r.rtus.size());  // per-unit utilisation: mean over RTUs
   const double rays = double(r.primary_rays + r.shadow_rays);
+  const uint64_t trv_slots = r.cycles * uint64_t(r.rtus.size());
+  const uint64_t trv_used = t.trv_busy + t.trv_node_miss + t.trv_list_miss + t.trv_ist_full;
+  const uint64_t trv_empty = trv_slots > trv_used ? trv_slots - trv_used : 0;
   nlohmann::json per_rtu = nlohmann::json::array();
   for (const auto& s : r.rtus)
     per_rtu.push_back({{"rays", s.primary_rays + s.shadow_rays},
@@ -199,7 +202,10 @@ nlohmann::json hardware_json(const SimResult& r, const SimConfig& cfg) {
         {"trv_ist_queue_full", t.trv_ist_full},
         {"ist_tri_miss", t.ist_tri_miss},
         {"rgu_no_free_slot", t.rgu_stall_no_slot},
-        {"membus_queue_full", r.bus.queue_full_cycles}}}};
+        {"membus_queue_full", r.bus.queue_full_cycles},
+        // Every trv issue slot of the frame (cycles x RTUs, including the cycles the simulator
+        // skips because nothing can happen) is a step, a slot lost above, or empty: no ray ready.
+        {"trv_no_ray_ready", trv_empty}}}};
 }
 
 nlohmann::json sim_json(const SimResult& r) {
