@@ -293,7 +293,7 @@ module ascache #(
   );
 
   // ---------------------------------------------------------------------------------------------
-  // Response: HIT_LATENCY registers of (valid, hit, merge, full, id); the line comes from the
+  // Response: HIT_LATENCY registers of (valid, hit, merge, full, tag); the line comes from the
   // SRAM's output register, then through HIT_LATENCY-1 further registers (loaded on hits only).
   localparam integer RSW = 3 + TAG_BITS;
   reg [HIT_LATENCY-1:0]     rv_q;
