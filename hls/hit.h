@@ -33,7 +33,8 @@ enum class Spawn : uint8_t { none, skip_origin, ulp_offset, error_bound, skip_of
 struct SpawnParams {
   Spawn spawn = Spawn::none;
   int32_t ulps = 0;  // ulp_offset, skip_offset: offset in ulps of the format for a unit normal
-                     // component; skip_slab: slab height in ulps of max |h_i|
+                     // component; skip_slab: slab height in ulps of max |h_i|; skip_back: back-off
+                     // in ulps of t
   bool segment = false;  // shadow ray as the segment h + t (light - h), t < 1; else unit direction
 };
 
