@@ -43,11 +43,12 @@ TEST(GoldenMatch, Fp32RtzCorridorVtu) {
   expect_match(corridor(), config(FormatId::fp32, Rounding::rtz, true, 64, 40));
 }
 TEST(GoldenMatch, SpawnStrategies) {
-  for (hls::Spawn sp : {hls::Spawn::skip_origin, hls::Spawn::ulp_offset, hls::Spawn::error_bound})
+  for (hls::Spawn sp : {hls::Spawn::skip_origin, hls::Spawn::ulp_offset, hls::Spawn::error_bound,
+                        hls::Spawn::skip_offset, hls::Spawn::skip_slab, hls::Spawn::skip_back})
     for (bool vtu : {false, true}) {
       auto tc = config(FormatId::fp24, Rounding::rtz, vtu, 32, 20);
       tc.spawn.spawn = sp;
-      tc.spawn.ulps = sim::default_spawn_ulps(tc.format);
+      tc.spawn.ulps = sim::default_spawn_ulps(tc.format, sp);
       expect_match(corridor(), tc);
     }
 }
