@@ -1,0 +1,479 @@
+// sim/sweep/sweep.cpp - job list, reports, Pareto front and tables of the sweep (see sweep.h).
+#include "sim/sweep/sweep.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+namespace raycore::sweep {
+
+namespace fs = std::filesystem;
+
+const std::vector<std::string>& paper_scenes() {
+  static const std::vector<std::string> v = {"corridor", "sponza-paper", "sibenik-paper"};
+  return v;
+}
+const std::vector<std::string>& hard_scenes() {
+  static const std::vector<std::string> v = {"far", "grazing", "slivers", "coplanar", "origin-far-camera"};
+  return v;
+}
+const std::vector<std::string>& spawn_names() {
+  static const std::vector<std::string> v = {"none", "skip-origin", "ulp-offset", "error-bound"};
+  return v;
+}
+
+FormatSpec format_spec(const std::string& n) {
+  if (n == "fp24-rtz") return {n, "fp24", "rtz"};
+  if (n == "fp24-rne") return {n, "fp24", "rne"};
+  if (n == "fp32" || n == "fp32-rne") return {"fp32", "fp32", "rne"};
+  if (n == "fp32-rtz") return {n, "fp32", "rtz"};
+  throw std::invalid_argument("unknown format '" + n + "' (fp24-rtz, fp24-rne, fp32, fp32-rtz)");
+}
+
+namespace {
+
+bool contains(const std::vector<std::string>& v, const std::string& s) {
+  return std::find(v.begin(), v.end(), s) != v.end();
+}
+
+std::string path_arg(const std::string& p, bool keep) {
+  return keep ? p : fs::absolute(p).lexically_normal().string();
+}
+
+void require_nonempty(const std::vector<std::string>& v, const char* what) {
+  if (v.empty()) throw std::invalid_argument(std::string("empty list of ") + what + ": nothing to sweep");
+  std::set<std::string> seen;
+  for (const auto& s : v)
+    if (!seen.insert(s).second) throw std::invalid_argument(std::string("duplicate ") + what + " '" + s + "'");
+}
+
+std::string self_exe() {
+  std::error_code ec;
+  const fs::path p = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string("raycore") : p.string();
+}
+
+}  // namespace
+
+std::vector<Job> make_jobs(const Options& in) {
+  Options o = in;
+  if (o.scenes.empty() && in.scenes.empty()) {
+    o.scenes = paper_scenes();
+    o.scenes.insert(o.scenes.end(), hard_scenes().begin(), hard_scenes().end());
+  }
+  if (o.formats.empty()) o.formats = {"fp24-rtz", "fp24-rne", "fp32"};
+  if (o.vtu.empty()) o.vtu = {"off", "on"};
+  if (o.spawns.empty()) o.spawns = spawn_names();
+  require_nonempty(o.scenes, "scenes");
+  for (const auto& s : o.scenes)
+    if (!contains(paper_scenes(), s) && !contains(hard_scenes(), s))
+      throw std::invalid_argument("unknown scene '" + s + "' (corridor, sponza-paper, sibenik-paper, far, "
+                                  "grazing, slivers, coplanar, origin-far-camera)");
+  for (const auto& f : o.formats) format_spec(f);
+  for (const auto& v : o.vtu)
+    if (v != "on" && v != "off") throw std::invalid_argument("unknown VTU value '" + v + "' (on, off)");
+  for (const auto& s : o.spawns)
+    if (!contains(spawn_names(), s))
+      throw std::invalid_argument("unknown spawn '" + s + "' (none, skip-origin, ulp-offset, error-bound)");
+  if (o.width < 1 || o.height < 1 || o.hard_width < 1 || o.hard_height < 1)
+    throw std::invalid_argument("image sizes must be >= 1");
+  const std::string exe = o.raycore.empty() ? self_exe() : o.raycore;
+
+  auto scene_arg = [&](const std::string& s) {
+    if (s == "sponza-paper" || s == "sibenik-paper") {
+      const fs::path p = fs::path(o.scenes_dir) / (s + ".glb");
+      if (!fs::exists(p))
+        throw std::invalid_argument("scene file '" + p.string() + "' not found (--scenes-dir)");
+      return path_arg(p.string(), o.keep_paths);
+    }
+    return s;  // a generator name
+  };
+  const std::string out = path_arg(o.out, o.keep_paths);
+  auto base = [&](Job& j, const std::string& scene, const FormatSpec& f, const std::string& vtu,
+                  const std::string& spawn) {
+    j.scene = scene;
+    j.scene_arg = scene_arg(scene);
+    j.format_name = f.name;
+    j.format = f.format;
+    j.rounding = f.rounding;
+    j.vtu = vtu == "on";
+    j.spawn = spawn;
+    const bool paper = contains(paper_scenes(), scene);
+    j.width = paper ? o.width : o.hard_width;
+    j.height = paper ? o.height : o.hard_height;
+    j.id = scene + "-" + f.name + "-vtu" + vtu + "-" + spawn;
+    j.argv = {exe, j.kind, j.scene_arg, "--format", f.format, "--rounding", f.rounding, "--vtu", vtu,
+              "--spawn", spawn, "--width", std::to_string(j.width), "--height", std::to_string(j.height),
+              "--threads", std::to_string(o.threads), "--quiet"};
+  };
+
+  std::vector<Job> jobs;
+  for (const auto& s : o.scenes)
+    for (const auto& fn : o.formats)
+      for (const auto& v : o.vtu)
+        for (const auto& sp : o.spawns) {
+          Job j;
+          j.kind = "simulate";
+          base(j, s, format_spec(fn), v, sp);
+          j.json = out + "/jobs/" + j.id + ".json";
+          j.png = out + "/jobs/" + j.id + ".png";
+          j.argv.insert(j.argv.end(), {"--report", j.json, "--png", j.png});
+          jobs.push_back(j);
+        }
+  // Error maps: default sponza-paper and sibenik-paper where swept, the paper's two FP24
+  // configurations and two robust candidates.
+  std::vector<std::string> ms = o.map_scenes, mc = o.map_configs;
+  if (ms.empty())
+    for (const auto& s : {"sponza-paper", "sibenik-paper"})
+      if (contains(o.scenes, s)) ms.push_back(s);
+  if (mc.empty())
+    mc = {"fp24-rtz:off:none", "fp24-rtz:on:none", "fp24-rtz:on:skip-origin", "fp24-rne:on:error-bound"};
+  if (contains(ms, "none")) ms.clear();
+  for (const auto& s : ms) {
+    if (!contains(paper_scenes(), s) && !contains(hard_scenes(), s))
+      throw std::invalid_argument("unknown error-map scene '" + s + "'");
+    for (const auto& c : mc) {
+      const size_t a = c.find(':'), b = c.find(':', a == std::string::npos ? a : a + 1);
+      if (a == std::string::npos || b == std::string::npos)
+        throw std::invalid_argument("error-map configuration '" + c + "' is not format:vtu:spawn");
+      const std::string f = c.substr(0, a), v = c.substr(a + 1, b - a - 1), sp = c.substr(b + 1);
+      if (v != "on" && v != "off") throw std::invalid_argument("unknown VTU value '" + v + "' in '" + c + "'");
+      if (!contains(spawn_names(), sp)) throw std::invalid_argument("unknown spawn '" + sp + "' in '" + c + "'");
+      Job j;
+      j.kind = "errormap";
+      base(j, s, format_spec(f), v, sp);
+      j.json = out + "/maps/" + j.id + ".json";
+      j.png = out + "/maps/" + j.id + ".png";
+      j.argv.insert(j.argv.end(), {"--report", j.json, "--png", j.png});
+      jobs.push_back(j);
+    }
+  }
+  return jobs;
+}
+
+std::string shell_quote(const std::string& s) {
+  if (!s.empty() && s.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789"
+                                        "_-./:=,+@%") == std::string::npos)
+    return s;
+  std::string q = "'";
+  for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return q + "'";
+}
+
+std::string command_line(const Job& j) {
+  std::string l;
+  for (const auto& a : j.argv) l += (l.empty() ? "" : " ") + shell_quote(a);
+  return l;
+}
+
+nlohmann::json manifest_json(const Options& o, const std::vector<Job>& jobs) {
+  nlohmann::json js = nlohmann::json::array();
+  for (const auto& j : jobs)
+    js.push_back({{"kind", j.kind}, {"id", j.id}, {"scene", j.scene}, {"scene_arg", j.scene_arg},
+                  {"format_name", j.format_name}, {"format", j.format}, {"rounding", j.rounding},
+                  {"vtu", j.vtu}, {"spawn", j.spawn}, {"width", j.width}, {"height", j.height},
+                  {"json", j.json}, {"png", j.png}, {"command", command_line(j)}});
+  return {{"tool", "raycore sweep"}, {"out", o.out}, {"jobs", js}};
+}
+
+std::vector<Job> jobs_from_manifest(const nlohmann::json& m) {
+  if (!m.contains("jobs") || !m["jobs"].is_array()) throw std::runtime_error("manifest has no \"jobs\" array");
+  std::vector<Job> v;
+  for (const auto& x : m["jobs"]) {
+    Job j;
+    try {
+      j.kind = x.at("kind");
+      j.id = x.at("id");
+      j.scene = x.at("scene");
+      j.scene_arg = x.at("scene_arg");
+      j.format_name = x.at("format_name");
+      j.format = x.at("format");
+      j.rounding = x.at("rounding");
+      j.vtu = x.at("vtu");
+      j.spawn = x.at("spawn");
+      j.width = x.at("width");
+      j.height = x.at("height");
+      j.json = x.at("json");
+      j.png = x.at("png");
+    } catch (const nlohmann::json::exception& e) {
+      throw std::runtime_error(std::string("manifest job: ") + e.what());
+    }
+    v.push_back(j);
+  }
+  if (v.empty()) throw std::runtime_error("manifest lists no jobs");
+  return v;
+}
+
+double Area::get(const std::string& m, const std::string& f, const std::string& r) const {
+  auto it = cells.find(m + "/" + f + "/" + r);
+  return it == cells.end() ? -1.0 : it->second;
+}
+
+Area read_area(const std::string& path) {
+  std::ifstream is(path);
+  if (!is) throw std::runtime_error("cannot read area file '" + path + "'");
+  Area a;
+  std::string line;
+  int n = 0;
+  while (std::getline(is, line)) {
+    ++n;
+    if (line.empty() || line[0] == '#') continue;
+    std::istringstream ls(line);
+    std::string m, f, r;
+    double c = 0;
+    if (!(ls >> m >> f >> r >> c) || c < 0)
+      throw std::runtime_error(path + ":" + std::to_string(n) + ": expected 'module format rounding cells'");
+    a.cells[m + "/" + f + "/" + r] = c;
+  }
+  if (a.cells.empty()) throw std::runtime_error("area file '" + path + "' has no rows");
+  return a;
+}
+
+AddedCells added_cells(const Area& a, const std::string& f, const std::string& r, bool vtu,
+                       const std::string& spawn) {
+  AddedCells c;
+  const double ist = a.get("ist", f, r), ist0 = a.get("ist", "fp24", "rtz");
+  c.format = ist < 0 || ist0 < 0 ? -1 : ist - ist0;
+  c.vtu = vtu ? a.get("vtu", f, r) : 0.0;
+  c.spawn = spawn == "none" ? 0.0 : a.get("spawn-" + spawn, f, r);
+  c.total = c.format < 0 || c.vtu < 0 || c.spawn < 0 ? -1 : c.format + c.vtu + c.spawn;
+  return c;
+}
+
+std::vector<bool> pareto_front(const std::vector<std::pair<double, double>>& p) {
+  std::vector<bool> on(p.size(), true);
+  for (size_t i = 0; i < p.size(); ++i)
+    for (size_t k = 0; k < p.size() && on[i]; ++k) {
+      if (k == i) continue;
+      const bool no_worse = p[k].first <= p[i].first && p[k].second >= p[i].second;
+      const bool better = p[k].first < p[i].first || p[k].second > p[i].second;
+      if (no_worse && better) on[i] = false;
+    }
+  return on;
+}
+
+namespace {
+
+const nlohmann::json& at(const nlohmann::json& j, const char* key, const Job& job) {
+  if (!j.is_object() || !j.contains(key))
+    throw std::runtime_error("report '" + job.json + "' has no \"" + key + "\"");
+  return j[key];
+}
+
+}  // namespace
+
+Row read_row(const Job& job, const nlohmann::json& r) {
+  Row w;
+  w.job = job;
+  const auto& e = at(r, "errors", job);
+  try {
+    w.pixels = e.at("pixels");
+    w.shadow_rays = e.at("shadow_rays");
+    w.self_intersections = e.at("self_intersections");
+    w.shadow_errors = e.at("shadow_errors");
+    w.false_shadow = e.at("false_shadow");
+    w.false_shadow_self = e.value("false_shadow_self", uint64_t(0));
+    w.false_shadow_no_ray = e.value("false_shadow_no_ray", uint64_t(0));
+    w.light_leak = e.at("light_leak");
+    w.primary_errors = e.at("primary_errors");
+    const auto& hw = at(r, "hardware", job);
+    w.cycles = hw.at("cycles");
+    w.rays_per_cycle = hw.at("rays_per_cycle");
+    w.mrays_per_s = hw.at("mrays_per_s");
+    w.golden_match = at(r, "golden_match", job).get<bool>();
+    w.sim_seconds = r.contains("sim") ? r["sim"].value("wall_seconds", 0.0) : 0.0;
+  } catch (const nlohmann::json::exception& x) {
+    throw std::runtime_error("report '" + job.json + "': " + x.what());
+  }
+  w.error_pixels = w.shadow_errors + w.primary_errors;
+  w.error_pct = w.pixels ? 100.0 * double(w.error_pixels) / double(w.pixels) : 0.0;
+  w.ok = true;
+  return w;
+}
+
+void mark_pareto(std::vector<Row>& rows) {
+  std::map<std::string, std::vector<size_t>> by_scene;
+  for (size_t i = 0; i < rows.size(); ++i)
+    if (rows[i].ok) by_scene[rows[i].job.scene].push_back(i);
+  for (auto& [scene, idx] : by_scene) {
+    std::vector<std::pair<double, double>> p;
+    for (size_t i : idx) p.emplace_back(rows[i].error_pct, rows[i].rays_per_cycle);
+    const auto on = pareto_front(p);
+    for (size_t k = 0; k < idx.size(); ++k) rows[idx[k]].pareto = on[k];
+  }
+}
+
+namespace {
+
+std::string num(double v, int prec) {
+  if (v < 0) return "";
+  char b[64];
+  std::snprintf(b, sizeof b, "%.*f", prec, v);
+  return b;
+}
+std::string cells_str(double v) { return v < 0 ? "?" : num(v, 0); }
+
+std::vector<std::string> scene_order(const std::vector<Row>& rows) {
+  std::vector<std::string> s;
+  for (const auto& r : rows)
+    if (!contains(s, r.job.scene)) s.push_back(r.job.scene);
+  return s;
+}
+
+}  // namespace
+
+std::string csv(const std::vector<Row>& rows) {
+  std::ostringstream os;
+  os << "scene,format,rounding,vtu,spawn,width,height,pixels,shadow_rays,self_intersections,"
+        "shadow_errors,false_shadow,false_shadow_self,false_shadow_no_ray,light_leak,primary_errors,"
+        "error_pixels,error_pct,cycles,rays_per_cycle,mrays_per_s,golden_match,cells_format,cells_vtu,"
+        "cells_spawn,cells_added,pareto,sim_wall_seconds\n";
+  for (const auto& r : rows) {
+    const Job& j = r.job;
+    os << j.scene << "," << j.format << "," << j.rounding << "," << (j.vtu ? "on" : "off") << ","
+       << j.spawn << "," << j.width << "," << j.height << "," << r.pixels << "," << r.shadow_rays << ","
+       << r.self_intersections << "," << r.shadow_errors << "," << r.false_shadow << ","
+       << r.false_shadow_self << "," << r.false_shadow_no_ray << "," << r.light_leak << ","
+       << r.primary_errors << "," << r.error_pixels << "," << num(r.error_pct, 5) << "," << r.cycles << ","
+       << num(r.rays_per_cycle, 6) << "," << num(r.mrays_per_s, 3) << ","
+       << (r.golden_match ? "true" : "false") << "," << num(r.cells.format, 0) << ","
+       << num(r.cells.vtu, 0) << "," << num(r.cells.spawn, 0) << "," << num(r.cells.total, 0) << ","
+       << (r.pareto ? 1 : 0) << "," << num(r.sim_seconds, 2) << "\n";
+  }
+  return os.str();
+}
+
+nlohmann::json rows_json(const std::vector<Row>& rows) {
+  nlohmann::json a = nlohmann::json::array();
+  auto cell = [](double v) { return v < 0 ? nlohmann::json(nullptr) : nlohmann::json(v); };
+  for (const auto& r : rows) {
+    const Job& j = r.job;
+    a.push_back({{"scene", j.scene},
+                 {"config", {{"format", j.format}, {"rounding", j.rounding}, {"vtu", j.vtu},
+                             {"spawn", j.spawn}, {"width", j.width}, {"height", j.height}}},
+                 {"errors", {{"pixels", r.pixels}, {"shadow_rays", r.shadow_rays},
+                             {"self_intersections", r.self_intersections},
+                             {"shadow_errors", r.shadow_errors}, {"false_shadow", r.false_shadow},
+                             {"false_shadow_self", r.false_shadow_self},
+                             {"false_shadow_no_ray", r.false_shadow_no_ray}, {"light_leak", r.light_leak},
+                             {"primary_errors", r.primary_errors}, {"error_pixels", r.error_pixels},
+                             {"error_pct", r.error_pct}}},
+                 {"hardware", {{"cycles", r.cycles}, {"rays_per_cycle", r.rays_per_cycle},
+                               {"mrays_per_s", r.mrays_per_s}}},
+                 {"golden_match", r.golden_match},
+                 {"added_cells", {{"format", cell(r.cells.format)}, {"vtu", cell(r.cells.vtu)},
+                                  {"spawn", cell(r.cells.spawn)}, {"total", cell(r.cells.total)}}},
+                 {"pareto", r.pareto},
+                 {"report", j.json}});
+  }
+  return a;
+}
+
+std::string markdown(const std::vector<Row>& rows) {
+  std::ostringstream os;
+  for (const auto& scene : scene_order(rows)) {
+    const Row* first = nullptr;
+    for (const auto& r : rows)
+      if (r.job.scene == scene) {
+        first = &r;
+        break;
+      }
+    os << "#### " << scene << " (" << first->job.width << " x " << first->job.height << ")\n\n"
+       << "| format | VTU | spawn | self-int. | shadow err. (false / of which self / no ray / leak) | "
+          "primary err. | error pixels | error % | cycles | rays/cycle | golden match | added cells "
+          "(format + VTU + spawn) | Pareto |\n"
+          "|---|---|---|---:|---|---:|---:|---:|---:|---:|---|---|---|\n";
+    for (const auto& r : rows) {
+      if (r.job.scene != scene) continue;
+      const Job& j = r.job;
+      os << "| " << j.format_name << " | " << (j.vtu ? "on" : "off") << " | " << j.spawn << " | "
+         << r.self_intersections << " | " << r.shadow_errors << " (" << r.false_shadow << " / "
+         << r.false_shadow_self << " / " << r.false_shadow_no_ray << " / " << r.light_leak << ") | "
+         << r.primary_errors << " | " << r.error_pixels << " | " << num(r.error_pct, 3) << " | " << r.cycles
+         << " | " << num(r.rays_per_cycle, 4) << " | " << (r.golden_match ? "yes" : "**NO**") << " | "
+         << cells_str(r.cells.total) << " (" << cells_str(r.cells.format) << " + " << cells_str(r.cells.vtu)
+         << " + " << cells_str(r.cells.spawn) << ") | " << (r.pareto ? "**P**" : "") << " |\n";
+    }
+    os << "\n";
+  }
+  return os.str();
+}
+
+std::string compact_markdown(const std::vector<Row>& rows, const std::vector<std::string>& scenes) {
+  std::vector<std::string> sc;
+  for (const auto& s : scenes_present(rows, scenes)) sc.push_back(s);
+  std::ostringstream os;
+  os << "| format | VTU | spawn | added cells |";
+  for (const auto& s : sc) os << " " << s << " self / error px / rays/cyc |";
+  os << "\n|---|---|---|---:|";
+  for (size_t i = 0; i < sc.size(); ++i) os << "---|";
+  os << "\n";
+  // One row per configuration, in the order of the first scene's rows.
+  std::vector<const Row*> cfgs;
+  for (const auto& r : rows)
+    if (!sc.empty() && r.job.scene == sc[0]) cfgs.push_back(&r);
+  for (const Row* c : cfgs) {
+    os << "| " << c->job.format_name << " | " << (c->job.vtu ? "on" : "off") << " | " << c->job.spawn
+       << " | " << cells_str(c->cells.total) << " |";
+    for (const auto& s : sc) {
+      const Row* m = nullptr;
+      for (const auto& r : rows)
+        if (r.job.scene == s && r.job.format_name == c->job.format_name && r.job.vtu == c->job.vtu &&
+            r.job.spawn == c->job.spawn)
+          m = &r;
+      if (!m) {
+        os << " - |";
+        continue;
+      }
+      os << " " << m->self_intersections << " / " << (m->pareto ? "**" : "") << m->error_pixels
+         << (m->pareto ? "**" : "") << " / " << num(m->rays_per_cycle, 4) << (m->golden_match ? "" : " (!)")
+         << " |";
+    }
+    os << "\n";
+  }
+  return os.str();
+}
+
+std::vector<std::string> scenes_present(const std::vector<Row>& rows, const std::vector<std::string>& want) {
+  std::vector<std::string> v;
+  for (const auto& s : want)
+    for (const auto& r : rows)
+      if (r.job.scene == s) {
+        v.push_back(s);
+        break;
+      }
+  return v;
+}
+
+std::string plot_data(const std::vector<Row>& rows, std::vector<std::string>* order) {
+  std::ostringstream os;
+  const auto so = scene_order(rows);
+  if (order) *order = so;
+  bool first = true;
+  for (const auto& s : so) {
+    if (!first) os << "\n\n";
+    first = false;
+    os << "# " << s << "\n# error_pct rays_per_cycle pareto format vtu spawn label\n";
+    // Pareto points sorted by error, so a line through them draws the front.
+    std::vector<const Row*> v;
+    for (const auto& r : rows)
+      if (r.job.scene == s && r.ok) v.push_back(&r);
+    std::stable_sort(v.begin(), v.end(), [](const Row* a, const Row* b) {
+      return a->pareto != b->pareto ? a->pareto > b->pareto : a->error_pct < b->error_pct;
+    });
+    for (const Row* r : v) {
+      const Job& j = r->job;
+      os << num(r->error_pct, 6) << " " << num(r->rays_per_cycle, 6) << " " << (r->pareto ? 1 : 0) << " "
+         << j.format_name << " " << (j.vtu ? "on" : "off") << " " << j.spawn << " " << j.format_name
+         << (j.vtu ? "/vtu/" : "/-/") << j.spawn << "\n";
+    }
+  }
+  return os.str();
+}
+
+}  // namespace raycore::sweep

@@ -1,0 +1,118 @@
+// sim/sweep/sweep.h - the speed-against-error sweep (`raycore sweep`, issue 6): the job list
+// (scenes x format x VTU x spawn, each job one `raycore simulate` process writing one JSON report,
+// plus `raycore errormap` jobs for the worst-pixel images), and the collection of the reports into
+// CSV, JSON, markdown and plot data with the added hardware and the Pareto front marked.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+namespace raycore::sweep {
+
+// The scenes the sweep knows: the paper's (corridor, and the two *-paper.glb files of the shared
+// scenes folder) and the hard cases that `raycore scene gen` ships.
+const std::vector<std::string>& paper_scenes();
+const std::vector<std::string>& hard_scenes();
+// A format of the sweep: fp24-rtz, fp24-rne, fp32 (= fp32 rne, IEEE) or fp32-rtz.
+struct FormatSpec {
+  std::string name, format, rounding;
+};
+FormatSpec format_spec(const std::string& name);  // throws std::invalid_argument
+const std::vector<std::string>& spawn_names();    // none, skip-origin, ulp-offset, error-bound
+
+struct Options {
+  std::vector<std::string> scenes;   // default: paper + hard
+  std::vector<std::string> formats;  // default: fp24-rtz, fp24-rne, fp32
+  std::vector<std::string> vtu;      // default: off, on
+  std::vector<std::string> spawns;   // default: all four
+  int width = 800, height = 480;           // paper scenes
+  int hard_width = 400, hard_height = 240;  // hard cases
+  std::string scenes_dir = "../shared/scenes";
+  std::string out = "out/sweep";
+  std::string raycore;  // the binary in the job lines (default: this executable)
+  int threads = 1;      // host threads per job (the jobs run side by side)
+  bool keep_paths = false;  // paths as given (relative ones stay relative), for --transferfile
+  // Error maps (raycore errormap): these scenes x these configurations ("fp24-rtz:on:none").
+  std::vector<std::string> map_scenes;  // default: sponza-paper, sibenik-paper (if swept)
+  std::vector<std::string> map_configs;
+};
+
+struct Job {
+  std::string kind;  // "simulate" or "errormap"
+  std::string id;    // <scene>-<format>-vtu<on|off>-<spawn>
+  std::string scene, scene_arg;  // name; generator name or .glb path
+  std::string format_name, format, rounding, spawn;
+  bool vtu = false;
+  int width = 0, height = 0;
+  std::string json, png;      // outputs (errormap: png is the map)
+  std::vector<std::string> argv;  // argv[0] = the raycore binary
+};
+
+// Validates the options (unknown scene, format, spawn, VTU value, missing scene file, an empty
+// list: std::invalid_argument naming the item) and makes the jobs in a fixed order.
+std::vector<Job> make_jobs(const Options& o);
+// One line of /bin/sh, every argument quoted when needed.
+std::string command_line(const Job& j);
+std::string shell_quote(const std::string& s);
+
+nlohmann::json manifest_json(const Options& o, const std::vector<Job>& jobs);
+std::vector<Job> jobs_from_manifest(const nlohmann::json& m);  // throws std::runtime_error
+
+// Added hardware per RTU in yosys generic cells, from `scripts/sweep_area.sh` (TSV lines
+// "module<TAB>format<TAB>rounding<TAB>cells"; modules ist, vtu, spawn-<strategy>).
+struct Area {
+  std::map<std::string, double> cells;  // key "module/format/rounding"
+  bool empty() const { return cells.empty(); }
+  // -1 when a needed row is missing.
+  double get(const std::string& module, const std::string& format, const std::string& rounding) const;
+};
+Area read_area(const std::string& path);  // throws std::runtime_error naming the file/line
+
+struct AddedCells {
+  double format = 0, vtu = 0, spawn = 0, total = 0;  // -1: unknown
+};
+// Against the paper's baseline (FP24 rtz, VTU off, spawn none): the ist's delta for format and
+// rounding, the vtu unit's cells when on, the spawn strategy's cells.
+AddedCells added_cells(const Area& a, const std::string& format, const std::string& rounding, bool vtu,
+                       const std::string& spawn);
+
+// Pareto front of (cost, benefit) points: lower cost and higher benefit are better. A point is on
+// the front unless another point is at least as good in both and strictly better in one.
+std::vector<bool> pareto_front(const std::vector<std::pair<double, double>>& cost_benefit);
+
+struct Row {
+  Job job;
+  bool ok = false;  // the report was there and complete
+  uint64_t pixels = 0, shadow_rays = 0, self_intersections = 0, shadow_errors = 0, false_shadow = 0,
+           false_shadow_self = 0, false_shadow_no_ray = 0, light_leak = 0, primary_errors = 0,
+           error_pixels = 0;
+  double error_pct = 0;
+  uint64_t cycles = 0;
+  double rays_per_cycle = 0, mrays_per_s = 0, sim_seconds = 0;
+  bool golden_match = false;
+  AddedCells cells;
+  bool pareto = false;  // on its scene's (error_pct, rays_per_cycle) front
+};
+
+// Reads one simulate report (throws std::runtime_error naming the file and the missing key).
+Row read_row(const Job& j, const nlohmann::json& report);
+// Marks each scene's Pareto front (error_pct against rays_per_cycle).
+void mark_pareto(std::vector<Row>& rows);
+
+std::string csv(const std::vector<Row>& rows);
+nlohmann::json rows_json(const std::vector<Row>& rows);
+// Markdown: one table per scene (all columns), and a compact table with one row per
+// configuration and one column group per scene in `scenes`.
+std::string markdown(const std::vector<Row>& rows);
+std::string compact_markdown(const std::vector<Row>& rows, const std::vector<std::string>& scenes);
+// The scenes of `want` that have rows, in want's order.
+std::vector<std::string> scenes_present(const std::vector<Row>& rows, const std::vector<std::string>& want);
+// Plot data, one block per scene (gnuplot index), columns: error_pct rays_per_cycle pareto label.
+std::string plot_data(const std::vector<Row>& rows, std::vector<std::string>* scene_order);
+
+}  // namespace raycore::sweep
