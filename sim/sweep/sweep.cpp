@@ -70,6 +70,9 @@ std::vector<Job> make_jobs(const Options& in) {
   if (o.vtu.empty()) o.vtu = {"off", "on"};
   if (o.spawns.empty()) o.spawns = spawn_names();
   require_nonempty(o.scenes, "scenes");
+  require_nonempty(o.formats, "formats");
+  require_nonempty(o.vtu, "VTU values");
+  require_nonempty(o.spawns, "spawns");
   for (const auto& s : o.scenes)
     if (!contains(paper_scenes(), s) && !contains(hard_scenes(), s))
       throw std::invalid_argument("unknown scene '" + s + "' (corridor, sponza-paper, sibenik-paper, far, "
