@@ -64,6 +64,18 @@ END { if (bad) exit 1; printf "%d %d %.0f\n", cells, ffs, ge }
 '
 
 fmt_params() { [ "$1" = FP24 ] && echo "7 16" || echo "8 23"; }
+# Parameters of a unit without a number format, for its row: ascache = the cycle model's node
+# cache (16 KB: 64 sets x 4 ways x 64 B lines, 8 MSHRs; the module's defaults are a 1 KB cache).
+declare -A UNIT_PARAMS=([ascache]="-set SETS 64 -set WAYS 4 -set LINE_BYTES 64 -set MSHRS 8")
+# Memories (the $mem_v2 cells of `memory -nomap`) are SRAM macros: not mapped to flip-flops, not
+# in cells/FFs/NAND2 eq.; their bits (SIZE x WIDTH) are listed in their own column.
+MEM_AWK='
+/^ *cell /          { w = 0; s = 0 }
+/parameter .WIDTH / { w = $3 }
+/parameter .SIZE /  { s = $3 }
+/^ *end/            { if (w && s) bits += w * s; w = s = 0 }
+END { printf "%d\n", bits }
+'
 
 rows=()
 for mod in "${MODULES[@]}"; do
@@ -78,12 +90,16 @@ for mod in "${MODULES[@]}"; do
       log="$TMP/$mod-$fmt-$mode"
       yosys -q -l "$log.log" -p "read_verilog $(srcs_for "$mod"); \
         $(grep -Eq "parameter +integer +EXP_BITS" "$(file_of "$mod")" && echo "chparam -set EXP_BITS $e -set MAN_BITS $m -set STAGES $STAGES $set_rne $mod;") \
-        synth -flatten -top $mod; tee -q -o $log.stat stat; tee -q -o $log.ltp ltp -noff" >/dev/null ||
+        $([ -n "${UNIT_PARAMS[$mod]:-}" ] && echo "chparam ${UNIT_PARAMS[$mod]} $mod;") \
+        synth -flatten -top $mod -run :fine; tee -q -o $log.mem dump t:\$mem_v2; \
+        opt -fast -full; opt -full; techmap; opt -fast; abc -fast; opt -fast; hierarchy -check; check; \
+        tee -q -o $log.stat stat; tee -q -o $log.ltp ltp -noff" >/dev/null ||
         { echo "area: yosys failed for $mod $fmt $mode, see:" >&2; tail -20 "$log.log" >&2; exit 1; }
       read -r cells ffs ge < <(awk "$WEIGHTS_AWK" "$log.stat")
       depth=$(sed -n 's/.*length=\([0-9]*\).*/\1/p' "$log.ltp" | head -1)
-      rows+=("| $mod | $fmt | $mode | $cells | $ffs | $ge | $depth |")
-      echo "area: $mod $fmt $mode: cells=$cells ffs=$ffs nand2_eq=$ge depth=$depth"
+      sram=$(awk "$MEM_AWK" "$log.mem")
+      rows+=("| $mod | $fmt | $mode | $cells | $ffs | $ge | $depth | $sram |")
+      echo "area: $mod $fmt $mode: cells=$cells ffs=$ffs nand2_eq=$ge depth=$depth sram_bits=$sram"
     done
   done
 done
@@ -110,8 +126,12 @@ done
   echo "- **depth**: the longest combinational path in cells between registers or ports (\`ltp -noff\`),"
   echo "  a rough indicator of the cycle time at this STAGES."
   echo
-  echo "| module | format | rounding | cells | FFs | NAND2 eq. | depth |"
-  echo "|---|---|---|---:|---:|---:|---:|"
+  echo "- **SRAM bits**: memories yosys infers (\`memory -nomap\`: \`\$mem\` cells, e.g. ascache's data array),"
+  echo "  SIZE x WIDTH, kept as macros: not in FFs or NAND2 eq. (\`synth\` runs up to \`fine\`, then its"
+  echo "  \`fine\` script without \`memory_map\`; modules without memories come out as before)."
+  echo
+  echo "| module | format | rounding | cells | FFs | NAND2 eq. | depth | SRAM bits |"
+  echo "|---|---|---|---:|---:|---:|---:|---:|"
   printf '%s\n' "${rows[@]}"
   echo
   echo "Weights (NAND2 equivalents):"
