@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "sim/cli.h"
+#include "sim/golden/golden.h"
 #include "sim/output.h"
 #include "sim/reference/metrics.h"
 #include "sim/reference/reference.h"
@@ -250,7 +251,7 @@ void register_sweep(CLI::App& app) {
       ->capture_default_str();
   c->add_option("--collect", a->collect, "merge the job reports of this sweep directory");
   c->add_flag("--run", a->run, "run every job here, one after another, then collect");
-  auto list_opt = [&](const char* name, std::vector<std::string>* v, const char* help) {
+  auto list_opt = [&](const char* name, std::vector<std::string>* v, const std::string& help) {
     const std::string opt = name;
     c->add_option_function<std::string>(
         name,
@@ -266,12 +267,15 @@ void register_sweep(CLI::App& app) {
   list_opt("--formats", &a->o.formats, "comma-separated: fp24-rtz, fp24-rne, fp32 (rne), fp32-rtz "
                                         "(default fp24-rtz,fp24-rne,fp32)");
   list_opt("--vtu", &a->o.vtu, "comma-separated: off, on (default both)");
-  list_opt("--spawns", &a->o.spawns, "comma-separated: none, skip-origin, ulp-offset, error-bound (default all)");
+  list_opt("--spawns", &a->o.spawns,
+           "comma-separated strategies (" + sim::spawn_choices() + "), each optionally with :ULPS "
+           "(--spawn-ulps), e.g. skip-slab:2 (default none,skip-origin,ulp-offset,error-bound,"
+           "skip-offset,skip-slab:2,skip-back)");
   list_opt("--map-scenes", &a->o.map_scenes,
            "error maps for these scenes (default sponza-paper,sibenik-paper when swept; none: no maps)");
   list_opt("--map-configs", &a->o.map_configs,
            "error-map configurations format:vtu:spawn (default fp24-rtz:off:none,fp24-rtz:on:none,"
-           "fp24-rtz:on:skip-origin,fp24-rne:on:error-bound)");
+           "fp24-rtz:on:skip-slab:2,fp24-rne:on:skip-back)");
   c->add_option("--width", a->o.width, "image width, paper scenes")->check(CLI::Range(1, 16384))->capture_default_str();
   c->add_option("--height", a->o.height, "image height, paper scenes")->check(CLI::Range(1, 16384))->capture_default_str();
   c->add_option("--hard-width", a->o.hard_width, "image width, hard cases")->check(CLI::Range(1, 16384))

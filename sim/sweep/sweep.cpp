@@ -1,6 +1,8 @@
 // sim/sweep/sweep.cpp - job list, reports, Pareto front and tables of the sweep (see sweep.h).
 #include "sim/sweep/sweep.h"
 
+#include "sim/golden/golden.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -23,8 +25,31 @@ const std::vector<std::string>& hard_scenes() {
   return v;
 }
 const std::vector<std::string>& spawn_names() {
-  static const std::vector<std::string> v = {"none", "skip-origin", "ulp-offset", "error-bound"};
+  static const std::vector<std::string> v = {"none",        "skip-origin", "ulp-offset", "error-bound",
+                                             "skip-offset", "skip-slab:2", "skip-back"};
   return v;
+}
+
+SpawnSpec spawn_spec(const std::string& s) {
+  SpawnSpec sp;
+  const size_t c = s.find(':');
+  sp.strategy = s.substr(0, c);
+  if (!sim::spawn_uses_ulps(sim::spawn_from_string(sp.strategy)) && c != std::string::npos)
+    throw std::invalid_argument("spawn '" + s + "': " + sp.strategy + " takes no ulps");
+  if (c != std::string::npos) {
+    const std::string n = s.substr(c + 1);
+    size_t used = 0;
+    long v = 0;
+    try {
+      v = std::stol(n, &used);
+    } catch (const std::exception&) {
+      used = 0;
+    }
+    if (n.empty() || used != n.size() || v < 1 || v > 1000000)
+      throw std::invalid_argument("spawn '" + s + "': ulps must be an integer from 1 to 1000000");
+    sp.ulps = int(v);
+  }
+  return sp;
 }
 
 FormatSpec format_spec(const std::string& n) {
@@ -80,9 +105,7 @@ std::vector<Job> make_jobs(const Options& in) {
   for (const auto& f : o.formats) format_spec(f);
   for (const auto& v : o.vtu)
     if (v != "on" && v != "off") throw std::invalid_argument("unknown VTU value '" + v + "' (on, off)");
-  for (const auto& s : o.spawns)
-    if (!contains(spawn_names(), s))
-      throw std::invalid_argument("unknown spawn '" + s + "' (none, skip-origin, ulp-offset, error-bound)");
+  for (const auto& s : o.spawns) spawn_spec(s);
   if (o.width < 1 || o.height < 1 || o.hard_width < 1 || o.hard_height < 1)
     throw std::invalid_argument("image sizes must be >= 1");
   const std::string exe = o.raycore.empty() ? self_exe() : o.raycore;
@@ -106,13 +129,15 @@ std::vector<Job> make_jobs(const Options& in) {
     j.rounding = f.rounding;
     j.vtu = vtu == "on";
     j.spawn = spawn;
+    const SpawnSpec sp = spawn_spec(spawn);
     const bool paper = contains(paper_scenes(), scene);
     j.width = paper ? o.width : o.hard_width;
     j.height = paper ? o.height : o.hard_height;
-    j.id = scene + "-" + f.name + "-vtu" + vtu + "-" + spawn;
+    j.id = scene + "-" + f.name + "-vtu" + vtu + "-" + sp.strategy + (sp.ulps ? std::to_string(sp.ulps) : "");
     j.argv = {exe, j.kind, j.scene_arg, "--format", f.format, "--rounding", f.rounding, "--vtu", vtu,
-              "--spawn", spawn, "--width", std::to_string(j.width), "--height", std::to_string(j.height),
+              "--spawn", sp.strategy, "--width", std::to_string(j.width), "--height", std::to_string(j.height),
               "--threads", std::to_string(o.threads), "--quiet"};
+    if (sp.ulps) j.argv.insert(j.argv.end(), {"--spawn-ulps", std::to_string(sp.ulps)});
   };
 
   std::vector<Job> jobs;
@@ -129,13 +154,13 @@ std::vector<Job> make_jobs(const Options& in) {
           jobs.push_back(j);
         }
   // Error maps: default sponza-paper and sibenik-paper where swept, the paper's two FP24
-  // configurations and two robust candidates.
+  // configurations and the two best (docs/robustness.md, "Beating the paper").
   std::vector<std::string> ms = o.map_scenes, mc = o.map_configs;
   if (ms.empty())
     for (const auto& s : {"sponza-paper", "sibenik-paper"})
       if (contains(o.scenes, s)) ms.push_back(s);
   if (mc.empty())
-    mc = {"fp24-rtz:off:none", "fp24-rtz:on:none", "fp24-rtz:on:skip-origin", "fp24-rne:on:error-bound"};
+    mc = {"fp24-rtz:off:none", "fp24-rtz:on:none", "fp24-rtz:on:skip-slab:2", "fp24-rne:on:skip-back"};
   if (contains(ms, "none")) ms.clear();
   for (const auto& s : ms) {
     if (!contains(paper_scenes(), s) && !contains(hard_scenes(), s))
@@ -146,7 +171,11 @@ std::vector<Job> make_jobs(const Options& in) {
         throw std::invalid_argument("error-map configuration '" + c + "' is not format:vtu:spawn");
       const std::string f = c.substr(0, a), v = c.substr(a + 1, b - a - 1), sp = c.substr(b + 1);
       if (v != "on" && v != "off") throw std::invalid_argument("unknown VTU value '" + v + "' in '" + c + "'");
-      if (!contains(spawn_names(), sp)) throw std::invalid_argument("unknown spawn '" + sp + "' in '" + c + "'");
+      try {
+        spawn_spec(sp);
+      } catch (const std::invalid_argument& e) {
+        throw std::invalid_argument(std::string(e.what()) + " in '" + c + "'");
+      }
       Job j;
       j.kind = "errormap";
       base(j, s, format_spec(f), v, sp);
@@ -243,7 +272,8 @@ AddedCells added_cells(const Area& a, const std::string& f, const std::string& r
   const double ist = a.get("ist", f, r), ist0 = a.get("ist", "fp24", "rtz");
   c.format = ist < 0 || ist0 < 0 ? -1 : ist - ist0;
   c.vtu = vtu ? a.get("vtu", f, r) : 0.0;
-  c.spawn = spawn == "none" ? 0.0 : a.get("spawn-" + spawn, f, r);
+  const std::string st = spawn_spec(spawn).strategy;
+  c.spawn = st == "none" ? 0.0 : a.get("spawn-" + st, f, r);
   c.total = c.format < 0 || c.vtu < 0 || c.spawn < 0 ? -1 : c.format + c.vtu + c.spawn;
   return c;
 }

@@ -23,7 +23,16 @@ struct FormatSpec {
   std::string name, format, rounding;
 };
 FormatSpec format_spec(const std::string& name);  // throws std::invalid_argument
-const std::vector<std::string>& spawn_names();    // none, skip-origin, ulp-offset, error-bound
+// The sweep's default spawn list: every strategy of `raycore render --spawn` (sim::spawn_choices),
+// skip-slab with a 2-ulp slab (its best in FP24 rtz, docs/robustness.md).
+const std::vector<std::string>& spawn_names();
+// A spawn of the sweep: "<strategy>" or "<strategy>:<ulps>" (--spawn-ulps; only for the strategies
+// that read it: ulp-offset, skip-offset, skip-slab, skip-back).
+struct SpawnSpec {
+  std::string strategy;  // a --spawn value
+  int ulps = 0;          // 0: the strategy's default
+};
+SpawnSpec spawn_spec(const std::string& s);  // throws std::invalid_argument naming the spec
 
 struct Options {
   std::vector<std::string> scenes;   // default: paper + hard
@@ -46,7 +55,7 @@ struct Job {
   std::string kind;  // "simulate" or "errormap"
   std::string id;    // <scene>-<format>-vtu<on|off>-<spawn>
   std::string scene, scene_arg;  // name; generator name or .glb path
-  std::string format_name, format, rounding, spawn;
+  std::string format_name, format, rounding, spawn;  // spawn: the spec ("skip-slab:2")
   bool vtu = false;
   int width = 0, height = 0;
   std::string json, png;      // outputs (errormap: png is the map)

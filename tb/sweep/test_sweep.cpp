@@ -119,7 +119,8 @@ TEST(Area, AddedCellsAgainstThePaperBaseline) {
     os << "# module format rounding cells\n"
           "ist\tfp24\trtz\t1000\nist\tfp24\trne\t1100\nist\tfp32\trne\t1700\n"
           "vtu\tfp24\trtz\t500\nvtu\tfp24\trne\t550\nvtu\tfp32\trne\t800\n"
-          "spawn-skip-origin\tfp24\trtz\t10\nspawn-error-bound\tfp32\trne\t3000\n";
+          "spawn-skip-origin\tfp24\trtz\t10\nspawn-error-bound\tfp32\trne\t3000\n"
+          "spawn-skip-slab\tfp24\trtz\t20\n";
   }
   const auto a = raycore::sweep::read_area(f.string());
   auto c = raycore::sweep::added_cells(a, "fp24", "rtz", false, "none");
@@ -129,6 +130,8 @@ TEST(Area, AddedCellsAgainstThePaperBaseline) {
   EXPECT_EQ(c.vtu, 500);
   EXPECT_EQ(c.spawn, 10);
   EXPECT_EQ(c.total, 510);
+  c = raycore::sweep::added_cells(a, "fp24", "rtz", false, "skip-slab:2");
+  EXPECT_EQ(c.spawn, 20) << "a spec with ulps: the strategy's row";
   c = raycore::sweep::added_cells(a, "fp32", "rne", true, "error-bound");
   EXPECT_EQ(c.format, 700);
   EXPECT_EQ(c.total, 700 + 800 + 3000);
@@ -151,7 +154,7 @@ TEST(Jobs, ListValidatesAndCounts) {
   o.raycore = "rc";
   o.map_scenes = {"none"};
   const auto jobs = raycore::sweep::make_jobs(o);
-  EXPECT_EQ(jobs.size(), 2u * 3u * 2u * 4u) << "scenes x formats x vtu x spawns";
+  EXPECT_EQ(jobs.size(), 2u * 3u * 2u * 7u) << "scenes x formats x vtu x spawns";
   EXPECT_EQ(jobs[0].width, 800);
   EXPECT_EQ(jobs.back().width, 400) << "hard cases use --hard-width";
   EXPECT_EQ(raycore::sweep::command_line(jobs[0]).rfind("rc simulate corridor --format fp24 --rounding rtz", 0), 0u)
@@ -166,6 +169,20 @@ TEST(Jobs, ListValidatesAndCounts) {
   EXPECT_THROW(raycore::sweep::make_jobs(o), std::invalid_argument);
   o.spawns = {"none", "none"};
   EXPECT_THROW(raycore::sweep::make_jobs(o), std::invalid_argument);
+  for (const char* bad : {"none:2", "skip-slab:", "skip-slab:0", "skip-slab:2x", "skip-slab:-1", ":2"}) {
+    o.spawns = {bad};
+    EXPECT_THROW(raycore::sweep::make_jobs(o), std::invalid_argument) << bad;
+  }
+  o.spawns = {"skip-slab:2", "skip-slab"};
+  o.vtu = {"on"};
+  const auto slab = raycore::sweep::make_jobs(o);
+  ASSERT_EQ(slab.size(), 2u);
+  EXPECT_NE(slab[0].id, slab[1].id);
+  EXPECT_NE(raycore::sweep::command_line(slab[0]).find("--spawn skip-slab --width"), std::string::npos);
+  EXPECT_NE(raycore::sweep::command_line(slab[0]).find("--spawn-ulps 2"), std::string::npos)
+      << raycore::sweep::command_line(slab[0]);
+  EXPECT_EQ(raycore::sweep::command_line(slab[1]).find("--spawn-ulps"), std::string::npos)
+      << "the default ulps: no option";
   o.spawns = {"none"};
   o.scenes = {"sponza-paper"};
   o.scenes_dir = "/nonexistent-scenes";
@@ -180,7 +197,7 @@ TEST(Cli, BadOptionsFailClearly) {
   } cases[] = {
       {"sweep --list --scenes bogus", "unknown scene 'bogus'"},
       {"sweep --list --formats fp16", "unknown format 'fp16'"},
-      {"sweep --list --spawns magic", "unknown spawn 'magic'"},
+      {"sweep --list --spawns magic", "unknown spawn strategy 'magic'"},
       {"sweep --list --spawns ,", "empty list"},
       {"sweep --list --vtu maybe", "unknown VTU value"},
       {"sweep --collect /nonexistent-sweep-dir", "manifest.json"},
@@ -201,7 +218,7 @@ TEST(Pipeline, TinySweepEndToEnd) {
   const std::string cmd = "cd " + std::string(RAYCORE_SOURCE_DIR) + " && SWEEP_OUT=" + out.string() +
                           " SWEEP_DOC= SWEEP_AREA=0 SWEEP_FAR_OFFSET=0 SWEEP_JOBS=2 ./scripts/sweep.sh " +
                           build.string() +
-                          " --scenes corridor,grazing --formats fp24-rtz --vtu on --spawns none,skip-origin"
+                          " --scenes corridor,grazing --formats fp24-rtz --vtu on --spawns none,skip-slab:2"
                           " --width 40 --height 24 --hard-width 32 --hard-height 20"
                           " --map-scenes corridor --map-configs fp24-rtz:on:none";
   const Result r = run(cmd);
@@ -230,7 +247,7 @@ TEST(Pipeline, TinySweepEndToEnd) {
     EXPECT_EQ(f[col("error_pixels")],
               std::to_string(std::stoull(f[col("shadow_errors")]) + std::stoull(f[col("primary_errors")])));
     EXPECT_TRUE(f[col("pareto")] == "0" || f[col("pareto")] == "1");
-    if (f[col("spawn")] == "skip-origin") {
+    if (f[col("spawn")] == "skip-slab:2") {
       EXPECT_EQ(f[col("self_intersections")], "0") << "row " << i;
     }
   }
@@ -246,7 +263,7 @@ TEST(Pipeline, TinySweepEndToEnd) {
   ASSERT_EQ(j["error_maps"].size(), 1u);
   EXPECT_TRUE(fs::file_size(out / "sweep.png") > 1000) << "the plot";
   EXPECT_TRUE(fs::file_size(out / "maps-corridor.png") > 1000) << "the error-map montage";
-  EXPECT_NE(read_file(out / "sweep.md").find("| fp24-rtz | on | skip-origin |"), std::string::npos);
+  EXPECT_NE(read_file(out / "sweep.md").find("| fp24-rtz | on | skip-slab:2 |"), std::string::npos);
 
   // A missing result: collect names it and fails.
   fs::remove(out / "jobs" / "grazing-fp24-rtz-vtuon-none.json");
