@@ -102,83 +102,70 @@ module ist #(
   // ---- level 1 ----------------------------------------------------------------------------------
   wire [W-1:0] l1_nud, l1_nvd, l1_nuo, l1_nvo, l1_s1;
   wire [4:0]   l1_unused_v, l1_unused_r;
-  localparam integer C1_W = TAG_BITS + 13 * W;
-  wire [TAG_BITS-1:0] c1_tag;
-  wire [W-1:0] c1_tmin, c1_tmax, c1_dk, c1_du, c1_dv, c1_ou, c1_ov;
-  wire [W-1:0] c1_bnu, c1_bnv, c1_bd, c1_cnu, c1_cnv, c1_cd;
-  fp_pipe #(.WIDTH(C1_W), .STAGES(STAGES)) u_carry1 (
+  // Levels 1 to 4 carry the tag, one value of their own and two groups of six values:
+  //   ka = {tmin, tmax, d_u, d_v, o_u, o_v}   (field i at [(5-i)*W +: W])
+  //   kb = {b_nu, b_nv, b_d, c_nu, c_nv, c_d} (the same), carried on to level 7.
+  localparam integer C_W = TAG_BITS + 13 * W;
+  wire [TAG_BITS-1:0] c1_tag, c2_tag, c3_tag, c4_tag;
+  wire [6*W-1:0] c1_ka, c2_ka, c3_ka, c4_ka, c1_kb, c2_kb, c3_kb, c4_kb;
+  wire [W-1:0] c1_dk, c1_du, c1_dv, c1_ou, c1_ov, c1_tmin, c1_tmax;
+  assign c1_ka = {c1_tmin, c1_tmax, c1_du, c1_dv, c1_ou, c1_ov};
+  fp_pipe #(.WIDTH(C_W), .STAGES(STAGES)) u_carry1 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(r[1]),
     .in_data_i({in_tag_i, in_tmin_i, in_tmax_i, d_k, d_u, d_v, o_u, o_v,
                 in_c3_i, in_c4_i, in_c5_i, in_c6_i, in_c7_i, in_c8_i}),
     .out_valid_o(v[1]), .out_ready_i(r[2]),
-    .out_data_o({c1_tag, c1_tmin, c1_tmax, c1_dk, c1_du, c1_dv, c1_ou, c1_ov,
-                 c1_bnu, c1_bnv, c1_bd, c1_cnu, c1_cnv, c1_cd})
+    .out_data_o({c1_tag, c1_tmin, c1_tmax, c1_dk, c1_du, c1_dv, c1_ou, c1_ov, c1_kb})
   );
-  ist_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l1_nud (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[0]),
-    .in_a_i(in_c0_i), .in_b_i(d_u), .out_valid_o(l1_unused_v[0]), .out_ready_i(r[2]),
-    .out_res_o(l1_nud));
-  ist_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l1_nvd (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[1]),
-    .in_a_i(in_c1_i), .in_b_i(d_v), .out_valid_o(l1_unused_v[1]), .out_ready_i(r[2]),
-    .out_res_o(l1_nvd));
-  ist_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l1_nuo (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[2]),
-    .in_a_i(in_c0_i), .in_b_i(o_u), .out_valid_o(l1_unused_v[2]), .out_ready_i(r[2]),
-    .out_res_o(l1_nuo));
-  ist_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l1_nvo (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[3]),
-    .in_a_i(in_c1_i), .in_b_i(o_v), .out_valid_o(l1_unused_v[3]), .out_ready_i(r[2]),
-    .out_res_o(l1_nvo));
-  ist_add #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l1_s1 (
+  // Products j = 0..3: nud = n_u*d_u, nvd = n_v*d_v, nuo = n_u*o_u, nvo = n_v*o_v.
+  wire [4*W-1:0] l1_pa = {in_c1_i, in_c0_i, in_c1_i, in_c0_i};
+  wire [4*W-1:0] l1_pb = {o_v, o_u, d_v, d_u};
+  wire [4*W-1:0] l1_prod;
+  assign {l1_nvo, l1_nuo, l1_nvd, l1_nud} = l1_prod;
+  genvar gj;
+  generate
+    for (gj = 0; gj < 4; gj = gj + 1) begin : g_l1_mul
+      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_mul (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[gj]),
+        .in_a_i(l1_pa[gj*W +: W]), .in_b_i(l1_pb[gj*W +: W]), .out_valid_o(l1_unused_v[gj]),
+        .out_ready_i(r[2]), .out_res_o(l1_prod[gj*W +: W]));
+    end
+  endgenerate
+  fp_op2_nt #(.OP("sub"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l1_s1 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[4]),
-    .in_a_i(in_c2_i), .in_b_i(o_k), .in_sub_i(1'b1), .out_valid_o(l1_unused_v[4]),
-    .out_ready_i(r[2]), .out_res_o(l1_s1));
+    .in_a_i(in_c2_i), .in_b_i(o_k), .out_valid_o(l1_unused_v[4]), .out_ready_i(r[2]),
+    .out_res_o(l1_s1));
 
   // ---- level 2 ----------------------------------------------------------------------------------
   wire [W-1:0] l2_den, l2_s2;
   wire [1:0]   l2_unused_v, l2_unused_r;
-  localparam integer C2_W = TAG_BITS + 13 * W;
-  wire [TAG_BITS-1:0] c2_tag;
-  wire [W-1:0] c2_tmin, c2_tmax, c2_du, c2_dv, c2_ou, c2_ov, c2_s1;
-  wire [W-1:0] c2_bnu, c2_bnv, c2_bd, c2_cnu, c2_cnv, c2_cd;
-  fp_pipe #(.WIDTH(C2_W), .STAGES(STAGES)) u_carry2 (
+  wire [W-1:0] c2_s1;
+  fp_pipe #(.WIDTH(C_W), .STAGES(STAGES)) u_carry2 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(r[2]),
-    .in_data_i({c1_tag, c1_tmin, c1_tmax, c1_du, c1_dv, c1_ou, c1_ov, l1_s1,
-                c1_bnu, c1_bnv, c1_bd, c1_cnu, c1_cnv, c1_cd}),
-    .out_valid_o(v[2]), .out_ready_i(r[3]),
-    .out_data_o({c2_tag, c2_tmin, c2_tmax, c2_du, c2_dv, c2_ou, c2_ov, c2_s1,
-                 c2_bnu, c2_bnv, c2_bd, c2_cnu, c2_cnv, c2_cd})
-  );
-  ist_add3 #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l2_den (
+    .in_data_i({c1_tag, c1_ka, l1_s1, c1_kb}), .out_valid_o(v[2]), .out_ready_i(r[3]),
+    .out_data_o({c2_tag, c2_ka, c2_s1, c2_kb}));
+  fp_add3_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l2_den (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[0]),
     .in_a_i(c1_dk), .in_b_i(l1_nud), .in_c_i(l1_nvd), .out_valid_o(l2_unused_v[0]),
     .out_ready_i(r[3]), .out_res_o(l2_den));
-  ist_add #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l2_s2 (
+  fp_op2_nt #(.OP("add"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l2_s2 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[1]),
-    .in_a_i(l1_nuo), .in_b_i(l1_nvo), .in_sub_i(1'b0), .out_valid_o(l2_unused_v[1]),
-    .out_ready_i(r[3]), .out_res_o(l2_s2));
+    .in_a_i(l1_nuo), .in_b_i(l1_nvo), .out_valid_o(l2_unused_v[1]), .out_ready_i(r[3]),
+    .out_res_o(l2_s2));
 
   // ---- level 3 ----------------------------------------------------------------------------------
   wire [W-1:0] l3_num, l3_rcp;
   wire [1:0]   l3_unused_v, l3_unused_r;
-  localparam integer C3_W = TAG_BITS + 13 * W;
-  wire [TAG_BITS-1:0] c3_tag;
-  wire [W-1:0] c3_tmin, c3_tmax, c3_du, c3_dv, c3_ou, c3_ov, c3_den;
-  wire [W-1:0] c3_bnu, c3_bnv, c3_bd, c3_cnu, c3_cnv, c3_cd;
-  fp_pipe #(.WIDTH(C3_W), .STAGES(STAGES)) u_carry3 (
+  wire [W-1:0] c3_den;
+  fp_pipe #(.WIDTH(C_W), .STAGES(STAGES)) u_carry3 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(r[3]),
-    .in_data_i({c2_tag, c2_tmin, c2_tmax, c2_du, c2_dv, c2_ou, c2_ov, l2_den,
-                c2_bnu, c2_bnv, c2_bd, c2_cnu, c2_cnv, c2_cd}),
-    .out_valid_o(v[3]), .out_ready_i(r[4]),
-    .out_data_o({c3_tag, c3_tmin, c3_tmax, c3_du, c3_dv, c3_ou, c3_ov, c3_den,
-                 c3_bnu, c3_bnv, c3_bd, c3_cnu, c3_cnv, c3_cd})
-  );
-  ist_add #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l3_num (
+    .in_data_i({c2_tag, c2_ka, l2_den, c2_kb}), .out_valid_o(v[3]), .out_ready_i(r[4]),
+    .out_data_o({c3_tag, c3_ka, c3_den, c3_kb}));
+  fp_op2_nt #(.OP("sub"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l3_num (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[0]),
-    .in_a_i(c2_s1), .in_b_i(l2_s2), .in_sub_i(1'b1), .out_valid_o(l3_unused_v[0]),
-    .out_ready_i(r[4]), .out_res_o(l3_num));
-  ist_div #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l3_rcp (
+    .in_a_i(c2_s1), .in_b_i(l2_s2), .out_valid_o(l3_unused_v[0]), .out_ready_i(r[4]),
+    .out_res_o(l3_num));
+  fp_op2_nt #(.OP("div"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l3_rcp (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[1]),
     .in_a_i(ONE), .in_b_i(l2_den), .out_valid_o(l3_unused_v[1]),
     .out_ready_i(r[4]), .out_res_o(l3_rcp));
@@ -186,58 +173,53 @@ module ist #(
   // ---- level 4 ----------------------------------------------------------------------------------
   wire [W-1:0] l4_t;
   wire         l4_unused_v, l4_unused_r;
-  localparam integer C4_W = TAG_BITS + 13 * W;
-  wire [TAG_BITS-1:0] c4_tag;
-  wire [W-1:0] c4_tmin, c4_tmax, c4_du, c4_dv, c4_ou, c4_ov, c4_den;
-  wire [W-1:0] c4_bnu, c4_bnv, c4_bd, c4_cnu, c4_cnv, c4_cd;
-  fp_pipe #(.WIDTH(C4_W), .STAGES(STAGES)) u_carry4 (
+  wire [W-1:0] c4_den;
+  fp_pipe #(.WIDTH(C_W), .STAGES(STAGES)) u_carry4 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(r[4]),
-    .in_data_i({c3_tag, c3_tmin, c3_tmax, c3_du, c3_dv, c3_ou, c3_ov, c3_den,
-                c3_bnu, c3_bnv, c3_bd, c3_cnu, c3_cnv, c3_cd}),
-    .out_valid_o(v[4]), .out_ready_i(r[5]),
-    .out_data_o({c4_tag, c4_tmin, c4_tmax, c4_du, c4_dv, c4_ou, c4_ov, c4_den,
-                 c4_bnu, c4_bnv, c4_bd, c4_cnu, c4_cnv, c4_cd})
-  );
-  ist_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l4_t (
+    .in_data_i({c3_tag, c3_ka, c3_den, c3_kb}), .out_valid_o(v[4]), .out_ready_i(r[5]),
+    .out_data_o({c4_tag, c4_ka, c4_den, c4_kb}));
+  wire [W-1:0] c4_tmin = c4_ka[5*W +: W];
+  wire [W-1:0] c4_tmax = c4_ka[4*W +: W];
+  fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l4_t (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(l4_unused_r),
     .in_a_i(l3_num), .in_b_i(l3_rcp), .out_valid_o(l4_unused_v), .out_ready_i(r[5]),
     .out_res_o(l4_t));
 
   // ---- level 5 ----------------------------------------------------------------------------------
-  wire [W-1:0] l5_tdu, l5_tdv;
-  wire         l5_lo, l5_hi;  // tmin < t, t < tmax
+  wire [1:0]   l5_lt;  // {t < tmax, tmin < t}
   wire [3:0]   l5_unused_v, l5_unused_r;
   localparam integer C5_W = TAG_BITS + 10 * W;
   wire [TAG_BITS-1:0] c5_tag;
   wire [W-1:0] c5_ou, c5_ov, c5_den, c5_t;
-  wire [W-1:0] c5_bnu, c5_bnv, c5_bd, c5_cnu, c5_cnv, c5_cd;
+  wire [6*W-1:0] c5_kb;
   fp_pipe #(.WIDTH(C5_W), .STAGES(STAGES)) u_carry5 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(r[5]),
-    .in_data_i({c4_tag, c4_ou, c4_ov, c4_den, l4_t,
-                c4_bnu, c4_bnv, c4_bd, c4_cnu, c4_cnv, c4_cd}),
+    .in_data_i({c4_tag, c4_ka[0 +: 2*W], c4_den, l4_t, c4_kb}),
     .out_valid_o(v[5]), .out_ready_i(r[6]),
-    .out_data_o({c5_tag, c5_ou, c5_ov, c5_den, c5_t,
-                 c5_bnu, c5_bnv, c5_bd, c5_cnu, c5_cnv, c5_cd})
+    .out_data_o({c5_tag, c5_ou, c5_ov, c5_den, c5_t, c5_kb})
   );
-  ist_lt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(STAGES)) u_l5_lo (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(l5_unused_r[0]),
-    .in_a_i(c4_tmin), .in_b_i(l4_t), .out_valid_o(l5_unused_v[0]), .out_ready_i(r[6]),
-    .out_lt_o(l5_lo));
-  ist_lt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(STAGES)) u_l5_hi (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(l5_unused_r[1]),
-    .in_a_i(l4_t), .in_b_i(c4_tmax), .out_valid_o(l5_unused_v[1]), .out_ready_i(r[6]),
-    .out_lt_o(l5_hi));
-  ist_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l5_tdu (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(l5_unused_r[2]),
-    .in_a_i(l4_t), .in_b_i(c4_du), .out_valid_o(l5_unused_v[2]), .out_ready_i(r[6]),
-    .out_res_o(l5_tdu));
-  ist_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l5_tdv (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(l5_unused_r[3]),
-    .in_a_i(l4_t), .in_b_i(c4_dv), .out_valid_o(l5_unused_v[3]), .out_ready_i(r[6]),
-    .out_res_o(l5_tdv));
+  // Lanes j = 0, 1: lo = lt(tmin, t), hi = lt(t, tmax); tdu = t*d_u, tdv = t*d_v.
+  wire [2*W-1:0] l5_ca = {l4_t, c4_tmin};
+  wire [2*W-1:0] l5_cb = {c4_tmax, l4_t};
+  wire [2*W-1:0] l5_pb = {c4_ka[2*W +: W], c4_ka[3*W +: W]};  // {d_v, d_u}
+  wire [2*W-1:0] l5_prod;       // {tdv, tdu}
+  wire [1:0]     l5_unused_eq;
+  wire [4*W-1:0] l5_unused_mm;  // min/max: not needed
+  generate
+    for (gj = 0; gj < 2; gj = gj + 1) begin : g_l5
+      fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(STAGES)) u_lt (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(l5_unused_r[gj]),
+        .in_a_i(l5_ca[gj*W +: W]), .in_b_i(l5_cb[gj*W +: W]), .out_valid_o(l5_unused_v[gj]),
+        .out_ready_i(r[6]), .out_lt_o(l5_lt[gj]), .out_eq_o(l5_unused_eq[gj]),
+        .out_min_o(l5_unused_mm[2*gj*W +: W]), .out_max_o(l5_unused_mm[(2*gj+1)*W +: W]));
+      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_mul (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(l5_unused_r[2+gj]),
+        .in_a_i(l4_t), .in_b_i(l5_pb[gj*W +: W]), .out_valid_o(l5_unused_v[2+gj]),
+        .out_ready_i(r[6]), .out_res_o(l5_prod[gj*W +: W]));
+    end
+  endgenerate
 
   // ---- level 6 ----------------------------------------------------------------------------------
-  wire [W-1:0] l6_hu, l6_hv;
   wire [1:0]   l6_unused_v, l6_unused_r;
   localparam integer C6_W = TAG_BITS + 8 * W + 1;
   wire [TAG_BITS-1:0] c6_tag;
@@ -245,22 +227,23 @@ module ist #(
   wire         c6_p1;  // phase 1 passed: tmin < t < tmax
   fp_pipe #(.WIDTH(C6_W), .STAGES(STAGES)) u_carry6 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(r[6]),
-    .in_data_i({c5_tag, c5_den, c5_t, c5_bnu, c5_bnv, c5_bd, c5_cnu, c5_cnv, c5_cd,
-                l5_lo & l5_hi}),
+    .in_data_i({c5_tag, c5_den, c5_t, c5_kb, &l5_lt}),
     .out_valid_o(v[6]), .out_ready_i(r[7]),
     .out_data_o({c6_tag, c6_den, c6_t, c6_bnu, c6_bnv, c6_bd, c6_cnu, c6_cnv, c6_cd, c6_p1})
   );
-  ist_add #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l6_hu (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(l6_unused_r[0]),
-    .in_a_i(c5_ou), .in_b_i(l5_tdu), .in_sub_i(1'b0), .out_valid_o(l6_unused_v[0]),
-    .out_ready_i(r[7]), .out_res_o(l6_hu));
-  ist_add #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l6_hv (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(l6_unused_r[1]),
-    .in_a_i(c5_ov), .in_b_i(l5_tdv), .in_sub_i(1'b0), .out_valid_o(l6_unused_v[1]),
-    .out_ready_i(r[7]), .out_res_o(l6_hv));
+  // hu = o_u + t*d_u, hv = o_v + t*d_v
+  wire [2*W-1:0] l6_a = {c5_ov, c5_ou};
+  wire [2*W-1:0] l6_sum;  // {hv, hu}
+  generate
+    for (gj = 0; gj < 2; gj = gj + 1) begin : g_l6_add
+      fp_op2_nt #(.OP("add"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_add (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(l6_unused_r[gj]),
+        .in_a_i(l6_a[gj*W +: W]), .in_b_i(l5_prod[gj*W +: W]), .out_valid_o(l6_unused_v[gj]),
+        .out_ready_i(r[7]), .out_res_o(l6_sum[gj*W +: W]));
+    end
+  endgenerate
 
   // ---- level 7 ----------------------------------------------------------------------------------
-  wire [W-1:0] l7_bu, l7_bv, l7_cu, l7_cv;
   wire [3:0]   l7_unused_v, l7_unused_r;
   localparam integer C7_W = TAG_BITS + 4 * W + 1;
   wire [TAG_BITS-1:0] c7_tag;
@@ -272,22 +255,17 @@ module ist #(
     .out_valid_o(v[7]), .out_ready_i(r[8]),
     .out_data_o({c7_tag, c7_den, c7_t, c7_bd, c7_cd, c7_p1})
   );
-  ist_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l7_bu (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(l7_unused_r[0]),
-    .in_a_i(c6_bnu), .in_b_i(l6_hu), .out_valid_o(l7_unused_v[0]), .out_ready_i(r[8]),
-    .out_res_o(l7_bu));
-  ist_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l7_bv (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(l7_unused_r[1]),
-    .in_a_i(c6_bnv), .in_b_i(l6_hv), .out_valid_o(l7_unused_v[1]), .out_ready_i(r[8]),
-    .out_res_o(l7_bv));
-  ist_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l7_cu (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(l7_unused_r[2]),
-    .in_a_i(c6_cnu), .in_b_i(l6_hu), .out_valid_o(l7_unused_v[2]), .out_ready_i(r[8]),
-    .out_res_o(l7_cu));
-  ist_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l7_cv (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(l7_unused_r[3]),
-    .in_a_i(c6_cnv), .in_b_i(l6_hv), .out_valid_o(l7_unused_v[3]), .out_ready_i(r[8]),
-    .out_res_o(l7_cv));
+  // Products j = 0..3: bu = b_nu*hu, bv = b_nv*hv, cu = c_nu*hu, cv = c_nv*hv.
+  wire [4*W-1:0] l7_pa = {c6_cnv, c6_cnu, c6_bnv, c6_bnu};
+  wire [4*W-1:0] l7_prod;  // {cv, cu, bv, bu}
+  generate
+    for (gj = 0; gj < 4; gj = gj + 1) begin : g_l7_mul
+      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_mul (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(l7_unused_r[gj]),
+        .in_a_i(l7_pa[gj*W +: W]), .in_b_i(l6_sum[(gj%2)*W +: W]), .out_valid_o(l7_unused_v[gj]),
+        .out_ready_i(r[8]), .out_res_o(l7_prod[gj*W +: W]));
+    end
+  endgenerate
 
   // ---- level 8 ----------------------------------------------------------------------------------
   wire [W-1:0] l8_beta, l8_gamma;
@@ -302,14 +280,19 @@ module ist #(
     .out_valid_o(v[8]), .out_ready_i(r[9]),
     .out_data_o({c8_tag, c8_den, c8_t, c8_p1})
   );
-  ist_add3 #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l8_beta (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(l8_unused_r[0]),
-    .in_a_i(l7_bu), .in_b_i(l7_bv), .in_c_i(c7_bd), .out_valid_o(l8_unused_v[0]),
-    .out_ready_i(r[9]), .out_res_o(l8_beta));
-  ist_add3 #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l8_gamma (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(l8_unused_r[1]),
-    .in_a_i(l7_cu), .in_b_i(l7_cv), .in_c_i(c7_cd), .out_valid_o(l8_unused_v[1]),
-    .out_ready_i(r[9]), .out_res_o(l8_gamma));
+  // beta = add3(b_nu*hu, b_nv*hv, b_d), gamma = add3(c_nu*hu, c_nv*hv, c_d)
+  wire [2*W-1:0] l8_c = {c7_cd, c7_bd};
+  wire [2*W-1:0] l8_sum;
+  assign {l8_gamma, l8_beta} = l8_sum;
+  generate
+    for (gj = 0; gj < 2; gj = gj + 1) begin : g_l8_add3
+      fp_add3_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_add3 (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(l8_unused_r[gj]),
+        .in_a_i(l7_prod[2*gj*W +: W]), .in_b_i(l7_prod[(2*gj+1)*W +: W]),
+        .in_c_i(l8_c[gj*W +: W]), .out_valid_o(l8_unused_v[gj]), .out_ready_i(r[9]),
+        .out_res_o(l8_sum[gj*W +: W]));
+    end
+  endgenerate
 
   // ---- level 9 ----------------------------------------------------------------------------------
   // A coordinate fails if it is negative and nonzero (hls: sign(x) && !is_zero(x)).
@@ -327,10 +310,10 @@ module ist #(
     .out_valid_o(v[9]), .out_ready_i(r[10]),
     .out_data_o({c9_tag, c9_den, c9_t, c9_p1, c9_bfail, c9_gfail})
   );
-  ist_add #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l9_sum (
+  fp_op2_nt #(.OP("add"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l9_sum (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[8]), .in_ready_o(l9_unused_r),
-    .in_a_i(l8_beta), .in_b_i(l8_gamma), .in_sub_i(1'b0), .out_valid_o(l9_unused_v),
-    .out_ready_i(r[10]), .out_res_o(l9_sum));
+    .in_a_i(l8_beta), .in_b_i(l8_gamma), .out_valid_o(l9_unused_v), .out_ready_i(r[10]),
+    .out_res_o(l9_sum));
 
   // ---- level 10 ---------------------------------------------------------------------------------
   wire         l10_sfail;  // 1 < beta + gamma
@@ -343,10 +326,13 @@ module ist #(
     .out_valid_o(v[10]), .out_ready_i(r[11]),
     .out_data_o({out_tag_o, out_den_o, out_t_o, c10_p1, c10_bfail, c10_gfail})
   );
-  ist_lt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(STAGES)) u_l10_sum (
+  wire         l10_unused_eq;
+  wire [W-1:0] l10_unused_min, l10_unused_max;
+  fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(STAGES)) u_l10_sum (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[9]), .in_ready_o(l10_unused_r),
     .in_a_i(ONE), .in_b_i(l9_sum), .out_valid_o(l10_unused_v), .out_ready_i(r[11]),
-    .out_lt_o(l10_sfail));
+    .out_lt_o(l10_sfail), .out_eq_o(l10_unused_eq), .out_min_o(l10_unused_min),
+    .out_max_o(l10_unused_max));
 
   assign r[11]       = out_ready_i;
   assign out_valid_o = v[10];
@@ -361,6 +347,7 @@ module ist #(
   assign unused_hs = ^{l1_unused_v, l1_unused_r, l2_unused_v, l2_unused_r, l3_unused_v,
                        l3_unused_r, l4_unused_v, l4_unused_r, l5_unused_v, l5_unused_r,
                        l6_unused_v, l6_unused_r, l7_unused_v, l7_unused_r, l8_unused_v,
-                       l8_unused_r, l9_unused_v, l9_unused_r, l10_unused_v, l10_unused_r};
+                       l8_unused_r, l9_unused_v, l9_unused_r, l10_unused_v, l10_unused_r,
+                       l5_unused_eq, l5_unused_mm, l10_unused_eq, l10_unused_min, l10_unused_max};
 
 endmodule

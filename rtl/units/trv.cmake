@@ -1,14 +1,11 @@
-# rtl/units/trv*.v: the traversal unit's datapath (split step and box clip, latency 4 * STAGES).
+# rtl/units/trv.v: the traversal unit's datapath (split step and box clip, latency 4 * STAGES).
 # Included by rtl/CMakeLists.txt (CMAKE_CURRENT_SOURCE_DIR is rtl/). Two libraries:
 #   raycore_rtl_trv    --cc models, driven directly from C++ by tb/rtl/test_rtl_trv.cpp (bit-exact
 #                      against hls::trv_split / hls::trv_clip_box);
 #   raycore_rtl_trv_sc --sc models (sc_in/sc_out ports), bound beside the SystemC twin
 #                      systemc/pins/trv.h in tb/rtl/test_lockstep_trv.cpp.
-set(RAYCORE_RTL_TRV_SOURCES ${RAYCORE_RTL_FP_SOURCES})
-foreach(m trv_sub trv_mul trv_cmp trv)
-  list(APPEND RAYCORE_RTL_TRV_SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/units/${m}.v)
-endforeach()
-set(RAYCORE_RTL_TRV_SOURCES ${RAYCORE_RTL_TRV_SOURCES} CACHE INTERNAL "rtl/units/trv*.v and rtl/fp")
+set(RAYCORE_RTL_TRV_SOURCES ${RAYCORE_RTL_FP_SOURCES} ${CMAKE_CURRENT_SOURCE_DIR}/units/trv.v
+    CACHE INTERNAL "rtl/units/trv.v and the rtl/fp modules it instantiates")
 raycore_rtl_library(raycore_rtl_trv trv SOURCES ${RAYCORE_RTL_TRV_SOURCES} VARIANTS
   "trv FP24 rtz 0"
   "trv FP24 rtz 2"

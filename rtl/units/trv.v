@@ -18,12 +18,12 @@
 //
 // Levels (the lanes are shared by both operations; every FP operator has STAGES registers and a
 // per-level fp_pipe of the same depth carries the values needed later and the tag):
-//   1  six trv_sub: lo[a] - o[a] and hi[a] - o[a] (split: lane axis computes split - o[axis]);
-//      trv_cmp(o[axis], split) for the near child
-//   2  six trv_mul: (lo[a] - o[a]) * inv[a], (hi[a] - o[a]) * inv[a]  (split: tsplit in lane axis)
-//   3  three trv_cmp: clip: th[a] < tl[a] (slab order, swap); split: tfar < tsplit, 0 < tsplit,
+//   1  six subtractions: lo[a] - o[a] and hi[a] - o[a] (split: lane axis computes
+//      split - o[axis]); fp_cmp(o[axis], split) for the near child
+//   2  six products: (lo[a] - o[a]) * inv[a], (hi[a] - o[a]) * inv[a]  (split: tsplit in lane axis)
+//   3  three fp_cmp: clip: th[a] < tl[a] (slab order, swap); split: tfar < tsplit, 0 < tsplit,
 //      tsplit < tnear (operand muxes)
-//   4  comparator tree (combinational trv_cmp, then STAGES registers): tnear = max(tmin, tl0, tl1,
+//   4  comparator tree (combinational fp_cmp, then STAGES registers): tnear = max(tmin, tl0, tl1,
 //      tl2), tfar = min(tmax, th0, th1, th2) as a tree (max/min return the first of equal values,
 //      so the tree equals hls' left-to-right chain bit for bit), hit = !(tfar < tnear); the
 //      outputs are assembled before the last registers.
@@ -108,7 +108,6 @@ module trv #(
   wire [31:0]  node_p1 = in_node_i + 32'd1;
 
   // ---- level 1: six differences, the origin's side ---------------------------------------------
-  wire [W-1:0] l1_slx, l1_sly, l1_slz, l1_shx, l1_shy, l1_shz;
   wire         l1_lt, l1_eq;
   wire [W-1:0] l1_unused_min, l1_unused_max;  // not needed (the side is lt/eq)
   wire [6:0]   l1_unused_v, l1_unused_r;
@@ -126,31 +125,20 @@ module trv #(
     .out_data_o({c1_tag, c1_op, c1_axis, c1_tnear, c1_tfar, c1_invx, c1_invy, c1_invz,
                  c1_node_p1, c1_child, c1_dlow})
   );
-  trv_sub #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l1_slx (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[0]),
-    .in_a_i(lo_x), .in_b_i(in_o_x_i), .out_valid_o(l1_unused_v[0]), .out_ready_i(r[2]),
-    .out_res_o(l1_slx));
-  trv_sub #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l1_sly (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[1]),
-    .in_a_i(lo_y), .in_b_i(in_o_y_i), .out_valid_o(l1_unused_v[1]), .out_ready_i(r[2]),
-    .out_res_o(l1_sly));
-  trv_sub #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l1_slz (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[2]),
-    .in_a_i(lo_z), .in_b_i(in_o_z_i), .out_valid_o(l1_unused_v[2]), .out_ready_i(r[2]),
-    .out_res_o(l1_slz));
-  trv_sub #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l1_shx (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[3]),
-    .in_a_i(in_hi_x_i), .in_b_i(in_o_x_i), .out_valid_o(l1_unused_v[3]), .out_ready_i(r[2]),
-    .out_res_o(l1_shx));
-  trv_sub #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l1_shy (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[4]),
-    .in_a_i(in_hi_y_i), .in_b_i(in_o_y_i), .out_valid_o(l1_unused_v[4]), .out_ready_i(r[2]),
-    .out_res_o(l1_shy));
-  trv_sub #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l1_shz (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[5]),
-    .in_a_i(in_hi_z_i), .in_b_i(in_o_z_i), .out_valid_o(l1_unused_v[5]), .out_ready_i(r[2]),
-    .out_res_o(l1_shz));
-  trv_cmp #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(STAGES)) u_l1_side (
+  // Lanes j = 0..5: lo[a] - o[a] (a = x, y, z), then hi[a] - o[a].
+  wire [6*W-1:0] l1_a = {in_hi_z_i, in_hi_y_i, in_hi_x_i, lo_z, lo_y, lo_x};
+  wire [6*W-1:0] l1_b = {in_o_z_i, in_o_y_i, in_o_x_i, in_o_z_i, in_o_y_i, in_o_x_i};
+  wire [6*W-1:0] l1_diff;  // {shz, shy, shx, slz, sly, slx}
+  genvar gj;
+  generate
+    for (gj = 0; gj < 6; gj = gj + 1) begin : g_l1_sub
+      fp_op2_nt #(.OP("sub"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_sub (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[gj]),
+        .in_a_i(l1_a[gj*W +: W]), .in_b_i(l1_b[gj*W +: W]), .out_valid_o(l1_unused_v[gj]),
+        .out_ready_i(r[2]), .out_res_o(l1_diff[gj*W +: W]));
+    end
+  endgenerate
+  fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(STAGES)) u_l1_side (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[6]),
     .in_a_i(o_ax), .in_b_i(in_split_i), .out_valid_o(l1_unused_v[6]), .out_ready_i(r[2]),
     .out_lt_o(l1_lt), .out_eq_o(l1_eq), .out_min_o(l1_unused_min), .out_max_o(l1_unused_max));
@@ -171,41 +159,26 @@ module trv #(
     .out_valid_o(v[2]), .out_ready_i(r[3]),
     .out_data_o({c2_tag, c2_op, c2_axis, c2_tnear, c2_tfar, c2_node_p1, c2_child, c2_below})
   );
-  trv_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l2_tlx (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[0]),
-    .in_a_i(l1_slx), .in_b_i(c1_invx), .out_valid_o(l2_unused_v[0]), .out_ready_i(r[3]),
-    .out_res_o(l2_tlx));
-  trv_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l2_tly (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[1]),
-    .in_a_i(l1_sly), .in_b_i(c1_invy), .out_valid_o(l2_unused_v[1]), .out_ready_i(r[3]),
-    .out_res_o(l2_tly));
-  trv_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l2_tlz (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[2]),
-    .in_a_i(l1_slz), .in_b_i(c1_invz), .out_valid_o(l2_unused_v[2]), .out_ready_i(r[3]),
-    .out_res_o(l2_tlz));
-  trv_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l2_thx (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[3]),
-    .in_a_i(l1_shx), .in_b_i(c1_invx), .out_valid_o(l2_unused_v[3]), .out_ready_i(r[3]),
-    .out_res_o(l2_thx));
-  trv_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l2_thy (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[4]),
-    .in_a_i(l1_shy), .in_b_i(c1_invy), .out_valid_o(l2_unused_v[4]), .out_ready_i(r[3]),
-    .out_res_o(l2_thy));
-  trv_mul #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l2_thz (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[5]),
-    .in_a_i(l1_shz), .in_b_i(c1_invz), .out_valid_o(l2_unused_v[5]), .out_ready_i(r[3]),
-    .out_res_o(l2_thz));
+  // Lanes j = 0..5 as level 1's, times inv[a].
+  wire [6*W-1:0] l2_b = {c1_invz, c1_invy, c1_invx, c1_invz, c1_invy, c1_invx};
+  wire [6*W-1:0] l2_prod;
+  assign {l2_thz, l2_thy, l2_thx, l2_tlz, l2_tly, l2_tlx} = l2_prod;
+  generate
+    for (gj = 0; gj < 6; gj = gj + 1) begin : g_l2_mul
+      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_mul (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[gj]),
+        .in_a_i(l1_diff[gj*W +: W]), .in_b_i(l2_b[gj*W +: W]), .out_valid_o(l2_unused_v[gj]),
+        .out_ready_i(r[3]), .out_res_o(l2_prod[gj*W +: W]));
+    end
+  endgenerate
 
   // ---- level 3: slab order (clip) or the split decisions ----------------------------------------
   wire         c2_ax1 = (c2_axis == 2'd1);
   wire         c2_ax2 = (c2_axis == 2'd2);
   wire [W-1:0] l2_ts  = c2_ax1 ? l2_tly : c2_ax2 ? l2_tlz : l2_tlx;
-  wire [W-1:0] k0_a = c2_op ? l2_thx : c2_tfar;
-  wire [W-1:0] k0_b = c2_op ? l2_tlx : l2_ts;
-  wire [W-1:0] k1_a = c2_op ? l2_thy : ZERO;
-  wire [W-1:0] k1_b = c2_op ? l2_tly : l2_ts;
-  wire [W-1:0] k2_a = c2_op ? l2_thz : l2_ts;
-  wire [W-1:0] k2_b = c2_op ? l2_tlz : c2_tnear;
+  // Comparator j = 0..2: clip: th[j] < tl[j]; split: tfar < tsplit, 0 < tsplit, tsplit < tnear.
+  wire [3*W-1:0] k_a = c2_op ? l2_prod[3*W +: 3*W] : {l2_ts, ZERO, c2_tfar};
+  wire [3*W-1:0] k_b = c2_op ? l2_prod[0 +: 3*W] : {c2_tnear, l2_ts, l2_ts};
   wire [2:0]   l3_lt;
   wire [2:0]   l3_unused_eq;
   wire [6*W-1:0] l3_unused_mm;  // min/max not needed here
@@ -223,21 +196,15 @@ module trv #(
     .out_data_o({c3_tag, c3_op, c3_below, c3_tnear, c3_tfar, c3_ts, c3_tlx, c3_tly, c3_tlz,
                  c3_thx, c3_thy, c3_thz, c3_node_p1, c3_child})
   );
-  trv_cmp #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(STAGES)) u_l3_k0 (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[0]),
-    .in_a_i(k0_a), .in_b_i(k0_b), .out_valid_o(l3_unused_v[0]), .out_ready_i(r[4]),
-    .out_lt_o(l3_lt[0]), .out_eq_o(l3_unused_eq[0]), .out_min_o(l3_unused_mm[0*W +: W]),
-    .out_max_o(l3_unused_mm[1*W +: W]));
-  trv_cmp #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(STAGES)) u_l3_k1 (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[1]),
-    .in_a_i(k1_a), .in_b_i(k1_b), .out_valid_o(l3_unused_v[1]), .out_ready_i(r[4]),
-    .out_lt_o(l3_lt[1]), .out_eq_o(l3_unused_eq[1]), .out_min_o(l3_unused_mm[2*W +: W]),
-    .out_max_o(l3_unused_mm[3*W +: W]));
-  trv_cmp #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(STAGES)) u_l3_k2 (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[2]),
-    .in_a_i(k2_a), .in_b_i(k2_b), .out_valid_o(l3_unused_v[2]), .out_ready_i(r[4]),
-    .out_lt_o(l3_lt[2]), .out_eq_o(l3_unused_eq[2]), .out_min_o(l3_unused_mm[4*W +: W]),
-    .out_max_o(l3_unused_mm[5*W +: W]));
+  generate
+    for (gj = 0; gj < 3; gj = gj + 1) begin : g_l3_cmp
+      fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(STAGES)) u_cmp (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[gj]),
+        .in_a_i(k_a[gj*W +: W]), .in_b_i(k_b[gj*W +: W]), .out_valid_o(l3_unused_v[gj]),
+        .out_ready_i(r[4]), .out_lt_o(l3_lt[gj]), .out_eq_o(l3_unused_eq[gj]),
+        .out_min_o(l3_unused_mm[2*gj*W +: W]), .out_max_o(l3_unused_mm[(2*gj+1)*W +: W]));
+    end
+  endgenerate
 
   // Split: first only if tfar < tsplit or !(0 < tsplit); else second only if tsplit < tnear.
   wire [1:0]   l3_visit = (l3_lt[0] || !l3_lt[1]) ? 2'd0 : l3_lt[2] ? 2'd1 : 2'd2;
@@ -256,37 +223,37 @@ module trv #(
   wire [5:0]   l4_unused_lt;       // lt of the min/max comparators: not needed
   wire [6:0]   l4_unused_eq, l4_unused_v, l4_unused_r;
   wire [7*W-1:0] l4_unused_mm;  // the other of min/max
-  trv_cmp #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(0)) u_l4_m01 (
+  fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(0)) u_l4_m01 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(1'b1), .in_ready_o(l4_unused_r[0]),
     .in_a_i(c3_tnear), .in_b_i(sl_x), .out_valid_o(l4_unused_v[0]), .out_ready_i(1'b1),
     .out_lt_o(l4_unused_lt[0]), .out_eq_o(l4_unused_eq[0]), .out_min_o(l4_unused_mm[0*W +: W]),
     .out_max_o(m01));
-  trv_cmp #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(0)) u_l4_m23 (
+  fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(0)) u_l4_m23 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(1'b1), .in_ready_o(l4_unused_r[1]),
     .in_a_i(sl_y), .in_b_i(sl_z), .out_valid_o(l4_unused_v[1]), .out_ready_i(1'b1),
     .out_lt_o(l4_unused_lt[1]), .out_eq_o(l4_unused_eq[1]), .out_min_o(l4_unused_mm[1*W +: W]),
     .out_max_o(m23));
-  trv_cmp #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(0)) u_l4_t0 (
+  fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(0)) u_l4_t0 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(1'b1), .in_ready_o(l4_unused_r[2]),
     .in_a_i(m01), .in_b_i(m23), .out_valid_o(l4_unused_v[2]), .out_ready_i(1'b1),
     .out_lt_o(l4_unused_lt[2]), .out_eq_o(l4_unused_eq[2]), .out_min_o(l4_unused_mm[2*W +: W]),
     .out_max_o(t0));
-  trv_cmp #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(0)) u_l4_n01 (
+  fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(0)) u_l4_n01 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(1'b1), .in_ready_o(l4_unused_r[3]),
     .in_a_i(c3_tfar), .in_b_i(sh_x), .out_valid_o(l4_unused_v[3]), .out_ready_i(1'b1),
     .out_lt_o(l4_unused_lt[3]), .out_eq_o(l4_unused_eq[3]), .out_min_o(n01),
     .out_max_o(l4_unused_mm[3*W +: W]));
-  trv_cmp #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(0)) u_l4_n23 (
+  fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(0)) u_l4_n23 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(1'b1), .in_ready_o(l4_unused_r[4]),
     .in_a_i(sh_y), .in_b_i(sh_z), .out_valid_o(l4_unused_v[4]), .out_ready_i(1'b1),
     .out_lt_o(l4_unused_lt[4]), .out_eq_o(l4_unused_eq[4]), .out_min_o(n23),
     .out_max_o(l4_unused_mm[4*W +: W]));
-  trv_cmp #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(0)) u_l4_t1 (
+  fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(0)) u_l4_t1 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(1'b1), .in_ready_o(l4_unused_r[5]),
     .in_a_i(n01), .in_b_i(n23), .out_valid_o(l4_unused_v[5]), .out_ready_i(1'b1),
     .out_lt_o(l4_unused_lt[5]), .out_eq_o(l4_unused_eq[5]), .out_min_o(t1),
     .out_max_o(l4_unused_mm[5*W +: W]));
-  trv_cmp #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(0)) u_l4_hit (
+  fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(0)) u_l4_hit (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(1'b1), .in_ready_o(l4_unused_r[6]),
     .in_a_i(t1), .in_b_i(t0), .out_valid_o(l4_unused_v[6]), .out_ready_i(1'b1),
     .out_lt_o(t1_lt_t0), .out_eq_o(l4_unused_eq[6]), .out_min_o(t1_unused_min),

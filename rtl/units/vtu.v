@@ -119,19 +119,16 @@ module vtu #(
   wire [6*W-1:0] l1_b = {cam_v, cam_u, cam_v, cam_u, cam_v, cam_u};
   wire [6*W-1:0] l1_prod;
   wire [5:0]     l1_in_ready, l1_out_valid;
-  wire [5:0]     unused_l1_tag;
   wire           l1_valid, l2_ready;
   genvar gi;
   generate
     for (gi = 0; gi < 6; gi = gi + 1) begin : g_mul
-      fp_mul #(
-        .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES), .TAG_BITS(1)
-      ) u_mul (
+      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_mul (
         .clk_i(clk_i), .rst_ni(rst_ni),
         .in_valid_i(in_valid_i), .in_ready_o(l1_in_ready[gi]),
-        .in_a_i(l1_a[gi*W +: W]), .in_b_i(l1_b[gi*W +: W]), .in_tag_i(1'b0),
+        .in_a_i(l1_a[gi*W +: W]), .in_b_i(l1_b[gi*W +: W]),
         .out_valid_o(l1_out_valid[gi]), .out_ready_i(l2_ready),
-        .out_res_o(l1_prod[gi*W +: W]), .out_tag_o(unused_l1_tag[gi])
+        .out_res_o(l1_prod[gi*W +: W])
       );
     end
   endgenerate
@@ -152,19 +149,16 @@ module vtu #(
   wire [3*W-1:0] l2_a = {l1_side[8*W +: W], l1_side[5*W +: W], l1_side[PW +: W]};
   wire [3*W-1:0] l2_sum;
   wire [2:0]     l2_in_ready, l2_out_valid;
-  wire [2:0]     unused_l2_tag;
   wire           l2_valid, l3_ready;
   generate
     for (gi = 0; gi < 3; gi = gi + 1) begin : g_add3
-      fp_add3 #(
-        .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES), .TAG_BITS(1)
-      ) u_add3 (
+      fp_add3_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_add3 (
         .clk_i(clk_i), .rst_ni(rst_ni),
         .in_valid_i(l1_valid), .in_ready_o(l2_in_ready[gi]),
         .in_a_i(l2_a[gi*W +: W]), .in_b_i(l1_prod[2*gi*W +: W]),
-        .in_c_i(l1_prod[(2*gi+1)*W +: W]), .in_tag_i(1'b0),
+        .in_c_i(l1_prod[(2*gi+1)*W +: W]),
         .out_valid_o(l2_out_valid[gi]), .out_ready_i(l3_ready),
-        .out_res_o(l2_sum[gi*W +: W]), .out_tag_o(unused_l2_tag[gi])
+        .out_res_o(l2_sum[gi*W +: W])
       );
     end
   endgenerate
@@ -186,16 +180,14 @@ module vtu #(
   wire [W-1:0]  l3_a = l2_kind ? l2_payload[2*W +: W] : l2_payload[W-1:0];
   wire [W-1:0]  l3_b = l2_kind ? l2_sum[W-1:0] : l2_cam_sel;
   wire [W-1:0]  l3_diff;
-  wire          unused_l3_tag, unused_l3_side_valid;
+  wire          unused_l3_side_valid;
   wire          l3_valid;
-  fp_add #(
-    .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES), .TAG_BITS(1)
-  ) u_sub (
+  fp_op2_nt #(.OP("sub"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_sub (
     .clk_i(clk_i), .rst_ni(rst_ni),
     .in_valid_i(l2_valid), .in_ready_o(l3_ready),
-    .in_a_i(l3_a), .in_b_i(l3_b), .in_sub_i(1'b1), .in_tag_i(1'b0),
+    .in_a_i(l3_a), .in_b_i(l3_b),
     .out_valid_o(l3_valid), .out_ready_i(out_ready_i),
-    .out_res_o(l3_diff), .out_tag_o(unused_l3_tag)
+    .out_res_o(l3_diff)
   );
 
   // The camera coordinate is no longer needed: L3's side data carries the two other sums.
@@ -241,8 +233,8 @@ module vtu #(
   // each level by construction (same STAGES, same in_valid and out_ready); not used.
   wire unused_hs;
   assign unused_hs = ^{l1_in_ready[5:1], l1_out_valid[5:1], l2_in_ready[2:1], l2_out_valid[2:1],
-                       unused_l1_tag, unused_l2_tag, unused_l3_tag, unused_l1_side_hs,
-                       unused_l2_side_hs, unused_l3_side_hs, unused_l1_side_valid,
-                       unused_l2_side_valid, unused_l3_side_valid, diff_ext[63:32]};
+                       unused_l1_side_hs, unused_l2_side_hs, unused_l3_side_hs,
+                       unused_l1_side_valid, unused_l2_side_valid, unused_l3_side_valid,
+                       diff_ext[63:32]};
 
 endmodule

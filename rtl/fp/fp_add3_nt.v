@@ -1,7 +1,7 @@
-// ist_add3 - three-input adder for ist:
-// fp_add3 with the tag tied off (ist keeps its tag and side data in one carry fp_pipe per level).
-// Latency = STAGES cycles, as fp_add3.
-module ist_add3 #(
+// fp_add3_nt - fp_add3 (out_res_o = in_a_i + in_b_i + in_c_i) without a tag, for units that carry
+// their tag and side data in one fp_pipe per level beside the operators (ist, vtu). The operator's
+// tag (TAG_BITS = its default, 1) is tied to 0 and optimised away. Latency = STAGES cycles.
+module fp_add3_nt #(
   parameter integer EXP_BITS = 7,
   parameter integer MAN_BITS = 16,
   parameter integer RNE      = 0,
@@ -20,14 +20,10 @@ module ist_add3 #(
 );
 
   wire unused_tag;  // always 0: the tag is not used
-  fp_add3 #(
-    .EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .STAGES(STAGES), .TAG_BITS(1)
-  ) u_op (
-    .clk_i(clk_i), .rst_ni(rst_ni),
-    .in_valid_i(in_valid_i), .in_ready_o(in_ready_o),
+  fp_add3 #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .STAGES(STAGES)) u_op (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(in_valid_i), .in_ready_o(in_ready_o),
     .in_a_i(in_a_i), .in_b_i(in_b_i), .in_c_i(in_c_i), .in_tag_i(1'b0),
-    .out_valid_o(out_valid_o), .out_ready_i(out_ready_i),
-    .out_res_o(out_res_o), .out_tag_o(unused_tag)
-  );
+    .out_valid_o(out_valid_o), .out_ready_i(out_ready_i), .out_res_o(out_res_o),
+    .out_tag_o(unused_tag));
 
 endmodule

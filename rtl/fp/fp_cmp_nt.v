@@ -1,0 +1,31 @@
+// fp_cmp_nt - fp_cmp without a tag (out_lt_o = a < b, out_eq_o = a == b, out_min_o = hls::min,
+// out_max_o = hls::max), for units that carry their tag and side data in one fp_pipe per level
+// beside the operators (ist, trv). The operator's tag (TAG_BITS = its default, 1) is tied to 0 and
+// optimised away. Latency = STAGES cycles, as fp_cmp (STAGES = 0: combinational).
+module fp_cmp_nt #(
+  parameter integer EXP_BITS = 7,
+  parameter integer MAN_BITS = 16,
+  parameter integer STAGES   = 2
+) (
+  input  wire                       clk_i,
+  input  wire                       rst_ni,
+  input  wire                       in_valid_i,
+  output wire                       in_ready_o,
+  input  wire [EXP_BITS+MAN_BITS:0] in_a_i,
+  input  wire [EXP_BITS+MAN_BITS:0] in_b_i,
+  output wire                       out_valid_o,
+  input  wire                       out_ready_i,
+  output wire                       out_lt_o,
+  output wire                       out_eq_o,
+  output wire [EXP_BITS+MAN_BITS:0] out_min_o,
+  output wire [EXP_BITS+MAN_BITS:0] out_max_o
+);
+
+  wire unused_tag;  // always 0: the tag is not used
+  fp_cmp #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .STAGES(STAGES)) u_op (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(in_valid_i), .in_ready_o(in_ready_o),
+    .in_a_i(in_a_i), .in_b_i(in_b_i), .in_tag_i(1'b0), .out_valid_o(out_valid_o),
+    .out_ready_i(out_ready_i), .out_lt_o(out_lt_o), .out_eq_o(out_eq_o), .out_min_o(out_min_o),
+    .out_max_o(out_max_o), .out_tag_o(unused_tag));
+
+endmodule
