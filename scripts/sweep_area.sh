@@ -5,8 +5,9 @@
 # - ist, vtu: the cells column of docs/area.md (scripts/area.sh: synth -flatten at STAGES=2). The
 #   sweep counts the VTU as the vtu unit's cells, and a format or rounding change as the ist's
 #   delta against FP24 rtz (the traversal and hit units' own deltas are not counted).
-# - spawn-<strategy>: rtl/units/spawn.v (STRATEGY 1 skip-origin, 2 ulp-offset, 3 error-bound)
-#   synthesised here the same way (read_verilog rtl/fp/*.v rtl/units/spawn*.v; chparam; synth
+# - spawn-<strategy>: rtl/units/spawn.v (STRATEGY 1 skip-origin, 2 ulp-offset, 3 error-bound,
+#   4 skip-offset, 5 skip-slab, 6 skip-back) synthesised here the same way (read_verilog of the
+#   rtl/fp operators it uses and rtl/units/spawn*.v; chparam; synth
 #   -flatten -top spawn; no latch; check -assert; stat), STAGES=2. Results are cached under
 #   out/sweep-area-cache/ by a hash of the sources and parameters (the error-bound unit takes
 #   minutes); SWEEP_AREA_JOBS synthesis runs at a time (default nproc).
@@ -24,7 +25,9 @@ mkdir -p "$CACHE"
 [ "${1:-}" = --one ] || awk -F'|' '{ for (i = 2; i <= 5; i++) gsub(/ /, "", $i) }
   ($2 == "ist" || $2 == "vtu") && ($4 == "rtz" || $4 == "rne") { print $2 "\t" tolower($3) "\t" $4 "\t" $5 }' "$AREA_MD"
 
-srcs=(rtl/fp/*.v rtl/units/spawn.v rtl/units/spawn_ops.v)
+# The operators spawn_ops instantiates and what they use (the cache key is their hash).
+srcs=(rtl/fp/fp_add.v rtl/fp/fp_add3.v rtl/fp/fp_mul.v rtl/fp/fp_div.v rtl/fp/fp_round.v rtl/fp/fp_pipe.v
+      rtl/units/spawn.v rtl/units/spawn_ops.v)
 for f in "${srcs[@]}"; do [ -f "$f" ] || { echo "sweep_area: missing $f" >&2; exit 1; }; done
 hash=$(cat "${srcs[@]}" | sha256sum | cut -c1-16)
 # One yosys run: strategy format rounding -> the cached stat file.
@@ -49,21 +52,21 @@ if [ "${1:-}" = --one ]; then  # one run, from the parallel below
   synth_one "$2" "$3" "$4"
   exit
 fi
-names=([1]=skip-origin [2]=ulp-offset [3]=error-bound)
+names=([1]=skip-origin [2]=ulp-offset [3]=error-bound [4]=skip-offset [5]=skip-slab [6]=skip-back)
 runs=()
-for st in 1 2 3; do
+for st in 1 2 3 4 5 6; do
   for fr in "fp24 rtz" "fp24 rne" "fp32 rne"; do
     # skip-origin has no arithmetic: one run (FP24 rtz) stands for every format.
     [ $st -eq 1 ] && [ "$fr" != "fp24 rtz" ] && continue
     runs+=("$st $fr")
   done
 done
-# The longest runs first.
-printf '%s\n' "${runs[@]}" | sort -r -k1,1 |
+# The longest runs first (error-bound, then the others).
+printf '%s\n' "${runs[@]}" | awk '{ print ($1 == 3 ? 0 : 1), $0 }' | sort -k1,1n -k2,2r | cut -d' ' -f2- |
   parallel --will-cite --jobs "${SWEEP_AREA_JOBS:-$(nproc)}" --colsep ' ' \
     ./scripts/sweep_area.sh --one {1} {2} {3} >&2 ||
   { echo "sweep_area: synthesis failed" >&2; exit 1; }
-for st in 1 2 3; do
+for st in 1 2 3 4 5 6; do
   for fr in "fp24 rtz" "fp24 rne" "fp32 rne"; do
     set -- $fr
     f=$1; r=$2

@@ -12,12 +12,23 @@
 //                  the normal: 15 fp_mul + 9 fp_add + 7 fp_add3 in 8 operator levels; the products
 //                  t * d_i come from the hit-point computation (inputs), the scalings by 2 and by
 //                  the unit roundoff are exponent adds (exact, with the format's saturation/flush).
+//   4 skip-offset  1 and 2 together.
+//   5 skip-slab    1, and t_min raised to slab / max(|dens|, 1/16) (hls::detail::slab_tmin):
+//                  max |h_i| (integer compares), its ulp (exponent subtract), slab = scale *
+//                  ulp (fp_mul; in_scale_i = 2 * ulps), 1 / max(|dens|, 1/16) (fp_div), their
+//                  product (fp_mul), the larger of it and in_tmin_i (integer compare: both >= 0).
+//   6 skip-back    5, and t backed off by in_back_i ulps on its bit pattern (a saturating
+//                  subtract, out_t_back_o) before the hit unit's own hit-point multiply-adds.
 //
 // The same operator count and data flow as the hls function, not a bit-exact twin: three-term
 // sums that hls adds in two steps (e_hit, e_move) are one fp_add3 here, so results may differ in
 // the last place. It is not co-simulated; it exists to be synthesised (area) and linted.
-// Handshake: valid/ready with fp_pipe's stall rule; latency 0 (STRATEGY 0, 1), 2 * STAGES (2),
-// 8 * STAGES (3). Inputs a strategy does not need are ignored.
+// Handshake: valid/ready with fp_pipe's stall rule; latency 0 (STRATEGY 0, 1), 2 * STAGES (2, 4,
+// 5, 6), 8 * STAGES (3). Inputs a strategy does not need are ignored. Side paths without latency
+// (the id travels with the ray in the hit unit's own record): out_skip_id_o and out_cand_skip_o
+// (the ist's comparison) follow the inputs of the same cycle, out_t_back_o is computed before the
+// hit point (in_h_*_i are the hit point of the backed-off t), and in_tmin_i is the configured
+// constant (passed through by every strategy but 5 and 6).
 module spawn #(
   parameter integer EXP_BITS = 7,
   parameter integer MAN_BITS = 16,
@@ -55,6 +66,9 @@ module spawn #(
   input  wire [EXP_BITS+MAN_BITS:0] in_fixed_i,    // ulp-offset: ulps * ulp(2^-5)
   input  wire [31:0]                in_cand_id_i,  // skip-origin: a candidate triangle (ist)
   input  wire [31:0]                in_ray_skip_i, //   and the skip id of the ray it is tested for
+  input  wire [EXP_BITS+MAN_BITS:0] in_dens_i,     // skip-slab: n . d of the shadow ray
+  input  wire [EXP_BITS+MAN_BITS:0] in_tmin_i,     // the configured t_min (>= 0)
+  input  wire [31:0]                in_back_i,     // skip-back: the back-off in ulps of t
   input  wire [TAG_BITS-1:0]        in_tag_i,
   output wire                       out_valid_o,
   input  wire                       out_ready_i,
@@ -63,6 +77,8 @@ module spawn #(
   output wire [EXP_BITS+MAN_BITS:0] out_o_z_o,
   output wire [31:0]                out_skip_id_o, // skip-origin: the ray's skip id, else all ones
   output wire                       out_cand_skip_o, // skip-origin: in_cand_id_i == in_ray_skip_i
+  output wire [EXP_BITS+MAN_BITS:0] out_tmin_o,    // the shadow ray's t_min
+  output wire [EXP_BITS+MAN_BITS:0] out_t_back_o,  // skip-back: t for the hit point, else in_t_i
   output wire [TAG_BITS-1:0]        out_tag_o
 );
 
@@ -167,21 +183,15 @@ module spawn #(
       assign out_valid_o = in_valid_i;
       assign {out_o_z_o, out_o_y_o, out_o_x_o} = {in_h_z_i, in_h_y_i, in_h_x_i};
       assign out_tag_o = in_tag_i;
-      if (STRATEGY == 1) begin : g_skip
-        assign out_skip_id_o   = in_front_i ? in_id_i : 32'hFFFF_FFFF;
-        assign out_cand_skip_o = in_cand_id_i == in_ray_skip_i;
-      end else begin : g_none
-        assign out_skip_id_o   = 32'hFFFF_FFFF;
-        assign out_cand_skip_o = 1'b0;
-      end
+      assign out_tmin_o = in_tmin_i;
       wire unused_in;
       assign unused_in = ^{clk_i, rst_ni, in_k_i, in_side_neg_i, in_n_u_i, in_n_v_i, in_n_d_i,
                            in_o_x_i, in_o_y_i, in_o_z_i, in_d_x_i, in_d_y_i, in_d_z_i, in_td_x_i,
                            in_td_y_i, in_td_z_i, in_t_i, in_den_i, in_scale_i, in_fixed_i,
                            hk, hu, hv, ok, ou, ov, dk, du, dv, tk, tu, tv,
-                           in_front_i, in_id_i, in_cand_id_i, in_ray_skip_i};
+                           in_front_i, in_id_i, in_cand_id_i, in_ray_skip_i, in_dens_i};
 
-    end else if (STRATEGY == 2) begin : g_ulp
+    end else if (STRATEGY == 2 || STRATEGY == 4) begin : g_ulp
       // ---- ulp-offset ----------------------------------------------------------------------------
       // Offset direction: n or -n; n = (1, n_u, n_v) in (k, u, v) order.
       wire [W-1:0] nu = in_side_neg_i ? fneg(in_n_u_i) : in_n_u_i;
@@ -238,12 +248,72 @@ module spawn #(
       wire [W-1:0] o_v = near[0] ? l2_res[2*W +: W] : s2[2*W +: W];
       assign {out_o_z_o, out_o_y_o, out_o_x_o} = unpermute(k2, o_k, o_u, o_v);
       assign out_tag_o       = s2[S2-1 -: TAG_BITS];
-      assign out_skip_id_o   = 32'hFFFF_FFFF;
-      assign out_cand_skip_o = 1'b0;
+      assign out_tmin_o      = in_tmin_i;
       wire unused_in;
       assign unused_in = ^{unused_s1_rdy, unused_s1_vld, unused_s2_rdy, unused_s2_vld, in_n_d_i,
                            ok, ou, ov, dk, du, dv, tk, tu, tv, in_t_i, in_den_i, in_front_i,
-                           in_id_i, in_cand_id_i, in_ray_skip_i};
+                           in_id_i, in_cand_id_i, in_ray_skip_i, in_dens_i};
+
+    end else if (STRATEGY == 5 || STRATEGY == 6) begin : g_slab
+      // ---- skip-slab / skip-back: t_min' = scale ulp(max |h_i|) / max(|dens|, 1/16) -------------
+      // ulp(max |h_i|) depends on the largest exponent field only.
+      wire [E-1:0] ex = in_h_x_i[W-2:M], ey = in_h_y_i[W-2:M], ez = in_h_z_i[W-2:M];
+      wire [E-1:0] exy = ex > ey ? ex : ey;
+      wire [E-1:0] he  = exy > ez ? exy : ez;
+      localparam [31:0] M32 = M;
+      localparam [E-1:0] ME = M32[E-1:0];
+      localparam integer BIASM4 = BIAS - 4;
+      localparam [W-1:0] ONE = {1'b0, BIAS[E-1:0], {M{1'b0}}};
+      localparam [W-1:0] SIXTEENTH = {1'b0, BIASM4[E-1:0], {M{1'b0}}};
+      // ulp(hmax) (hls::ulp): zero -> the smallest normal, 2^(e - M) when normal, else 0.
+      wire [W-1:0] uh = he == {E{1'b0}} ? {1'b0, {(E-1){1'b0}}, 1'b1, {M{1'b0}}}
+                      : he > ME         ? {1'b0, he - ME, {M{1'b0}}} : {W{1'b0}};
+      wire [W-1:0] ad   = fabs(in_dens_i);
+      wire [W-1:0] dmax = ad > SIXTEENTH ? ad : SIXTEENTH;
+      // L1: slab = scale * ulp (fp_mul), r = 1 / dmax (fp_div).
+      wire [W-1:0] slab, rcp;
+      wire         v1, r2, unused_d1_rdy, unused_d1_vld, unused_p1_rdy, unused_p1_vld;
+      localparam integer P1 = TAG_BITS + 4 * W;
+      wire [P1-1:0] p1;
+      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES), .OP(0), .N(1)) u_m1 (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(in_valid_i), .in_ready_o(in_ready_o),
+        .in_a_i(in_scale_i), .in_b_i(uh), .in_c_i({W{1'b0}}), .in_sub_i(1'b0),
+        .out_valid_o(v1), .out_ready_i(r2), .out_res_o(slab)
+      );
+      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES), .OP(3), .N(1)) u_d1 (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(in_valid_i), .in_ready_o(unused_d1_rdy),
+        .in_a_i(ONE), .in_b_i(dmax), .in_c_i({W{1'b0}}), .in_sub_i(1'b0),
+        .out_valid_o(unused_d1_vld), .out_ready_i(r2), .out_res_o(rcp)
+      );
+      fp_pipe #(.WIDTH(P1), .STAGES(STAGES)) u_p1 (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(in_valid_i), .in_ready_o(unused_p1_rdy),
+        .in_data_i({in_tag_i, in_tmin_i, in_h_z_i, in_h_y_i, in_h_x_i}), .out_valid_o(unused_p1_vld),
+        .out_ready_i(r2), .out_data_o(p1)
+      );
+      // L2: t0 = slab * r (fp_mul).
+      wire [W-1:0]  t0;
+      wire          unused_p2_rdy, unused_p2_vld;
+      wire [P1-1:0] p2;
+      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES), .OP(0), .N(1)) u_m2 (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v1), .in_ready_o(r2),
+        .in_a_i(slab), .in_b_i(rcp), .in_c_i({W{1'b0}}), .in_sub_i(1'b0),
+        .out_valid_o(out_valid_o), .out_ready_i(out_ready_i), .out_res_o(t0)
+      );
+      fp_pipe #(.WIDTH(P1), .STAGES(STAGES)) u_p2 (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v1), .in_ready_o(unused_p2_rdy),
+        .in_data_i(p1), .out_valid_o(unused_p2_vld), .out_ready_i(out_ready_i), .out_data_o(p2)
+      );
+      wire [W-1:0] tmin2 = p2[3*W +: W];
+      assign out_tmin_o = tmin2 < t0 ? t0 : tmin2;
+      assign {out_o_z_o, out_o_y_o, out_o_x_o} = p2[3*W-1:0];
+      assign out_tag_o = p2[P1-1 -: TAG_BITS];
+      wire unused_in;
+      assign unused_in = ^{unused_d1_rdy, unused_d1_vld, unused_p1_rdy, unused_p1_vld,
+                           unused_p2_rdy, unused_p2_vld, clk_i, in_k_i, in_side_neg_i,
+                           in_n_u_i, in_n_v_i, in_n_d_i, in_o_x_i, in_o_y_i, in_o_z_i, in_d_x_i,
+                           in_d_y_i, in_d_z_i, in_td_x_i, in_td_y_i, in_td_z_i, in_den_i,
+                           in_fixed_i, hk, hu, hv, ok, ou, ov, dk, du, dv, tk, tu, tv,
+                           in_front_i, in_id_i, in_cand_id_i, in_ray_skip_i};
 
     end else begin : g_bound
       // ---- error-bound (hls::hit_shadow, Spawn::error_bound) ---------------------------------------
@@ -429,8 +499,7 @@ module spawn #(
       );
       assign {out_o_z_o, out_o_y_o, out_o_x_o} = unpermute(p8[1:0], o8[0 +: W], o8[W +: W], o8[2*W +: W]);
       assign out_tag_o       = p8[P8-1 -: TAG_BITS];
-      assign out_skip_id_o   = 32'hFFFF_FFFF;
-      assign out_cand_skip_o = 1'b0;
+      assign out_tmin_o      = in_tmin_i;
       wire unused_in;
       assign unused_in = ^{unused_a1_rdy, unused_a1_vld, unused_p1_rdy, unused_p1_vld,
                            unused_m2_rdy, unused_m2_vld, unused_p2_rdy, unused_p2_vld,
@@ -442,7 +511,30 @@ module spawn #(
                            core1[W +: 2*W], core3[0 +: W], core4[0 +: W], core5[0 +: W],
                            core6[0 +: 3*W], core2[0 +: W], p7[CW-1 -: TAG_BITS + 3],
                            in_front_i, in_id_i, in_cand_id_i, in_ray_skip_i, in_scale_i,
-                           in_fixed_i};
+                           in_fixed_i, in_dens_i};
+    end
+  endgenerate
+
+  // The skip id and the ist's comparison (skip-origin and the strategies built on it).
+  generate
+    if (STRATEGY == 1 || STRATEGY >= 4) begin : g_skip
+      assign out_skip_id_o   = in_front_i ? in_id_i : 32'hFFFF_FFFF;
+      assign out_cand_skip_o = in_cand_id_i == in_ray_skip_i;
+    end else begin : g_noskip
+      assign out_skip_id_o   = 32'hFFFF_FFFF;
+      assign out_cand_skip_o = 1'b0;
+    end
+    // skip-back: t's bit pattern minus in_back_i (hls::detail::add_ulps with -ulps): below the
+    // smallest normal, zero.
+    if (STRATEGY == 6) begin : g_back
+      wire [32:0] mag = {{(33-(W-1)){1'b0}}, in_t_i[W-2:0]};
+      wire [32:0] m   = mag - {1'b0, in_back_i};
+      assign out_t_back_o = m[32] || m < (33'd1 << M) ? {in_t_i[W-1], {(W-1){1'b0}}}
+                                                      : {in_t_i[W-1], m[W-2:0]};
+    end else begin : g_noback
+      assign out_t_back_o = in_t_i;
+      wire unused_back;
+      assign unused_back = ^in_back_i;
     end
   endgenerate
 

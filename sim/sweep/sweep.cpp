@@ -442,7 +442,7 @@ std::string compact_markdown(const std::vector<Row>& rows, const std::vector<std
   for (const auto& s : scenes_present(rows, scenes)) sc.push_back(s);
   std::ostringstream os;
   os << "| format | VTU | spawn | added cells |";
-  for (const auto& s : sc) os << " " << s << " self / error px / rays/cyc |";
+  for (const auto& s : sc) os << " " << s << " self / shadow / error px / rays/cyc |";
   os << "\n|---|---|---|---:|";
   for (size_t i = 0; i < sc.size(); ++i) os << "---|";
   os << "\n";
@@ -463,11 +463,51 @@ std::string compact_markdown(const std::vector<Row>& rows, const std::vector<std
         os << " - |";
         continue;
       }
-      os << " " << m->self_intersections << " / " << (m->pareto ? "**" : "") << m->error_pixels
+      os << " " << m->self_intersections << " / " << m->shadow_errors << " / " << (m->pareto ? "**" : "")
+         << m->error_pixels
          << (m->pareto ? "**" : "") << " / " << num(m->rays_per_cycle, 4) << (m->golden_match ? "" : " (!)")
          << " |";
     }
     os << "\n";
+  }
+  return os.str();
+}
+
+std::string target_markdown(const std::vector<Row>& rows, const std::vector<std::string>& scenes,
+                            const TargetSpec& t) {
+  const auto sc = scenes_present(rows, scenes);
+  auto find = [&](const std::string& scene, const std::string& fmt, bool vtu, const std::string& spawn) {
+    const Row* m = nullptr;
+    for (const auto& r : rows)
+      if (r.ok && r.job.scene == scene && r.job.format_name == fmt && r.job.vtu == vtu && r.job.spawn == spawn)
+        m = &r;
+    return m;
+  };
+  std::ostringstream os;
+  os << "| format | VTU | spawn |";
+  for (const auto& s : sc) os << " " << s << " self / shadow % / speed |";
+  os << " meets the target on |\n|---|---|---|";
+  for (size_t i = 0; i < sc.size(); ++i) os << "---|";
+  os << "---|\n";
+  for (const auto& c : rows) {
+    if (sc.empty() || c.job.scene != sc[0] || c.job.format != t.format) continue;
+    os << "| " << c.job.format_name << " | " << (c.job.vtu ? "on" : "off") << " | " << c.job.spawn << " |";
+    std::string meets;
+    for (const auto& s : sc) {
+      const Row* m = find(s, c.job.format_name, c.job.vtu, c.job.spawn);
+      const Row* b = find(s, t.base_format, t.base_vtu, t.base_spawn);
+      if (!m || !b || b->rays_per_cycle <= 0 || m->pixels == 0) {
+        os << " - |";
+        continue;
+      }
+      const double shadow_pct = 100.0 * double(m->shadow_errors) / double(m->pixels);
+      const double speed = m->rays_per_cycle / b->rays_per_cycle;
+      const bool ok = m->self_intersections == 0 && shadow_pct <= t.max_shadow_pct && speed >= 1.0 - t.max_slowdown;
+      os << " " << m->self_intersections << " / " << (ok ? "**" : "") << num(shadow_pct, 4) << (ok ? "**" : "")
+         << " / " << (speed < 1.0 ? "-" : "+") << num(100.0 * std::fabs(speed - 1.0), 2) << "% |";
+      if (ok) meets += (meets.empty() ? "" : ", ") + s;
+    }
+    os << " " << (meets.empty() ? "-" : meets) << " |\n";
   }
   return os.str();
 }

@@ -119,6 +119,18 @@ nlohmann::json rows_json(const std::vector<Row>& rows);
 // configuration and one column group per scene in `scenes`.
 std::string markdown(const std::vector<Row>& rows);
 std::string compact_markdown(const std::vector<Row>& rows, const std::vector<std::string>& scenes);
+// The target (beating the paper): 0 self-intersections, shadow errors <= max_shadow_pct of
+// the pixels, rays per cycle at most max_slowdown below the paper's VTU configuration (the base).
+struct TargetSpec {
+  std::string format = "fp24";  // the rows considered
+  std::string base_format = "fp24-rtz", base_spawn = "none";
+  bool base_vtu = true;
+  double max_shadow_pct = 0.01, max_slowdown = 0.05;
+};
+// One row per configuration of t.format: per scene self-intersections / shadow errors in % /
+// speed against the base (bold: meets the target there), and the scenes where it meets it.
+std::string target_markdown(const std::vector<Row>& rows, const std::vector<std::string>& scenes,
+                            const TargetSpec& t = TargetSpec());
 // The scenes of `want` that have rows, in want's order.
 std::vector<std::string> scenes_present(const std::vector<Row>& rows, const std::vector<std::string>& want);
 // Plot data, one block per scene (gnuplot index), columns: error_pct rays_per_cycle pareto label.

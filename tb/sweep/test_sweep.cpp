@@ -112,6 +112,37 @@ TEST(Pareto, MarkedPerScene) {
   EXPECT_LT(d.find("2.000000 0.200000 1"), d.find("3.000000 0.150000 0")) << d;
 }
 
+TEST(Target, MetOnlyWithinEveryBound) {
+  // Scene "a", 10000 pixels: the base (fp24-rtz, VTU on, none) and four candidates.
+  auto cfg = [](const std::string& fmt, const std::string& spawn, uint64_t self, uint64_t shadow, double rpc) {
+    Row r = row("a", 0, rpc);
+    r.job.format_name = fmt;
+    r.job.format = fmt.substr(0, 4);
+    r.job.vtu = true;
+    r.job.spawn = spawn;
+    r.pixels = 10000;
+    r.self_intersections = self;
+    r.shadow_errors = shadow;
+    return r;
+  };
+  const std::vector<Row> rows = {cfg("fp24-rtz", "none", 50, 60, 0.100),
+                                 cfg("fp24-rtz", "good", 0, 1, 0.096),      // 0.01%, -4%: met
+                                 cfg("fp24-rtz", "slow", 0, 0, 0.094),      // -6%
+                                 cfg("fp24-rne", "leaky", 0, 2, 0.100),     // 0.02%
+                                 cfg("fp24-rne", "acne", 1, 0, 0.100),      // a self-intersection
+                                 cfg("fp32", "exact", 0, 0, 0.100)};        // not FP24: not listed
+  const std::string t = raycore::sweep::target_markdown(rows, {"a", "absent"});
+  auto line = [&](const std::string& spawn) {
+    const size_t b = t.find("| " + spawn + " |");
+    return b == std::string::npos ? std::string("(no row)") : t.substr(b, t.find('\n', b) - b);
+  };
+  EXPECT_NE(line("good").find("| a |"), std::string::npos) << t;
+  EXPECT_NE(line("good").find("-4.00%"), std::string::npos) << t;
+  for (const char* s : {"none", "slow", "leaky", "acne"}) EXPECT_NE(line(s).find("| - |"), std::string::npos) << s << "\n" << t;
+  EXPECT_EQ(t.find("exact"), std::string::npos) << "FP32 rows are not candidates";
+  EXPECT_EQ(t.find("absent"), std::string::npos) << "scenes without rows get no column";
+}
+
 TEST(Area, AddedCellsAgainstThePaperBaseline) {
   const fs::path f = fs::temp_directory_path() / "raycore_test_sweep_area.tsv";
   {
