@@ -1,4 +1,9 @@
-// tb/rtl/rtl_cosim.h - lockstep co-simulation of a Verilated rtl/fp module against hls/fp.h.
+// tb/rtl/rtl_cosim.h - lockstep co-simulation of Verilated rtl/ modules (Verilator --cc, clocked
+// directly from C++) against their C++ references.
+//
+// Dut<V> owns a Verilated model and its context (clock, reset). stream() drives one through its
+// valid/ready handshake and checks every result in order: the loop every co-simulation test of a
+// unit shares (test_rtl_ist, test_rtl_trv, test_rtl_vtu, and Cosim below).
 //
 // Cosim<V, Op> drives the Verilated model V (Verilator --cc, clocked directly from C++) with a
 // stream of operands, through the module's valid/ready handshake, with random input gaps and
@@ -23,6 +28,7 @@
 #include <gtest/gtest.h>
 #include <verilated.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <deque>
@@ -30,6 +36,8 @@
 #include <memory>
 #include <random>
 #include <string>
+#include <type_traits>
+#include <utility>
 
 #include "hls/fp.h"
 #include "tb/fp/fp_check.h"
@@ -68,28 +76,22 @@ struct Result {
   }
 };
 
-// How a stream is driven: full rate (input valid every cycle, output always ready: checks one
-// operation per cycle and latency == STAGES) or with random stalls on both sides.
-enum class Traffic { full_rate, stalls };
-
-template <class V, class Op>
-class Cosim {
+// A Verilated --cc model V (ports clk_i, rst_ni, in_valid_i, out_ready_i) with its own context.
+template <class V>
+class Dut {
  public:
-  using Res = typename Op::Res;
-
-  Cosim(std::string fmt, std::string mode, int stages, uint64_t seed)
-      : fmt_(std::move(fmt)), mode_(std::move(mode)), stages_(stages), rng_(seed) {
-    ctx_ = std::make_unique<VerilatedContext>();
+  explicit Dut(uint64_t seed) : ctx_(std::make_unique<VerilatedContext>()) {
     // Registers without reset (the data registers) start with random bits (models are built with
     // --x-initial unique): a result must never depend on them.
     ctx_->randReset(2);
     ctx_->randSeed(int(seed & 0x7fffffffu) | 1);
     m_ = std::make_unique<V>(ctx_.get(), "top");
-    setup();
   }
+  V& operator*() { return *m_; }
+  V* operator->() { return m_.get(); }
 
   // Reset: valid bits cleared, the pipeline is empty.
-  void setup() {
+  void reset() {
     m_->clk_i = 0;
     m_->rst_ni = 1;
     m_->in_valid_i = 0;
@@ -101,112 +103,6 @@ class Cosim {
     m_->rst_ni = 1;
     m_->eval();
   }
-
-  // Streams `count` operand sets (next(k) gives the k-th) through the module and checks them all.
-  // Returns the number of vectors checked.
-  uint64_t run(const std::string& set, uint64_t count,
-               const std::function<Operands(uint64_t)>& next, Traffic traffic) {
-    fptest::Tally tally(fmt_, std::string("rtl.") + Op::name(), mode_ + ".s" + std::to_string(stages_),
-                        set);
-    const bool full = traffic == Traffic::full_rate;
-    setup();  // an empty pipeline, whatever an earlier (stopped) run left behind
-    std::deque<Pending> inflight;
-    uint64_t issued = 0, cycles = 0, idle = 0, bad_protocol = 0;
-    uint64_t min_lat = ~uint64_t(0), max_lat = 0;
-    bool holding = false;
-    Pending cur;
-    uint32_t p_gap = 0, p_stall = 0;  // in 1/8
-    while ((issued < count || !inflight.empty()) && !tally.stopped() && bad_protocol < 10) {
-      if (!full && (cycles & 255u) == 0) {  // bursty: new stall rates every 256 cycles
-        static constexpr uint32_t kRates[] = {0, 1, 4, 7};
-        p_gap = kRates[rng_() & 3u];
-        p_stall = kRates[(rng_() >> 2) & 3u];
-      }
-      // Inputs (clock low). Operands stay put while valid is high and not yet accepted.
-      if (!holding) {
-        if (issued < count && (full || (rng_() & 7u) >= p_gap)) {
-          cur.x = next(issued);
-          cur.expected = Op::expect(cur.x);
-          cur.tag = uint16_t(issued);
-          holding = true;
-          Op::drive(*m_, cur.x);
-          m_->in_tag_i = cur.tag;
-          m_->in_valid_i = 1;
-        } else {  // a bubble, with junk on the data inputs (must be ignored)
-          Operands junk{uint32_t(rng_()), uint32_t(rng_()), uint32_t(rng_()), (rng_() & 1u) != 0};
-          junk.a &= F_mask();
-          junk.b &= F_mask();
-          junk.c &= F_mask();
-          Op::drive(*m_, junk);
-          m_->in_tag_i = uint16_t(rng_());
-          m_->in_valid_i = 0;
-        }
-      }
-      m_->out_ready_i = (full || (rng_() & 7u) >= p_stall) ? 1 : 0;
-      m_->eval();
-
-      const bool in_fire = m_->in_valid_i && m_->in_ready_o;
-      if (in_fire) {
-        cur.cycle = cycles;
-        inflight.push_back(cur);
-        ++issued;
-        holding = false;
-      } else if (full && holding) {
-        ++bad_protocol;
-        ADD_FAILURE() << Op::name() << " " << fmt_ << " " << mode_ << " S=" << stages_
-                      << ": in_ready_o low at cycle " << cycles
-                      << " with the output always ready (not one operation per cycle)";
-      }
-      if (m_->out_valid_o && m_->out_ready_i) {
-        idle = 0;
-        if (inflight.empty()) {
-          ++bad_protocol;
-          ADD_FAILURE() << Op::name() << ": out_valid_o at cycle " << cycles
-                        << " with nothing in flight";
-        } else {
-          const Pending p = inflight.front();
-          inflight.pop_front();
-          const uint64_t lat = cycles - p.cycle;
-          min_lat = std::min(min_lat, lat);
-          max_lat = std::max(max_lat, lat);
-          const Res got = Op::read(*m_);
-          const uint16_t tag = uint16_t(m_->out_tag_o);
-          if (tag != p.tag) {
-            ++bad_protocol;
-            ADD_FAILURE() << Op::name() << ": result out of order at cycle " << cycles
-                          << ": tag " << tag << ", expected " << p.tag;
-          }
-          tally.check(got, p.expected, [&] { return Op::describe(p.x); });
-        }
-      } else if (++idle > 1000u + 64u * unsigned(stages_)) {
-        ADD_FAILURE() << Op::name() << ": no result for " << idle << " cycles with "
-                      << inflight.size() << " in flight (deadlock)";
-        break;
-      }
-      clock();
-      ++cycles;
-    }
-    if (issued > 0) {
-      EXPECT_GE(min_lat, uint64_t(stages_)) << "latency below STAGES";
-      if (full) {
-        EXPECT_EQ(max_lat, uint64_t(stages_)) << "full-rate latency != STAGES";
-        EXPECT_EQ(cycles, count + uint64_t(stages_)) << "full rate: not one op per cycle";
-      }
-    }
-    tally.note("cycles=" + std::to_string(cycles) + " latency=" + std::to_string(min_lat) + ".." +
-               std::to_string(max_lat));
-    tally.finish();
-    return tally.vectors();
-  }
-
- private:
-  struct Pending {
-    Operands x;
-    Res expected;
-    uint16_t tag = 0;
-    uint64_t cycle = 0;
-  };
-  static uint32_t F_mask() { return Op::Fmt::mask; }
   void clock() {
     m_->clk_i = 1;
     m_->eval();
@@ -214,11 +110,195 @@ class Cosim {
     m_->eval();
   }
 
+ private:
+  std::unique_ptr<VerilatedContext> ctx_;  // outlives the model (declared first)
+  std::unique_ptr<V> m_;
+};
+
+// One stream through a unit: stream() below.
+struct StreamSpec {
+  std::string name;            // who is streaming, for messages
+  uint64_t count = 0;          // items to send
+  bool full = false;           // full rate: no input gaps, no back-pressure
+  uint64_t latency = 0;        // the unit's latency in cycles
+  std::string latency_name;    // how messages call it ("STAGES", "10*STAGES")
+  uint64_t idle_limit = 1000;  // cycles without a result in flight before a deadlock is reported
+  uint64_t max_errors = 10;    // protocol errors before the stream stops
+};
+// The failure message of a result that differs from the reference.
+inline std::string mismatch(const std::string& where, uint64_t seq, uint64_t cycle,
+                            const std::string& in, const std::string& expected,
+                            const std::string& got) {
+  return where + ": mismatch at item " + std::to_string(seq) + " (cycle " + std::to_string(cycle) +
+         ")\n  inputs:   " + in + "\n  expected: " + expected + "\n  got:      " + got;
+}
+struct StreamStats {
+  uint64_t issued = 0, checked = 0, cycles = 0, errors = 0;
+  uint64_t min_lat = ~uint64_t(0), max_lat = 0;
+};
+
+// Streams spec.count items through dut's valid/ready handshake and checks each result in order.
+// A 16-bit sequence number rides in in_tag_i / out_tag_o (a lost, duplicated or reordered result
+// is a protocol error). Unless spec.full, the input has random gaps and the output random
+// back-pressure, bursty: new rates (two draws of rate_bits()) every 256 cycles, each decision one
+// draw of coin(), which also gives the junk tags.
+//   issue(k) -> Item   the k-th item: drives the data inputs, returns what retire() needs
+//   bubble()           drives junk on the data inputs (a cycle without valid: must be ignored)
+//   retire(item, seq, cycle)  reads the outputs of item number seq and compares them
+//   stop() -> bool     true stops the stream early (e.g. too many mismatches)
+// Checks the latency (>= spec.latency; at full rate exactly that and one item per cycle).
+template <class V, class RateBits, class Coin, class Issue, class Bubble, class Retire, class Stop>
+StreamStats stream(Dut<V>& dut, const StreamSpec& spec, RateBits&& rate_bits, Coin&& coin,
+                   Issue&& issue, Bubble&& bubble, Retire&& retire, Stop&& stop) {
+  using Item = decltype(issue(uint64_t(0)));
+  using Tag = std::remove_reference_t<decltype(dut->in_tag_i)>;
+  struct Pending {
+    Item item;
+    uint16_t tag = 0;
+    uint64_t cycle = 0;
+  };
+  V& m = *dut;
+  const bool full = spec.full;
+  dut.reset();  // an empty pipeline, whatever an earlier (stopped) run left behind
+  StreamStats st;
+  std::deque<Pending> inflight;
+  uint64_t idle = 0;
+  bool holding = false;  // inputs stay put while valid is high and not yet accepted
+  Pending cur{};
+  uint32_t p_gap = 0, p_stall = 0;  // in 1/8
+  while ((st.issued < spec.count || !inflight.empty()) && !stop() && st.errors < spec.max_errors) {
+    if (!full && (st.cycles & 255u) == 0) {
+      static constexpr uint32_t kRates[] = {0, 1, 4, 7};
+      p_gap = kRates[rate_bits() & 3u];
+      p_stall = kRates[(rate_bits() >> 2) & 3u];
+    }
+    if (!holding) {
+      if (st.issued < spec.count && (full || (coin() & 7u) >= p_gap)) {
+        cur.item = issue(st.issued);
+        cur.tag = uint16_t(st.issued);
+        holding = true;
+        m.in_tag_i = static_cast<Tag>(cur.tag);
+        m.in_valid_i = 1;
+      } else {
+        bubble();
+        m.in_tag_i = static_cast<Tag>(uint16_t(coin()));
+        m.in_valid_i = 0;
+      }
+    }
+    m.out_ready_i = (full || (coin() & 7u) >= p_stall) ? 1 : 0;
+    m.eval();
+    if (m.in_valid_i && m.in_ready_o) {
+      cur.cycle = st.cycles;
+      inflight.push_back(cur);
+      ++st.issued;
+      holding = false;
+    } else if (full && holding) {
+      ++st.errors;
+      ADD_FAILURE() << spec.name << ": in_ready_o low at cycle " << st.cycles
+                    << " with the output always ready (not one item per cycle)";
+    }
+    if (m.out_valid_o && m.out_ready_i) {
+      idle = 0;
+      if (inflight.empty()) {
+        ++st.errors;
+        ADD_FAILURE() << spec.name << ": out_valid_o at cycle " << st.cycles
+                      << " with nothing in flight";
+      } else {
+        const Pending p = inflight.front();
+        inflight.pop_front();
+        const uint64_t lat = st.cycles - p.cycle;
+        st.min_lat = std::min(st.min_lat, lat);
+        st.max_lat = std::max(st.max_lat, lat);
+        const uint16_t tag = uint16_t(m.out_tag_o);
+        if (tag != p.tag) {
+          ++st.errors;
+          ADD_FAILURE() << spec.name << ": result out of order at cycle " << st.cycles << ": tag "
+                        << tag << ", expected " << p.tag;
+        }
+        ++st.checked;
+        retire(p.item, p.tag, st.cycles);
+      }
+    } else if (++idle > spec.idle_limit) {
+      ADD_FAILURE() << spec.name << ": no result for " << idle << " cycles with "
+                    << inflight.size() << " in flight (deadlock)";
+      break;
+    }
+    dut.clock();
+    ++st.cycles;
+  }
+  if (st.issued > 0) {
+    EXPECT_GE(st.min_lat, spec.latency) << spec.name << ": latency below " << spec.latency_name;
+    if (full) {
+      EXPECT_EQ(st.max_lat, spec.latency)
+          << spec.name << ": full-rate latency != " << spec.latency_name;
+      EXPECT_EQ(st.cycles, spec.count + spec.latency)
+          << spec.name << ": full rate is not one item per cycle";
+    }
+  }
+  return st;
+}
+
+// How a stream is driven: full rate (input valid every cycle, output always ready: checks one
+// operation per cycle and latency == STAGES) or with random stalls on both sides.
+enum class Traffic { full_rate, stalls };
+
+template <class V, class Op>
+class Cosim {
+ public:
+  using Res = typename Op::Res;
+
+  Cosim(std::string fmt, std::string mode, int stages, uint64_t seed)
+      : fmt_(std::move(fmt)), mode_(std::move(mode)), stages_(stages), rng_(seed), dut_(seed) {
+    dut_.reset();
+  }
+
+  // Streams `count` operand sets (next(k) gives the k-th) through the module and checks them all.
+  // Returns the number of vectors checked.
+  uint64_t run(const std::string& set, uint64_t count,
+               const std::function<Operands(uint64_t)>& next, Traffic traffic) {
+    fptest::Tally tally(fmt_, std::string("rtl.") + Op::name(), mode_ + ".s" + std::to_string(stages_),
+                        set);
+    const StreamSpec spec{
+        std::string(Op::name()) + " " + fmt_ + " " + mode_ + " S=" + std::to_string(stages_),
+        count, traffic == Traffic::full_rate, uint64_t(stages_), "STAGES",
+        1000u + 64u * uint64_t(stages_)};
+    struct Item {
+      Operands x;
+      Res expected;
+    };
+    V& m = *dut_;
+    const StreamStats st = stream(
+        dut_, spec, rng_, rng_,
+        [&](uint64_t k) {
+          Item it{next(k), {}};
+          it.expected = Op::expect(it.x);
+          Op::drive(m, it.x);
+          return it;
+        },
+        [&] {  // junk operands
+          Operands junk{uint32_t(rng_()), uint32_t(rng_()), uint32_t(rng_()), (rng_() & 1u) != 0};
+          junk.a &= F_mask();
+          junk.b &= F_mask();
+          junk.c &= F_mask();
+          Op::drive(m, junk);
+        },
+        [&](const Item& it, uint16_t, uint64_t) {
+          tally.check(Op::read(m), it.expected, [&] { return Op::describe(it.x); });
+        },
+        [&] { return tally.stopped(); });
+    tally.note("cycles=" + std::to_string(st.cycles) + " latency=" + std::to_string(st.min_lat) +
+               ".." + std::to_string(st.max_lat));
+    tally.finish();
+    return tally.vectors();
+  }
+
+ private:
+  static uint32_t F_mask() { return Op::Fmt::mask; }
+
   std::string fmt_, mode_;
   int stages_;
   std::mt19937_64 rng_;
-  std::unique_ptr<VerilatedContext> ctx_;
-  std::unique_ptr<V> m_;
+  Dut<V> dut_;
 };
 
 }  // namespace raycore::rtltest

@@ -39,20 +39,39 @@ std::string hex(uint32_t x) {
 
 // ---- one adapter per module --------------------------------------------------------------------
 
-template <class F, Rounding R>
-struct AddOp {
+// What the adapters share: the format, the result type, the a/b operands, one result out_res_o,
+// and pairs of the directed set (k = index of a * n + index of b).
+template <class F>
+struct OpBase {
   using Fmt = F;
   using Res = Result<F>;
-  static const char* name() { return "fp_add"; }
   template <class V>
   static void drive(V& m, const Operands& x) {
     m.in_a_i = x.a;
     m.in_b_i = x.b;
-    m.in_sub_i = x.sub;
   }
   template <class V>
   static Res read(const V& m) {
     return Res::one(m.out_res_o);
+  }
+  static bool small_directed() { return false; }
+  static uint64_t directed_count(size_t n) { return uint64_t(n) * n; }
+  static Operands directed(const std::vector<uint32_t>& d, uint64_t k) {
+    Operands x;
+    x.a = d[k / d.size()];
+    x.b = d[k % d.size()];
+    return x;
+  }
+};
+
+template <class F, Rounding R>
+struct AddOp : OpBase<F> {
+  using Res = Result<F>;
+  static const char* name() { return "fp_add"; }
+  template <class V>
+  static void drive(V& m, const Operands& x) {
+    OpBase<F>::drive(m, x);
+    m.in_sub_i = x.sub;
   }
   static Res expect(const Operands& x) {
     return Res::one(x.sub ? hls::sub<F, R>(x.a, x.b) : hls::add<F, R>(x.a, x.b));
@@ -60,7 +79,6 @@ struct AddOp {
   static std::string describe(const Operands& x) {
     return hex<F>(x.a) + (x.sub ? " - " : " + ") + hex<F>(x.b);
   }
-  static bool small_directed() { return false; }
   static uint64_t directed_count(size_t n) { return 2 * uint64_t(n) * n; }
   static Operands directed(const std::vector<uint32_t>& d, uint64_t k) {
     Operands x;
@@ -78,19 +96,13 @@ struct AddOp {
 };
 
 template <class F, Rounding R>
-struct Add3Op {
-  using Fmt = F;
+struct Add3Op : OpBase<F> {
   using Res = Result<F>;
   static const char* name() { return "fp_add3"; }
   template <class V>
   static void drive(V& m, const Operands& x) {
-    m.in_a_i = x.a;
-    m.in_b_i = x.b;
+    OpBase<F>::drive(m, x);
     m.in_c_i = x.c;
-  }
-  template <class V>
-  static Res read(const V& m) {
-    return Res::one(m.out_res_o);
   }
   static Res expect(const Operands& x) { return Res::one(hls::add3<F, R>(x.a, x.b, x.c)); }
   static std::string describe(const Operands& x) {
@@ -115,32 +127,14 @@ struct Add3Op {
 
 // Binary operations with one result: mul, div.
 template <class F, Rounding R, bool Div>
-struct BinOp {
-  using Fmt = F;
+struct BinOp : OpBase<F> {
   using Res = Result<F>;
   static const char* name() { return Div ? "fp_div" : "fp_mul"; }
-  template <class V>
-  static void drive(V& m, const Operands& x) {
-    m.in_a_i = x.a;
-    m.in_b_i = x.b;
-  }
-  template <class V>
-  static Res read(const V& m) {
-    return Res::one(m.out_res_o);
-  }
   static Res expect(const Operands& x) {
     return Res::one(Div ? hls::div<F, R>(x.a, x.b) : hls::mul<F, R>(x.a, x.b));
   }
   static std::string describe(const Operands& x) {
     return hex<F>(x.a) + (Div ? " / " : " * ") + hex<F>(x.b);
-  }
-  static bool small_directed() { return false; }
-  static uint64_t directed_count(size_t n) { return uint64_t(n) * n; }
-  static Operands directed(const std::vector<uint32_t>& d, uint64_t k) {
-    Operands x;
-    x.a = d[k / d.size()];
-    x.b = d[k % d.size()];
-    return x;
   }
   static Operands random(Gen<F>& g) {
     Operands x;
@@ -154,15 +148,10 @@ template <class F, Rounding R>
 using DivOp = BinOp<F, R, true>;
 
 template <class F, Rounding>
-struct CmpOp {
+struct CmpOp : OpBase<F> {
   using Fmt = F;
   using Res = Result<F>;
   static const char* name() { return "fp_cmp"; }
-  template <class V>
-  static void drive(V& m, const Operands& x) {
-    m.in_a_i = x.a;
-    m.in_b_i = x.b;
-  }
   template <class V>
   static Res read(const V& m) {
     return Res::cmp(m.out_lt_o, m.out_eq_o, m.out_min_o, m.out_max_o);
@@ -172,11 +161,6 @@ struct CmpOp {
                     hls::max<F>(x.a, x.b));
   }
   static std::string describe(const Operands& x) { return "a=" + hex<F>(x.a) + " b=" + hex<F>(x.b); }
-  static bool small_directed() { return false; }
-  static uint64_t directed_count(size_t n) { return uint64_t(n) * n; }
-  static Operands directed(const std::vector<uint32_t>& d, uint64_t k) {
-    return BinOp<F, Rounding::rtz, false>::directed(d, k);
-  }
   // Close pairs (the adder's generator), equal values, neighbours, and unflushed zeros.
   static Operands random(Gen<F>& g) {
     Operands x;

@@ -20,8 +20,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <deque>
-#include <memory>
 #include <random>
 #include <sstream>
 #include <string>
@@ -31,6 +29,7 @@
 #include "hls/ist.h"
 #include "hls/wald.h"
 #include "tb/fp/fp_check.h"
+#include "tb/rtl/rtl_cosim.h"
 #include "tb/rtl/stimulus.h"
 
 #include "rtl_ist_models.h"
@@ -94,147 +93,67 @@ template <class V, class F, Rounding R>
 class IstCosim {
  public:
   IstCosim(std::string name, int stages, uint64_t seed)
-      : name_(std::move(name)), stages_(stages), stim_(seed), rng_(seed ^ 0x9e3779b97f4a7c15ull) {
-    ctx_ = std::make_unique<VerilatedContext>();
-    ctx_->randReset(2);  // registers without reset start random: results must not depend on them
-    ctx_->randSeed(int(seed & 0x7fffffffu) | 1);
-    m_ = std::make_unique<V>(ctx_.get(), "top");
-  }
+      : name_(std::move(name)), stages_(stages), stim_(seed), rng_(seed ^ 0x9e3779b97f4a7c15ull),
+        dut_(seed) {}
 
   // Streams `count` tests; returns the number checked. full: no gaps, no back-pressure.
   uint64_t run(const char* set, uint64_t count, bool full) {
-    reset();
     using A = hls::Arith<F, R>;
-    std::deque<Pending> inflight;
+    struct Item {
+      IstIn x;
+      IstRes expected;
+    };
+    const StreamSpec spec{name_, count, full, 10u * uint64_t(stages_), "10*STAGES",
+                          2000u + 64u * uint64_t(stages_), 1};
     std::array<uint64_t, 5> by_exit{};
-    uint64_t issued = 0, checked = 0, cycles = 0, idle = 0, mismatches = 0;
-    uint64_t min_lat = ~uint64_t(0), max_lat = 0;
-    const uint64_t latency = 10u * uint64_t(stages_);
-    bool holding = false;
-    Pending cur;
-    uint32_t p_gap = 0, p_stall = 0;
-    while ((issued < count || !inflight.empty()) && mismatches < 5) {
-      if (!full && (cycles & 255u) == 0) {
-        static constexpr uint32_t kRates[] = {0, 1, 4, 7};  // in 1/8
-        p_gap = kRates[stim_.raw() & 3u];
-        p_stall = kRates[(stim_.raw() >> 2) & 3u];
-      }
-      if (!holding) {
-        if (issued < count && (full || (rng_() & 7u) >= p_gap)) {
-          cur.x = stim_.next();
-          const hls::IstOut e =
-              hls::ist_wald<A>(cur.x.k, cur.x.c, cur.x.o, cur.x.d, cur.x.tmin, cur.x.tmax);
-          cur.expected = IstRes{uint32_t(e.exit), e.t, e.den};
-          cur.tag = uint16_t(issued);
-          holding = true;
-          drive<V, F>(*m_, cur.x);
-          m_->in_tag_i = cur.tag;
-          m_->in_valid_i = 1;
-        } else {  // a bubble with junk inputs (must be ignored)
+    uint64_t mismatches = 0;
+    V& m = *dut_;
+    const StreamStats st = stream(
+        dut_, spec, [&] { return stim_.raw(); }, rng_,
+        [&](uint64_t) {
+          Item it;
+          it.x = stim_.next();
+          const hls::IstOut e = hls::ist_wald<A>(it.x.k, it.x.c, it.x.o, it.x.d, it.x.tmin, it.x.tmax);
+          it.expected = IstRes{uint32_t(e.exit), e.t, e.den};
+          drive<V, F>(m, it.x);
+          return it;
+        },
+        [&] {  // junk inputs
           IstIn junk;
           junk.k = uint32_t(rng_() & 3u);
           for (uint32_t& c : junk.c) c = uint32_t(rng_()) & F::mask;
           junk.tmax = uint32_t(rng_()) & F::mask;
-          drive<V, F>(*m_, junk);
-          m_->in_tag_i = uint16_t(rng_());
-          m_->in_valid_i = 0;
-        }
-      }
-      m_->out_ready_i = (full || (rng_() & 7u) >= p_stall) ? 1 : 0;
-      m_->eval();
-      if (m_->in_valid_i && m_->in_ready_o) {
-        cur.cycle = cycles;
-        inflight.push_back(cur);
-        ++issued;
-        holding = false;
-      } else if (full && holding) {
-        ADD_FAILURE() << name_ << ": in_ready_o low at cycle " << cycles
-                      << " with the output always ready";
-        return checked;
-      }
-      if (m_->out_valid_o && m_->out_ready_i) {
-        idle = 0;
-        if (inflight.empty()) {
-          ADD_FAILURE() << name_ << ": out_valid_o at cycle " << cycles << " with nothing in flight";
-          return checked;
-        }
-        const Pending p = inflight.front();
-        inflight.pop_front();
-        const uint64_t lat = cycles - p.cycle;
-        min_lat = std::min(min_lat, lat);
-        max_lat = std::max(max_lat, lat);
-        const IstRes got{uint32_t(m_->out_exit_o), uint32_t(m_->out_t_o), uint32_t(m_->out_den_o)};
-        const uint16_t tag = uint16_t(m_->out_tag_o);
-        ++checked;
-        if (p.expected.exit < 5) ++by_exit[p.expected.exit];
-        if (!(got == p.expected) || tag != p.tag) {
-          ++mismatches;
-          ADD_FAILURE() << name_ << " " << set << ": mismatch at test " << p.tag << " (cycle "
-                        << cycles << ")\n  inputs:   " << describe<F>(p.x)
-                        << "\n  expected: " << describe<F>(p.expected) << " tag=" << p.tag
-                        << "\n  got:      " << describe<F>(got) << " tag=" << tag;
-        }
-      } else if (++idle > 2000u + 64u * unsigned(stages_)) {
-        ADD_FAILURE() << name_ << ": no result for " << idle << " cycles with " << inflight.size()
-                      << " in flight (deadlock)";
-        return checked;
-      }
-      clock();
-      ++cycles;
-    }
-    if (issued > 0) {
-      EXPECT_GE(min_lat, latency) << name_ << ": latency below 10*STAGES";
-      if (full) {
-        EXPECT_EQ(max_lat, latency) << name_ << ": full-rate latency != 10*STAGES";
-        EXPECT_EQ(cycles, count + latency) << name_ << ": full rate is not one test per cycle";
-      }
-    }
+          drive<V, F>(m, junk);
+        },
+        [&](const Item& it, uint16_t seq, uint64_t cycle) {
+          const IstRes got{uint32_t(m.out_exit_o), uint32_t(m.out_t_o), uint32_t(m.out_den_o)};
+          if (it.expected.exit < 5) ++by_exit[it.expected.exit];
+          if (!(got == it.expected)) {
+            ++mismatches;
+            ADD_FAILURE() << mismatch(name_ + " " + set, seq, cycle, describe<F>(it.x),
+                                      describe<F>(it.expected), describe<F>(got));
+          }
+        },
+        [&] { return mismatches >= 5; });
     std::printf("ISTSUM %s %s vectors=%" PRIu64 " mismatches=%" PRIu64 " hit=%" PRIu64
                 " distance=%" PRIu64 " beta=%" PRIu64 " gamma=%" PRIu64 " sum=%" PRIu64
                 " cycles=%" PRIu64 " latency=%" PRIu64 "..%" PRIu64 "\n",
-                name_.c_str(), set, checked, mismatches, by_exit[0], by_exit[1], by_exit[2],
-                by_exit[3], by_exit[4], cycles, min_lat, max_lat);
-    EXPECT_GT(checked, 0u) << name_ << " " << set << ": no vectors checked";
-    EXPECT_EQ(checked, count) << name_ << " " << set << ": not every test came back";
+                name_.c_str(), set, st.checked, mismatches, by_exit[0], by_exit[1], by_exit[2],
+                by_exit[3], by_exit[4], st.cycles, st.min_lat, st.max_lat);
+    EXPECT_GT(st.checked, 0u) << name_ << " " << set << ": no vectors checked";
+    EXPECT_EQ(st.checked, count) << name_ << " " << set << ": not every test came back";
     last_by_exit_ = by_exit;
-    return checked;
+    return st.checked;
   }
 
   const std::array<uint64_t, 5>& by_exit() const { return last_by_exit_; }
 
  private:
-  struct Pending {
-    IstIn x;
-    IstRes expected;
-    uint16_t tag = 0;
-    uint64_t cycle = 0;
-  };
-  void reset() {
-    m_->clk_i = 0;
-    m_->rst_ni = 1;
-    m_->in_valid_i = 0;
-    m_->out_ready_i = 0;
-    m_->eval();
-    m_->rst_ni = 0;
-    m_->eval();
-    clock();
-    clock();
-    m_->rst_ni = 1;
-    m_->eval();
-  }
-  void clock() {
-    m_->clk_i = 1;
-    m_->eval();
-    m_->clk_i = 0;
-    m_->eval();
-  }
-
   std::string name_;
   int stages_;
   Stimulus<F, R> stim_;
   std::mt19937_64 rng_;
-  std::unique_ptr<VerilatedContext> ctx_;
-  std::unique_ptr<V> m_;
+  Dut<V> dut_;
   std::array<uint64_t, 5> last_by_exit_{};
 };
 

@@ -19,13 +19,12 @@
 #include <cinttypes>
 #include <cstdint>
 #include <cstdio>
-#include <deque>
-#include <memory>
 #include <random>
 #include <string>
 
 #include "hls/fp.h"
 #include "tb/fp/fp_check.h"
+#include "tb/rtl/rtl_cosim.h"
 #include "tb/rtl/trv_stim.h"
 
 #include "rtl_trv_models.h"
@@ -87,143 +86,61 @@ class TrvCosim {
 
  public:
   TrvCosim(std::string name, int stages, uint64_t seed)
-      : name_(std::move(name)), stages_(stages), stim_(seed), rng_(seed ^ 0x9e3779b97f4a7c15ull) {
-    ctx_ = std::make_unique<VerilatedContext>();
-    ctx_->randReset(2);  // registers without reset start random: results must not depend on them
-    ctx_->randSeed(int(seed & 0x7fffffffu) | 1);
-    m_ = std::make_unique<V>(ctx_.get(), "top");
-  }
+      : name_(std::move(name)), stages_(stages), stim_(seed), rng_(seed ^ 0x9e3779b97f4a7c15ull),
+        dut_(seed) {}
 
   // Streams `count` items of the set; returns the number checked.
   uint64_t run(Set set, uint64_t count) {
     const char* set_name = set == Set::fullrate ? "fullrate" : set == Set::directed ? "directed"
                                                                                       : "random";
-    const bool full = set == Set::fullrate;
-    reset();
-    std::deque<Pending> inflight;
+    struct Item {
+      TrvIn x;
+      TrvOut expected;
+    };
+    const StreamSpec spec{name_, count, set == Set::fullrate, 4u * uint64_t(stages_), "4*STAGES",
+                          2000u + 64u * uint64_t(stages_), 1};
     std::array<uint64_t, 6> by_kind{};  // split first/second/both, clip miss/hit, other
-    uint64_t issued = 0, checked = 0, cycles = 0, idle = 0, mismatches = 0;
-    uint64_t min_lat = ~uint64_t(0), max_lat = 0;
-    const uint64_t latency = 4u * uint64_t(stages_);
-    bool holding = false;
-    Pending cur;
-    uint32_t p_gap = 0, p_stall = 0;
-    while ((issued < count || !inflight.empty()) && mismatches < 5) {
-      if (!full && (cycles & 255u) == 0) {
-        static constexpr uint32_t kRates[] = {0, 1, 4, 7};  // in 1/8
-        p_gap = kRates[rng_() & 3u];
-        p_stall = kRates[(rng_() >> 2) & 3u];
-      }
-      if (!holding) {
-        if (issued < count && (full || (rng_() & 7u) >= p_gap)) {
-          cur.x = set == Set::directed ? stim_.directed(issued) : stim_.random();
-          cur.expected = trv_expect<A>(cur.x);
-          cur.tag = uint16_t(issued);
-          holding = true;
-          drive(*m_, cur.x);
-          m_->in_tag_i = cur.tag;
-          m_->in_valid_i = 1;
-        } else {  // a bubble with junk inputs (must be ignored)
-          drive(*m_, stim_.random());
-          m_->in_tag_i = uint16_t(rng_());
-          m_->in_valid_i = 0;
-        }
-      }
-      m_->out_ready_i = (full || (rng_() & 7u) >= p_stall) ? 1 : 0;
-      m_->eval();
-      if (m_->in_valid_i && m_->in_ready_o) {
-        cur.cycle = cycles;
-        inflight.push_back(cur);
-        ++issued;
-        holding = false;
-      } else if (full && holding) {
-        ADD_FAILURE() << name_ << ": in_ready_o low at cycle " << cycles
-                      << " with the output always ready";
-        return checked;
-      }
-      if (m_->out_valid_o && m_->out_ready_i) {
-        idle = 0;
-        if (inflight.empty()) {
-          ADD_FAILURE() << name_ << ": out_valid_o at cycle " << cycles << " with nothing in flight";
-          return checked;
-        }
-        const Pending p = inflight.front();
-        inflight.pop_front();
-        const uint64_t lat = cycles - p.cycle;
-        min_lat = std::min(min_lat, lat);
-        max_lat = std::max(max_lat, lat);
-        const TrvOut got = read(*m_);
-        const uint16_t tag = uint16_t(m_->out_tag_o);
-        ++checked;
-        const TrvOut& e = p.expected;
-        ++by_kind[e.op == 0 ? (e.visit < 3 ? e.visit : 5) : 3 + e.hit];
-        if (!same(got, e) || tag != p.tag) {
-          ++mismatches;
-          ADD_FAILURE() << name_ << " " << set_name << ": mismatch at item " << p.tag << " (cycle "
-                        << cycles << ")\n  inputs:   " << describe<F>(p.x)
-                        << "\n  expected: " << describe<F>(e) << " tag=" << p.tag
-                        << "\n  got:      " << describe<F>(got) << " tag=" << tag;
-        }
-      } else if (++idle > 2000u + 64u * unsigned(stages_)) {
-        ADD_FAILURE() << name_ << ": no result for " << idle << " cycles with " << inflight.size()
-                      << " in flight (deadlock)";
-        return checked;
-      }
-      clock();
-      ++cycles;
-    }
-    if (issued > 0) {
-      EXPECT_GE(min_lat, latency) << name_ << ": latency below 4*STAGES";
-      if (full) {
-        EXPECT_EQ(max_lat, latency) << name_ << ": full-rate latency != 4*STAGES";
-        EXPECT_EQ(cycles, count + latency) << name_ << ": full rate is not one step per cycle";
-      }
-    }
+    uint64_t mismatches = 0;
+    V& m = *dut_;
+    const StreamStats st = stream(
+        dut_, spec, rng_, rng_,
+        [&](uint64_t k) {
+          Item it;
+          it.x = set == Set::directed ? stim_.directed(k) : stim_.random();
+          it.expected = trv_expect<A>(it.x);
+          drive(m, it.x);
+          return it;
+        },
+        [&] { drive(m, stim_.random()); },  // junk inputs
+        [&](const Item& it, uint16_t seq, uint64_t cycle) {
+          const TrvOut got = read(m);
+          const TrvOut& e = it.expected;
+          ++by_kind[e.op == 0 ? (e.visit < 3 ? e.visit : 5) : 3 + e.hit];
+          if (!same(got, e)) {
+            ++mismatches;
+            ADD_FAILURE() << mismatch(name_ + " " + set_name, seq, cycle, describe<F>(it.x),
+                                      describe<F>(e), describe<F>(got));
+          }
+        },
+        [&] { return mismatches >= 5; });
     std::printf("TRVSUM %s %s vectors=%" PRIu64 " mismatches=%" PRIu64 " split_first=%" PRIu64
                 " split_second=%" PRIu64 " split_both=%" PRIu64 " clip_miss=%" PRIu64
                 " clip_hit=%" PRIu64 " cycles=%" PRIu64 " latency=%" PRIu64 "..%" PRIu64 "\n",
-                name_.c_str(), set_name, checked, mismatches, by_kind[0], by_kind[1], by_kind[2],
-                by_kind[3], by_kind[4], cycles, min_lat, max_lat);
+                name_.c_str(), set_name, st.checked, mismatches, by_kind[0], by_kind[1], by_kind[2],
+                by_kind[3], by_kind[4], st.cycles, st.min_lat, st.max_lat);
     EXPECT_EQ(mismatches, 0u);
-    EXPECT_EQ(checked, count) << name_ << " " << set_name << ": not every item came back";
+    EXPECT_EQ(st.checked, count) << name_ << " " << set_name << ": not every item came back";
     last_ = by_kind;
-    return checked;
+    return st.checked;
   }
   const std::array<uint64_t, 6>& by_kind() const { return last_; }
 
  private:
-  struct Pending {
-    TrvIn x;
-    TrvOut expected;
-    uint16_t tag = 0;
-    uint64_t cycle = 0;
-  };
-  void reset() {
-    m_->clk_i = 0;
-    m_->rst_ni = 1;
-    m_->in_valid_i = 0;
-    m_->out_ready_i = 0;
-    m_->eval();
-    m_->rst_ni = 0;
-    m_->eval();
-    clock();
-    clock();
-    m_->rst_ni = 1;
-    m_->eval();
-  }
-  void clock() {
-    m_->clk_i = 1;
-    m_->eval();
-    m_->clk_i = 0;
-    m_->eval();
-  }
-
   std::string name_;
   int stages_;
   TrvStim<F, R> stim_;
   std::mt19937_64 rng_;
-  std::unique_ptr<VerilatedContext> ctx_;
-  std::unique_ptr<V> m_;
+  Dut<V> dut_;
   std::array<uint64_t, 6> last_{};
 };
 

@@ -20,8 +20,6 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <deque>
-#include <memory>
 #include <random>
 #include <sstream>
 #include <string>
@@ -30,6 +28,7 @@
 #include "hls/image.h"
 #include "hls/vtu.h"
 #include "hls/wald.h"
+#include "tb/rtl/rtl_cosim.h"
 #include "tb/rtl/stimulus.h"
 
 #include "rtl_vtu_models.h"
@@ -117,28 +116,10 @@ template <class V, class F, Rounding R>
 class VtuCosim {
  public:
   VtuCosim(std::string name, int stages, uint64_t seed)
-      : name_(std::move(name)), stages_(stages), gen_(seed) {
-    ctx_ = std::make_unique<VerilatedContext>();
-    ctx_->randReset(2);  // data registers start random: a result must never depend on them
-    ctx_->randSeed(int(seed & 0x7fffffffu) | 1);
-    m_ = std::make_unique<V>(ctx_.get(), "top");
-  }
-
-  void reset() {
-    m_->clk_i = 0;
-    m_->rst_ni = 1;
-    m_->in_valid_i = 0;
-    m_->out_ready_i = 0;
-    m_->eval();
-    m_->rst_ni = 0;
-    m_->eval();
-    for (int i = 0; i < 2; ++i) clock();
-    m_->rst_ni = 1;
-    m_->eval();
-  }
+      : name_(std::move(name)), stages_(stages), gen_(seed), dut_(seed) {}
 
   void drive(const Record<F>& r) {
-    V& m = *m_;
+    V& m = *dut_;
     set(m.vtu_on_i, r.on);
     set(m.cam_x_i, r.cam[0]);
     set(m.cam_y_i, r.cam[1]);
@@ -159,8 +140,8 @@ class VtuCosim {
     set(m.in_id_i, r.t.id);
   }
 
-  Out<F> read() const {
-    const V& m = *m_;
+  Out<F> read() {
+    const V& m = *dut_;
     Out<F> o;
     o.tri = m.out_kind_o != 0;
     if (!o.tri) {
@@ -184,117 +165,48 @@ class VtuCosim {
 
   // Streams `count` records; returns the number checked.
   uint64_t run(const std::string& set_name, uint64_t count, bool full) {
-    reset();
-    struct Pending {
+    struct Item {
       Record<F> r;
       Out<F> expected;
-      uint16_t tag = 0;
-      uint64_t cycle = 0;
     };
-    std::deque<Pending> inflight;
+    const uint64_t latency = 3u * uint64_t(stages_);
+    const StreamSpec spec{name_, count, full, latency, "3*STAGES", 1000u + 64u * latency};
     std::mt19937_64& rng = gen_.rng();
-    uint64_t issued = 0, checked = 0, mismatches = 0, cycles = 0, idle = 0, protocol = 0;
-    uint64_t min_lat = ~uint64_t(0), max_lat = 0;
-    uint32_t p_gap = 0, p_stall = 0;  // in 1/8
-    bool holding = false;
-    Pending cur;
-    const uint64_t lat = 3u * uint64_t(stages_);
-    while ((issued < count || !inflight.empty()) && mismatches < 10 && protocol < 10) {
-      if (!full && (cycles & 255u) == 0) {
-        static constexpr uint32_t kRates[] = {0, 1, 4, 7};
-        p_gap = kRates[rng() & 3u];
-        p_stall = kRates[(rng() >> 2) & 3u];
-      }
-      if (!holding) {
-        if (issued < count && (full || (rng() & 7u) >= p_gap)) {
-          cur.r = gen_.next();
-          cur.expected = expect<F, R>(cur.r);
-          cur.tag = uint16_t(issued);
-          holding = true;
-          drive(cur.r);
-          set(m_->in_tag_i, cur.tag);
-          m_->in_valid_i = 1;
-        } else {  // a bubble with junk on the inputs (must be ignored)
-          drive(gen_.next());
-          set(m_->in_tag_i, rng());
-          m_->in_valid_i = 0;
-        }
-      }
-      m_->out_ready_i = (full || (rng() & 7u) >= p_stall) ? 1 : 0;
-      m_->eval();
-      if (m_->in_valid_i && m_->in_ready_o) {
-        cur.cycle = cycles;
-        inflight.push_back(cur);
-        ++issued;
-        holding = false;
-      } else if (full && holding) {
-        ++protocol;
-        ADD_FAILURE() << name_ << ": in_ready_o low at cycle " << cycles
-                      << " with the output always ready";
-      }
-      if (m_->out_valid_o && m_->out_ready_i) {
-        idle = 0;
-        if (inflight.empty()) {
-          ++protocol;
-          ADD_FAILURE() << name_ << ": out_valid_o at cycle " << cycles << " with nothing in flight";
-        } else {
-          const Pending p = inflight.front();
-          inflight.pop_front();
-          min_lat = std::min(min_lat, cycles - p.cycle);
-          max_lat = std::max(max_lat, cycles - p.cycle);
-          const uint16_t tag = uint16_t(m_->out_tag_o);
-          if (tag != p.tag) {
-            ++protocol;
-            ADD_FAILURE() << name_ << ": out of order at cycle " << cycles << ": tag " << tag
-                          << ", expected " << p.tag;
-          }
+    uint64_t mismatches = 0;
+    const StreamStats st = stream(
+        dut_, spec, rng, rng,
+        [&](uint64_t) {
+          Item it{gen_.next(), {}};
+          it.expected = expect<F, R>(it.r);
+          drive(it.r);
+          return it;
+        },
+        [&] { drive(gen_.next()); },  // junk inputs
+        [&](const Item& it, uint16_t seq, uint64_t cycle) {
           const Out<F> got = read();
-          ++checked;
-          if (!(got == p.expected)) {
+          if (!(got == it.expected)) {
             ++mismatches;
-            ADD_FAILURE() << name_ << " [" << set_name << "] mismatch #" << mismatches
-                          << " (record " << p.tag << ")\n  input:    " << show(p.r)
-                          << "\n  expected: " << show(p.expected) << "\n  got:      " << show(got);
+            ADD_FAILURE() << mismatch(name_ + " [" + set_name + "] #" + std::to_string(mismatches),
+                                      seq, cycle, show(it.r), show(it.expected), show(got));
           }
-        }
-      } else if (++idle > 1000u + 64u * lat) {
-        ADD_FAILURE() << name_ << ": no output for " << idle << " cycles with " << inflight.size()
-                      << " in flight (deadlock)";
-        break;
-      }
-      clock();
-      ++cycles;
-    }
-    EXPECT_GT(checked, 0u) << "no vectors checked";
+        },
+        [&] { return mismatches >= 10; });
+    EXPECT_GT(st.checked, 0u) << "no vectors checked";
     EXPECT_EQ(mismatches, 0u);
-    if (checked > 0) {
-      EXPECT_GE(min_lat, lat) << "latency below 3*STAGES";
-      if (full) {
-        EXPECT_EQ(max_lat, lat) << "full-rate latency != 3*STAGES";
-        EXPECT_EQ(cycles, count + lat) << "full rate: not one record per cycle";
-      }
-    }
     std::printf("VTUSUM %s %s vectors=%llu mismatches=%llu cycles=%llu latency=%llu..%llu\n",
-                name_.c_str(), set_name.c_str(), static_cast<unsigned long long>(checked),
+                name_.c_str(), set_name.c_str(), static_cast<unsigned long long>(st.checked),
                 static_cast<unsigned long long>(mismatches),
-                static_cast<unsigned long long>(cycles), static_cast<unsigned long long>(min_lat),
-                static_cast<unsigned long long>(max_lat));
-    return checked;
+                static_cast<unsigned long long>(st.cycles),
+                static_cast<unsigned long long>(st.min_lat),
+                static_cast<unsigned long long>(st.max_lat));
+    return st.checked;
   }
 
  private:
-  void clock() {
-    m_->clk_i = 1;
-    m_->eval();
-    m_->clk_i = 0;
-    m_->eval();
-  }
-
   std::string name_;
   int stages_;
   Gen<F, R> gen_;
-  std::unique_ptr<VerilatedContext> ctx_;
-  std::unique_ptr<V> m_;
+  Dut<V> dut_;
 };
 
 template <class V, class F, Rounding R>

@@ -1,17 +1,11 @@
 # tb/rtl/trv.cmake (included by tb/rtl/CMakeLists.txt): the tests of rtl/units/trv.v and
 # rtl/units/membus_if.v, label "rtl".
 #   test_rtl_trv             Verilated --cc trv vs hls::trv_split / trv_clip_box, bit for bit
+#                            (added by tb/rtl/CMakeLists.txt with the other units' test_rtl_*)
 #   test_lockstep_trv        Verilated --sc trv beside its SystemC twin systemc/pins/trv.h
 #   test_lockstep_membus_if  Verilated --sc membus_if beside systemc/pins/membus_if.h
 # The lockstep tests link SystemC: each defines sc_main (calling InitGoogleTest) and links
 # GTest::gtest, not gtest_main; one simulation per process (gtest_discover_tests).
-if(TARGET raycore_rtl_trv)
-  add_executable(test_rtl_trv test_rtl_trv.cpp)
-  target_link_libraries(test_rtl_trv PRIVATE raycore_rtl_trv raycore_hls raycore_warnings
-    GTest::gtest GTest::gtest_main)
-  gtest_discover_tests(test_rtl_trv PROPERTIES LABELS "rtl" DISCOVERY_TIMEOUT 60)
-endif()
-
 foreach(unit trv membus_if)
   if(TARGET raycore_rtl_${unit}_sc AND EXISTS ${CMAKE_CURRENT_SOURCE_DIR}/test_lockstep_${unit}.cpp)
     add_executable(test_lockstep_${unit} test_lockstep_${unit}.cpp)
