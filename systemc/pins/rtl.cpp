@@ -2,48 +2,50 @@
 #include "systemc/pins/rtl.h"
 
 #include <cstring>
+#include <type_traits>
 
 #include "rtl_frame_models.h"
 
 namespace raycore::sc::pins {
 namespace {
+
 bool matches(const char* fmt, const char* mode, unsigned stages, hls::FormatId f, hls::Rounding r,
              unsigned s) {
   const hls::FormatId mf = std::strcmp(fmt, "FP24") == 0 ? hls::FormatId::fp24 : hls::FormatId::fp32;
   const hls::Rounding mr = std::strcmp(mode, "rne") == 0 ? hls::Rounding::rne : hls::Rounding::rtz;
   return mf == f && mr == r && stages == s;
 }
+
+// The port of each module in rtl_frame_variants.h.
+using PortOf_vtu = VtuPort;
+using PortOf_ist = IstPort;
+
+// The built model of the unit whose port is Port (only its module's lines instantiate one; the
+// others' ports do not match), bound to a new Port; nullptr if none has that configuration.
+template <class Port>
+std::unique_ptr<Port> make_rtl(hls::FormatId f, hls::Rounding r, unsigned s, const char* name,
+                               sc_core::sc_signal<bool>& clk, sc_core::sc_signal<bool>& rst_n) {
+#define RAYCORE_RTL_FRAME_VARIANT(prefix, module, fmt, mode, stages)                 \
+  if constexpr (std::is_same_v<Port, PortOf_##module>) {                             \
+    if (matches(#fmt, #mode, stages, f, r, s))                                       \
+      return std::make_unique<BoundPort<Port, prefix>>(name, "Verilated " #prefix, clk, \
+                                                       rst_n);                       \
+  }
+#include "rtl_frame_variants.h"
+#undef RAYCORE_RTL_FRAME_VARIANT
+  return nullptr;
+}
+
 }  // namespace
 
 std::unique_ptr<VtuPort> make_rtl_vtu(hls::FormatId f, hls::Rounding r, unsigned s, const char* name,
                                       sc_core::sc_signal<bool>& clk, sc_core::sc_signal<bool>& rst_n) {
-// Only the lines of the unit's module instantiate a port (the others' ports do not match).
-#define RAYCORE_CASE_vtu(prefix, fmt, mode, stages) \
-  if (matches(#fmt, #mode, stages, f, r, s))        \
-    return std::make_unique<VtuPortT<prefix>>(name, "Verilated " #prefix, clk, rst_n);
-#define RAYCORE_CASE_ist(prefix, fmt, mode, stages)
-#define RAYCORE_RTL_FRAME_VARIANT(prefix, module, fmt, mode, stages) \
-  RAYCORE_CASE_##module(prefix, fmt, mode, stages)
-#include "rtl_frame_variants.h"
-#undef RAYCORE_RTL_FRAME_VARIANT
-#undef RAYCORE_CASE_vtu
-#undef RAYCORE_CASE_ist
-  return nullptr;
+  return make_rtl<VtuPort>(f, r, s, name, clk, rst_n);
 }
 
 std::unique_ptr<IstPort> make_rtl_ist(hls::FormatId f, hls::Rounding r, unsigned s, const char* name,
                                       sc_core::sc_signal<bool>& clk, sc_core::sc_signal<bool>& rst_n) {
-#define RAYCORE_CASE_ist(prefix, fmt, mode, stages) \
-  if (matches(#fmt, #mode, stages, f, r, s))        \
-    return std::make_unique<IstPortT<prefix>>(name, "Verilated " #prefix, clk, rst_n);
-#define RAYCORE_CASE_vtu(prefix, fmt, mode, stages)
-#define RAYCORE_RTL_FRAME_VARIANT(prefix, module, fmt, mode, stages) \
-  RAYCORE_CASE_##module(prefix, fmt, mode, stages)
-#include "rtl_frame_variants.h"
-#undef RAYCORE_RTL_FRAME_VARIANT
-#undef RAYCORE_CASE_vtu
-#undef RAYCORE_CASE_ist
-  return nullptr;
+  return make_rtl<IstPort>(f, r, s, name, clk, rst_n);
 }
 
 std::string rtl_models_built() {
