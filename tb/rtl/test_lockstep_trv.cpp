@@ -35,52 +35,15 @@ namespace raycore::rtltest {
 namespace {
 
 using hls::Rounding;
-using sc::pins::TrvSignals;
-using sc::pins::TrvStepIn;
-using sc::pins::TrvStepOut;
+using sc::pins::TrvPortT;
 using sc::pins::TrvTwin;
 
 bool g_simulated = false;  // one SystemC simulation per process (toolchain.md pitfall 8)
 
 uint64_t lockstep_count() { return fptest::env_count("RAYCORE_LOCKSTEP_TRV_N", 100000); }
 
-TrvStepIn to_step(const TrvIn& x, uint32_t tag) {
-  TrvStepIn s;
-  s.op = x.op;
-  s.axis = x.axis;
-  s.split = x.split;
-  s.node = x.node;
-  s.child = x.child;
-  for (int i = 0; i < 3; ++i) {
-    s.o[i] = x.o[i];
-    s.d[i] = x.d[i];
-    s.inv[i] = x.inv[i];
-    s.lo[i] = x.lo[i];
-    s.hi[i] = x.hi[i];
-  }
-  s.tnear = x.tnear;
-  s.tfar = x.tfar;
-  s.tag = tag;
-  return s;
-}
-
-TrvOut from_step(const TrvStepOut& o) {
-  TrvOut r;
-  r.op = o.op;
-  r.hit = o.hit;
-  r.visit = o.visit;
-  r.below = o.below;
-  r.tsplit = o.tsplit;
-  r.tnear = o.tnear;
-  r.tfar = o.tfar;
-  r.node = o.node;
-  r.far_node = o.far_node;
-  r.far_tfar = o.far_tfar;
-  return r;
-}
-
-// The harness: one clock, one reset, the twin and the RTL each on its own signal set with
-// identical inputs; one thread drives, samples and compares.
+// The harness: one clock, one reset, the twin and the RTL each bound to its own port (signal set)
+// with identical inputs; one thread drives, samples and compares.
 template <class V, class F, Rounding R>
 class Lockstep : public sc_core::sc_module {
   using A = hls::Arith<F, R>;
@@ -94,10 +57,8 @@ class Lockstep : public sc_core::sc_module {
         count_(count),
         stim_(fptest::seed_for("lockstep.trv." + variant_)),
         rng_(fptest::seed_for("lockstep.trv.traffic." + variant_)),
-        twin_("twin", stages),
-        rtl_("rtl") {
-    sc::pins::bind_trv(twin_, st_, clk_, rst_n_);
-    sc::pins::bind_trv(rtl_, sr_, clk_, rst_n_);
+        twin_("twin", "twin", clk_, rst_n_, stages),
+        rtl_("rtl", "rtl", clk_, rst_n_) {
     SC_THREAD(run);
   }
 
@@ -111,9 +72,14 @@ class Lockstep : public sc_core::sc_module {
     uint32_t tag = 0;
   };
 
-  void both(void (TrvSignals::*f)(const TrvStepIn&), const TrvStepIn& s) {
-    (st_.*f)(s);
-    (sr_.*f)(s);
+  // The same input (tag = the harness's) into both; a bubble carries the junk with in_valid low.
+  void both(TrvIn x, uint32_t tag, bool valid) {
+    x.tag = tag;
+    sc::pins::TrvPort* const ports[] = {&twin_, &rtl_};
+    for (sc::pins::TrvPort* p : ports) {
+      p->drive(x);
+      if (!valid) p->idle();
+    }
   }
   void half(double ns) { wait(sc_core::sc_time(ns, sc_core::SC_NS)); }
   void edge() {
@@ -128,8 +94,8 @@ class Lockstep : public sc_core::sc_module {
 
   void run() {
     rst_n_.write(false);
-    st_.in_valid.write(false);
-    sr_.in_valid.write(false);
+    twin_.idle();
+    rtl_.idle();
     half(5);
     edge();
     half(5);
@@ -154,20 +120,18 @@ class Lockstep : public sc_core::sc_module {
           cur.tag = uint32_t(issued & 0xffffu);
           cur.expected = trv_expect<A>(cur.x);
           holding = true;
-          both(&TrvSignals::drive, to_step(cur.x, cur.tag));
+          both(cur.x, cur.tag, true);
         } else {
-          both(&TrvSignals::drive, to_step(stim_.random(), uint32_t(rng_() & 0xffffu)));
-          st_.in_valid.write(false);
-          sr_.in_valid.write(false);
+          both(stim_.random(), uint32_t(rng_() & 0xffffu), false);
         }
       }
       const bool ready = (rng_() & 7u) >= p_stall;
-      st_.out_ready.write(ready);
-      sr_.out_ready.write(ready);
+      twin_.out_ready(ready);
+      rtl_.out_ready(ready);
       half(2.5);  // combinational outputs settle
       // Handshake signals must agree every cycle.
-      const bool tw_in_ready = st_.in_ready.read(), rt_in_ready = sr_.in_ready.read();
-      const bool tw_valid = st_.out_valid.read(), rt_valid = sr_.out_valid.read();
+      const bool tw_in_ready = twin_.in_ready(), rt_in_ready = rtl_.in_ready();
+      const bool tw_valid = twin_.out_valid(), rt_valid = rtl_.out_valid();
       if (tw_in_ready != rt_in_ready || tw_valid != rt_valid) {
         std::ostringstream s;
         s << "cycle " << cycles << ": handshake differs: twin in_ready=" << tw_in_ready
@@ -184,7 +148,7 @@ class Lockstep : public sc_core::sc_module {
       }
       if (rt_valid && ready) {
         idle = 0;
-        const TrvStepOut tw = st_.out(), rt = sr_.out();
+        const TrvOut tw = twin_.out(), rt = rtl_.out();
         if (inflight.empty()) {
           fail("cycle " + std::to_string(cycles) + ": output transaction with nothing in flight");
           break;
@@ -192,15 +156,14 @@ class Lockstep : public sc_core::sc_module {
         const Pending p = inflight.front();
         inflight.pop_front();
         ++checked;
-        const TrvOut a = from_step(tw), b = from_step(rt);
-        const bool ok_pair = same(a, b) && tw.tag == rt.tag;
-        const bool ok_ref = same(b, p.expected) && rt.tag == p.tag;
+        const bool ok_pair = same(tw, rt) && tw.tag == rt.tag;
+        const bool ok_ref = same(rt, p.expected) && rt.tag == p.tag;
         if (!ok_pair || !ok_ref) {
           std::ostringstream s;
           s << variant_ << ": first differing output transaction #" << (checked - 1)
             << " (cycle " << cycles << ", item tag " << p.tag << ")\n  inputs: "
-            << describe<F>(p.x) << "\n  twin:   " << describe<F>(a) << " tag=" << tw.tag
-            << "\n  rtl:    " << describe<F>(b) << " tag=" << rt.tag
+            << describe<F>(p.x) << "\n  twin:   " << describe<F>(tw) << " tag=" << tw.tag
+            << "\n  rtl:    " << describe<F>(rt) << " tag=" << rt.tag
             << "\n  hls:    " << describe<F>(p.expected) << " tag=" << p.tag;
           fail(s.str());
           break;
@@ -223,9 +186,8 @@ class Lockstep : public sc_core::sc_module {
   TrvStim<F, R> stim_;
   std::mt19937_64 rng_;
   sc_core::sc_signal<bool> clk_{"clk"}, rst_n_{"rst_n"};
-  TrvSignals st_, sr_;
-  TrvTwin<A> twin_;
-  V rtl_;
+  TrvPortT<TrvTwin<A>> twin_;
+  TrvPortT<V> rtl_;
 };
 
 template <class V, class F, Rounding R>

@@ -3,12 +3,12 @@
 // (Verilated --sc model vs the SystemC twin systemc/pins/trv.h).
 //
 // TrvIn is one item at the unit's input (op 0: hls::trv_split at an inner node, op 1:
-// hls::trv_clip_box), TrvOut the unit's outputs; trv_expect<A> computes them through hls/ with the
-// update rules of systemc/trv.h. same() compares what is defined for the item's op (the split
-// fields are don't-care for a clip). TrvStim draws random and directed items: random rays, planes
-// and boxes, and the edge cases (d = +-0 on the axis, the origin on the plane, the plane exactly at
-// tnear or tfar or one ulp beside, -0 for every interval end, saturated reciprocals, the origin on
-// a box face, empty and inverted boxes), plus fully random bit patterns.
+// hls::trv_clip_box), TrvOut the unit's outputs; trv_expect<A> computes them (trv_step, the
+// definition the SystemC twin uses too). same() compares what is defined for the item's op (the
+// split fields are don't-care for a clip). TrvStim draws random and directed items: random rays,
+// planes and boxes, and the edge cases (d = +-0 on the axis, the origin on the plane, the plane
+// exactly at tnear or tfar or one ulp beside, -0 for every interval end, saturated reciprocals, the
+// origin on a box face, empty and inverted boxes), plus fully random bit patterns.
 #pragma once
 
 #include <cmath>
@@ -18,25 +18,15 @@
 #include <string>
 
 #include "hls/fp.h"
-#include "hls/ray.h"
-#include "hls/trv.h"
+#include "systemc/pins/trv_step.h"
 #include "tb/fp/fp_check.h"
 
 namespace raycore::rtltest {
 
-struct TrvIn {
-  uint32_t op = 0;    // 0 split, 1 clip
-  uint32_t axis = 0;  // 0..2 (3 = invalid, the unit treats it as 0)
-  uint32_t split = 0, node = 0, child = 0;
-  uint32_t o[3] = {}, d[3] = {}, inv[3] = {};
-  uint32_t tnear = 0, tfar = 0;
-  uint32_t lo[3] = {}, hi[3] = {};
-};
-
-struct TrvOut {
-  uint32_t op = 0, hit = 0, visit = 0, below = 0;
-  uint32_t tsplit = 0, tnear = 0, tfar = 0, node = 0, far_node = 0, far_tfar = 0;
-};
+// The unit's input and outputs are the twin's records (systemc/pins/trv_step.h); the tag is the
+// harness's.
+using TrvIn = sc::pins::TrvStepIn;
+using TrvOut = sc::pins::TrvStepOut;
 
 // Equal in every field defined for the op (clip: hit, tnear, tfar).
 inline bool same(const TrvOut& a, const TrvOut& b) {
@@ -46,38 +36,10 @@ inline bool same(const TrvOut& a, const TrvOut& b) {
          a.far_node == b.far_node && a.far_tfar == b.far_tfar;
 }
 
+// What the unit puts out for x: trv_step, the one definition (hls/ plus systemc/trv.h's rules).
 template <class A>
 TrvOut trv_expect(const TrvIn& x) {
-  hls::Ray r;
-  for (int i = 0; i < 3; ++i) {
-    r.o[i] = x.o[i];
-    r.d[i] = x.d[i];
-    r.inv[i] = x.inv[i];
-  }
-  TrvOut e;
-  e.op = x.op;
-  if (x.op == 1) {
-    r.tmin = x.tnear;
-    r.tmax = x.tfar;
-    uint32_t tn = 0, tf = 0;
-    e.hit = hls::trv_clip_box<A>(x.lo, x.hi, r, tn, tf) ? 1u : 0u;
-    e.tnear = tn;
-    e.tfar = tf;
-    return e;
-  }
-  const uint32_t axis = x.axis == 3 ? 0u : x.axis;
-  const hls::SplitStep s = hls::trv_split<A>(x.split, axis, r, x.tnear, x.tfar);
-  const uint32_t first = s.below_first ? x.node + 1 : x.child;
-  const uint32_t second = s.below_first ? x.child : x.node + 1;
-  e.visit = uint32_t(s.visit);
-  e.below = s.below_first ? 1u : 0u;
-  e.tsplit = s.tsplit;
-  e.tnear = x.tnear;
-  e.tfar = s.visit == hls::Visit::both ? s.tsplit : x.tfar;
-  e.node = s.visit == hls::Visit::second ? second : first;
-  e.far_node = second;
-  e.far_tfar = x.tfar;
-  return e;
+  return sc::pins::trv_step<A>(x);
 }
 
 template <class F>
