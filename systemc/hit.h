@@ -11,14 +11,14 @@
 #include "hls/hit.h"
 #include "sim/golden/golden.h"
 #include "systemc/slot.h"
+#include "systemc/slot_unit.h"
 
 namespace raycore::sc {
 
 template <class A>
-class Hit : public sc_core::sc_module {
+class Hit : public SlotUnit {
  public:
-  Hit(sc_core::sc_module_name name, FrameCtx& fc, RtuChannels& ch, RtuStats& st, uint32_t latency)
-      : sc_core::sc_module(name), fc_(fc), ch_(ch), st_(st), lat_(latency) {}
+  using SlotUnit::SlotUnit;
 
   bool tick(Cycle now) {
     if (!ch_.hit_q.can_pop(now)) return false;
@@ -77,11 +77,6 @@ class Hit : public sc_core::sc_module {
     fc_.last_retire = std::max(fc_.last_retire, done);
     return true;
   }
-
-  FrameCtx& fc_;
-  RtuChannels& ch_;
-  RtuStats& st_;
-  uint32_t lat_;
 };
 
 }  // namespace raycore::sc

@@ -13,14 +13,14 @@
 #include "hls/image.h"
 #include "hls/trv.h"
 #include "systemc/slot.h"
+#include "systemc/slot_unit.h"
 
 namespace raycore::sc {
 
 template <class A>
-class Trv : public sc_core::sc_module {
+class Trv : public SlotUnit {
  public:
-  Trv(sc_core::sc_module_name name, FrameCtx& fc, RtuChannels& ch, RtuStats& st, uint32_t latency)
-      : sc_core::sc_module(name), fc_(fc), ch_(ch), st_(st), lat_(latency) {}
+  using SlotUnit::SlotUnit;
 
   bool tick(Cycle now) {
     if (!ch_.trv_q.can_pop(now)) return false;
@@ -160,11 +160,6 @@ class Trv : public sc_core::sc_module {
     ch_.hit_q.push(s, now + lat_);
     return true;
   }
-
-  FrameCtx& fc_;
-  RtuChannels& ch_;
-  RtuStats& st_;
-  uint32_t lat_;
 };
 
 }  // namespace raycore::sc
