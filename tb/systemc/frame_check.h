@@ -170,4 +170,15 @@ inline Summary expect_match(const scenes::Scene& s, const sim::TraceConfig& tc, 
   return r;
 }
 
+// The cycle model refuses cfg (in the child) with an error that contains `message`.
+inline Summary expect_refused(const scenes::Scene& s, const sim::TraceConfig& tc,
+                              const sc::SimConfig& cfg, const std::string& message) {
+  const hls::Image img = hls::build_image(s.tris, tc.format, tc.rounding);
+  const sim::Frame golden = sim::trace_golden(img, s.camera, s.light, tc);
+  const Summary r = run_child({&s, &img, tc, cfg}, golden);
+  EXPECT_FALSE(r.ok) << "expected refusal: " << message;
+  EXPECT_NE(std::string(r.error).find(message), std::string::npos) << r.error;
+  return r;
+}
+
 }  // namespace raycore::tb

@@ -21,6 +21,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "systemc/pins/clock.h"
 #include "systemc/pins/ist.h"
@@ -54,19 +55,28 @@ void expect_same_frame(const scenes::Scene& s, const sim::TraceConfig& tc, sc::S
   EXPECT_EQ(p.tri_tests, model.tri_tests) << what;
 }
 
-#ifndef RAYCORE_TEST_RTL
-
-TEST(PinsFrame, TwinsFp24RtzVtuOn) {
-  expect_same_frame(corridor(), config(FormatId::fp24, Rounding::rtz, true, 48, 30), {},
-                    UnitView::twin, UnitView::twin);
+// Both units as `view`: the corridor, FP24 rtz, VTU on.
+void expect_both_units(UnitView view) {
+  expect_same_frame(corridor(), config(FormatId::fp24, Rounding::rtz, true, 48, 30), {}, view,
+                    view);
 }
-TEST(PinsFrame, TwinsEachUnitFp24RneRandomLatency) {
+
+// The corridor in FP24 rne with 2 RTUs and the memory latency randomised by `seed`, once per
+// (vtu, ist) pair of views.
+void expect_views_fp24_rne(uint64_t seed,
+                           std::initializer_list<std::pair<UnitView, UnitView>> views) {
   sc::SimConfig cfg;
-  cfg.seed = 5;
+  cfg.seed = seed;
   cfg.rtus = 2;
   const auto tc = config(FormatId::fp24, Rounding::rne, true, 32, 20);
-  expect_same_frame(corridor(), tc, cfg, UnitView::twin, UnitView::model);
-  expect_same_frame(corridor(), tc, cfg, UnitView::model, UnitView::twin);
+  for (const auto& [vtu, ist] : views) expect_same_frame(corridor(), tc, cfg, vtu, ist);
+}
+
+#ifndef RAYCORE_TEST_RTL
+
+TEST(PinsFrame, TwinsFp24RtzVtuOn) { expect_both_units(UnitView::twin); }
+TEST(PinsFrame, TwinsEachUnitFp24RneRandomLatency) {
+  expect_views_fp24_rne(5, {{UnitView::twin, UnitView::model}, {UnitView::model, UnitView::twin}});
 }
 TEST(PinsFrame, TwinsFp32StagesOneAndThree) {
   sc::SimConfig cfg;
@@ -84,51 +94,30 @@ TEST(PinsFrame, TwinsVtuOffBypassesTheUnit) {
                     UnitView::twin, UnitView::twin);
 }
 TEST(PinsFrame, LatencyNotAMultipleOfTheLevelsIsRefused) {
-  static const scenes::Scene s = tiny_scene();
   const auto tc = config(FormatId::fp24, Rounding::rtz, true, 8, 8);
-  const hls::Image img = hls::build_image(s.tris, tc.format, tc.rounding);
-  const sim::Frame golden = sim::trace_golden(img, s.camera, s.light, tc);
   sc::SimConfig cfg;
   cfg.vtu_view = UnitView::twin;
   cfg.vtu_depth = 4;
-  Summary r = run_child({&s, &img, tc, cfg}, golden);
-  EXPECT_FALSE(r.ok);
-  EXPECT_NE(std::string(r.error).find("--vtu-depth must be 3 x STAGES"), std::string::npos) << r.error;
+  expect_refused(tiny_scene(), tc, cfg, "--vtu-depth must be 3 x STAGES");
   cfg = {};
   cfg.ist_view = UnitView::twin;
   cfg.ist_latency = 24;
-  r = run_child({&s, &img, tc, cfg}, golden);
-  EXPECT_FALSE(r.ok);
-  EXPECT_NE(std::string(r.error).find("--ist-latency must be 10 x STAGES"), std::string::npos)
-      << r.error;
+  expect_refused(tiny_scene(), tc, cfg, "--ist-latency must be 10 x STAGES");
 }
 
 #else  // RAYCORE_TEST_RTL
 
-TEST(PinsFrameRtl, VtuAndIstFp24RtzVtuOn) {
-  expect_same_frame(corridor(), config(FormatId::fp24, Rounding::rtz, true, 48, 30), {},
-                    UnitView::rtl, UnitView::rtl);
-}
+TEST(PinsFrameRtl, VtuAndIstFp24RtzVtuOn) { expect_both_units(UnitView::rtl); }
 TEST(PinsFrameRtl, EachSubsetFp24RneRandomLatency) {
-  sc::SimConfig cfg;
-  cfg.seed = 7;
-  cfg.rtus = 2;
-  const auto tc = config(FormatId::fp24, Rounding::rne, true, 32, 20);
-  expect_same_frame(corridor(), tc, cfg, UnitView::rtl, UnitView::model);
-  expect_same_frame(corridor(), tc, cfg, UnitView::model, UnitView::rtl);
-  expect_same_frame(corridor(), tc, cfg, UnitView::rtl, UnitView::twin);
+  expect_views_fp24_rne(7, {{UnitView::rtl, UnitView::model},
+                            {UnitView::model, UnitView::rtl},
+                            {UnitView::rtl, UnitView::twin}});
 }
 TEST(PinsFrameRtl, MissingVariantIsNamed) {
-  static const scenes::Scene s = tiny_scene();
-  const auto tc = config(FormatId::fp32, Rounding::rne, false, 8, 8);
-  const hls::Image img = hls::build_image(s.tris, tc.format, tc.rounding);
-  const sim::Frame golden = sim::trace_golden(img, s.camera, s.light, tc);
   sc::SimConfig cfg;
   cfg.ist_view = UnitView::rtl;
-  const Summary r = run_child({&s, &img, tc, cfg}, golden);
-  EXPECT_FALSE(r.ok);
-  EXPECT_NE(std::string(r.error).find("no Verilated ist for fp32 rne STAGES=2"), std::string::npos)
-      << r.error;
+  const auto tc = config(FormatId::fp32, Rounding::rne, false, 8, 8);
+  const Summary r = expect_refused(tiny_scene(), tc, cfg, "no Verilated ist for fp32 rne STAGES=2");
   EXPECT_NE(std::string(r.error).find("built: "), std::string::npos) << r.error;
 }
 
