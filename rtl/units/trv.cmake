@@ -4,9 +4,7 @@
 #                      against hls::trv_split / hls::trv_clip_box);
 #   raycore_rtl_trv_sc --sc models (sc_in/sc_out ports), bound beside the SystemC twin
 #                      systemc/pins/trv.h in tb/rtl/test_lockstep_trv.cpp.
-set(RAYCORE_RTL_TRV_SOURCES ${RAYCORE_RTL_FP_SOURCES} ${CMAKE_CURRENT_SOURCE_DIR}/units/trv.v
-    CACHE INTERNAL "rtl/units/trv.v and the rtl/fp modules it instantiates")
-raycore_rtl_library(raycore_rtl_trv trv SOURCES ${RAYCORE_RTL_TRV_SOURCES} VARIANTS
+raycore_rtl_unit(trv VARIANTS
   "trv FP24 rtz 0"
   "trv FP24 rtz 2"
   "trv FP24 rne 1"
