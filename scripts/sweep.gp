@@ -14,16 +14,20 @@ set output out
 floor = 1e-4   # zero errors are drawn at this error (log axis)
 fx(x) = x < floor ? floor : x
 fmtc(s) = s eq "fp24-rtz" ? 0xd62728 : (s eq "fp24-rne" ? 0x1f77b4 : (s eq "fp32" ? 0x2ca02c : 0x9467bd))
-# point type: spawn (none circle, skip-origin square, ulp-offset triangle, error-bound diamond),
-# filled when the VTU is on
-spt(s, v) = (s eq "none" ? 6 : (s eq "skip-origin" ? 4 : (s eq "ulp-offset" ? 8 : 12))) + (v eq "on" ? 1 : 0)
+# point type: spawn (none circle, skip-origin square, ulp-offset triangle, error-bound diamond,
+# skip-offset triangle down, skip-slab pentagon, skip-back plus / star), filled when the VTU is on;
+# a spawn spec "strategy:ulps" is drawn as its strategy
+sbase(s) = strstrt(s, ":") > 0 ? s[1:strstrt(s, ":") - 1] : s
+spt0(s) = s eq "none" ? 6 : (s eq "skip-origin" ? 4 : (s eq "ulp-offset" ? 8 : (s eq "error-bound" ? 12 : \
+          (s eq "skip-offset" ? 10 : (s eq "skip-slab" ? 14 : (s eq "skip-back" ? 1 : 2))))))
+spt(s, v) = spt0(sbase(s)) == 1 ? (v eq "on" ? 3 : 1) : spt0(sbase(s)) + (v eq "on" ? 1 : 0)
 set multiplot layout rows, cols title "Error (shadow + primary error pixels, % of pixels) against throughput (rays per cycle, cycle model, 6 RTUs); black line = Pareto front (less error, more rays/cycle). Colour: format; shape: spawn; filled: VTU on"
 set logscale x
 set format x "%g"
 set grid
 set xlabel "error pixels, % (0 drawn at 1e-4)"
 set ylabel "rays / cycle"
-set key bottom left font ",8" samplen 1 spacing 0.9
+set key top left font ",8" samplen 1 spacing 0.9
 do for [i = 1:n] {
   set title word(scenes, i)
   if (i == 1) { set key } else { unset key }
@@ -39,6 +43,9 @@ do for [i = 1:n] {
        1/0 with points pt 4 lc rgb "gray40" title "skip-origin", \
        1/0 with points pt 8 lc rgb "gray40" title "ulp-offset", \
        1/0 with points pt 12 lc rgb "gray40" title "error-bound", \
+       1/0 with points pt 10 lc rgb "gray40" title "skip-offset", \
+       1/0 with points pt 14 lc rgb "gray40" title "skip-slab", \
+       1/0 with points pt 1 lc rgb "gray40" title "skip-back (+, on: *)", \
        1/0 with points pt 7 lc rgb "gray40" title "filled: VTU on"
 }
 unset multiplot
