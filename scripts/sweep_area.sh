@@ -2,9 +2,9 @@
 # scripts/sweep_area.sh: the added hardware of the sweep's options, as yosys generic cells per RTU,
 # printed as TSV lines "module format rounding cells" (read by `raycore sweep --collect --area`).
 #
-# - ist, vtu: the cells column of docs/area.md (scripts/area.sh: synth -flatten at STAGES=2). The
-#   sweep counts the VTU as the vtu unit's cells, and a format or rounding change as the ist's
-#   delta against FP24 rtz (the traversal and hit units' own deltas are not counted).
+# - ist, trv, vtu: the cells column of docs/area.md (scripts/area.sh: synth -flatten at STAGES=2).
+#   The sweep counts the VTU as the vtu unit's cells, and a format or rounding change as the ist's
+#   and the trv datapath's deltas against FP24 rtz (the hit unit has no RTL: its delta is not counted).
 # - spawn-<strategy>: rtl/units/spawn.v (STRATEGY 1 skip-origin, 2 ulp-offset, 3 error-bound,
 #   4 skip-offset, 5 skip-slab, 6 skip-back) synthesised here the same way (read_verilog of the
 #   rtl/fp operators it uses and rtl/units/spawn*.v; chparam; synth
@@ -23,7 +23,7 @@ mkdir -p "$CACHE"
 [ "${1:-}" = --one ] || echo "# module format rounding cells (yosys generic cells; ist/vtu from $AREA_MD, spawn-* from rtl/units/spawn.v, STAGES=$STAGES)"
 # | ist | FP24 | rtz | 49412 | ...
 [ "${1:-}" = --one ] || awk -F'|' '{ for (i = 2; i <= 5; i++) gsub(/ /, "", $i) }
-  ($2 == "ist" || $2 == "vtu") && ($4 == "rtz" || $4 == "rne") { print $2 "\t" tolower($3) "\t" $4 "\t" $5 }' "$AREA_MD"
+  ($2 == "ist" || $2 == "trv" || $2 == "vtu") && ($4 == "rtz" || $4 == "rne") { print $2 "\t" tolower($3) "\t" $4 "\t" $5 }' "$AREA_MD"
 
 # The operators spawn_ops instantiates and what they use (the cache key is their hash).
 srcs=(rtl/fp/fp_add.v rtl/fp/fp_add3.v rtl/fp/fp_mul.v rtl/fp/fp_div.v rtl/fp/fp_round.v rtl/fp/fp_pipe.v

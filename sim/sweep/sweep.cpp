@@ -269,8 +269,15 @@ Area read_area(const std::string& path) {
 AddedCells added_cells(const Area& a, const std::string& f, const std::string& r, bool vtu,
                        const std::string& spawn) {
   AddedCells c;
-  const double ist = a.get("ist", f, r), ist0 = a.get("ist", "fp24", "rtz");
-  c.format = ist < 0 || ist0 < 0 ? -1 : ist - ist0;
+  // The units whose datapath width follows the format and rounding, and that have RTL: the ist and
+  // the trv datapath (the hit unit has none; the vtu is counted whole below).
+  for (const char* unit : {"ist", "trv"}) {
+    const double x = a.get(unit, f, r), x0 = a.get(unit, "fp24", "rtz");
+    if (x < 0 || x0 < 0 || c.format < 0)
+      c.format = -1;
+    else
+      c.format += x - x0;
+  }
   c.vtu = vtu ? a.get("vtu", f, r) : 0.0;
   const std::string st = spawn_spec(spawn).strategy;
   c.spawn = st == "none" ? 0.0 : a.get("spawn-" + st, f, r);

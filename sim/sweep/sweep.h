@@ -73,7 +73,7 @@ nlohmann::json manifest_json(const Options& o, const std::vector<Job>& jobs);
 std::vector<Job> jobs_from_manifest(const nlohmann::json& m);  // throws std::runtime_error
 
 // Added hardware per RTU in yosys generic cells, from `scripts/sweep_area.sh` (TSV lines
-// "module<TAB>format<TAB>rounding<TAB>cells"; modules ist, vtu, spawn-<strategy>).
+// "module<TAB>format<TAB>rounding<TAB>cells"; modules ist, trv, vtu, spawn-<strategy>).
 struct Area {
   std::map<std::string, double> cells;  // key "module/format/rounding"
   bool empty() const { return cells.empty(); }
@@ -85,8 +85,8 @@ Area read_area(const std::string& path);  // throws std::runtime_error naming th
 struct AddedCells {
   double format = 0, vtu = 0, spawn = 0, total = 0;  // -1: unknown
 };
-// Against the paper's baseline (FP24 rtz, VTU off, spawn none): the ist's delta for format and
-// rounding, the vtu unit's cells when on, the spawn strategy's cells.
+// Against the paper's baseline (FP24 rtz, VTU off, spawn none): the ist's and the trv datapath's
+// deltas for format and rounding (both rows needed), the vtu unit's cells when on, the spawn strategy's cells.
 AddedCells added_cells(const Area& a, const std::string& format, const std::string& rounding, bool vtu,
                        const std::string& spawn);
 

@@ -149,6 +149,7 @@ TEST(Area, AddedCellsAgainstThePaperBaseline) {
     std::ofstream os(f);
     os << "# module format rounding cells\n"
           "ist\tfp24\trtz\t1000\nist\tfp24\trne\t1100\nist\tfp32\trne\t1700\n"
+          "trv\tfp24\trtz\t400\ntrv\tfp24\trne\t430\ntrv\tfp32\trne\t650\n"
           "vtu\tfp24\trtz\t500\nvtu\tfp24\trne\t550\nvtu\tfp32\trne\t800\n"
           "spawn-skip-origin\tfp24\trtz\t10\nspawn-error-bound\tfp32\trne\t3000\n"
           "spawn-skip-slab\tfp24\trtz\t20\n";
@@ -164,12 +165,18 @@ TEST(Area, AddedCellsAgainstThePaperBaseline) {
   c = raycore::sweep::added_cells(a, "fp24", "rtz", false, "skip-slab:2");
   EXPECT_EQ(c.spawn, 20) << "a spec with ulps: the strategy's row";
   c = raycore::sweep::added_cells(a, "fp32", "rne", true, "error-bound");
-  EXPECT_EQ(c.format, 700);
-  EXPECT_EQ(c.total, 700 + 800 + 3000);
+  EXPECT_EQ(c.format, 700 + 250) << "the ist's and the trv's deltas";
+  EXPECT_EQ(c.total, 950 + 800 + 3000);
   c = raycore::sweep::added_cells(a, "fp24", "rne", false, "ulp-offset");
-  EXPECT_EQ(c.format, 100);
+  EXPECT_EQ(c.format, 100 + 30);
   EXPECT_LT(c.spawn, 0) << "a missing row is unknown, not zero";
   EXPECT_LT(c.total, 0);
+  {
+    std::ofstream os(f);
+    os << "ist\tfp24\trtz\t1000\nist\tfp32\trne\t1700\ntrv\tfp24\trtz\t400\n";
+  }
+  c = raycore::sweep::added_cells(raycore::sweep::read_area(f.string()), "fp32", "rne", false, "none");
+  EXPECT_LT(c.format, 0) << "without the trv's row the format delta is unknown";
   {
     std::ofstream os(f);
     os << "ist fp24 rtz\n";
