@@ -20,7 +20,7 @@ STAGES=2
 mkdir -p "$CACHE"
 [ -f "$AREA_MD" ] || { echo "sweep_area: no $AREA_MD (make area)" >&2; exit 1; }
 
-[ "${1:-}" = --one ] || echo "# module format rounding cells (yosys generic cells; ist/vtu from $AREA_MD, spawn-* from rtl/units/spawn.v, STAGES=$STAGES)"
+[ "${1:-}" = --one ] || echo "# module format rounding cells (yosys generic cells; ist/trv/vtu from $AREA_MD, spawn-* from rtl/units/spawn.v, STAGES=$STAGES)"
 # | ist | FP24 | rtz | 49412 | ...
 [ "${1:-}" = --one ] || awk -F'|' '{ for (i = 2; i <= 5; i++) gsub(/ /, "", $i) }
   ($2 == "ist" || $2 == "trv" || $2 == "vtu") && ($4 == "rtz" || $4 == "rne") { print $2 "\t" tolower($3) "\t" $4 "\t" $5 }' "$AREA_MD"

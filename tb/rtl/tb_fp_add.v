@@ -16,11 +16,9 @@ module tb_fp_add;
   localparam integer W = 1 + EXP_BITS + MAN_BITS;
 
   reg [127:0]      vec [0:N-1];
-  reg [8*512-1:0]  path;
-  integer          seed, n_in, n_out, errors, cycles, idle;
+  `include "tb_stream.vh"  // path, seed, counters, clk, rst_n, in_valid, out_ready; reset, clock
 
-  reg              clk, rst_n;
-  reg              in_valid, in_sub, out_ready;
+  reg              in_sub;
   reg  [W-1:0]     in_a, in_b;
   reg  [15:0]      in_tag;
   wire             in_ready, out_valid;
@@ -35,28 +33,6 @@ module tb_fp_add;
     .in_a_i(in_a), .in_b_i(in_b), .in_sub_i(in_sub), .in_tag_i(in_tag),
     .out_valid_o(out_valid), .out_ready_i(out_ready), .out_res_o(out_res), .out_tag_o(out_tag)
   );
-
-  initial begin
-    if (!$value$plusargs("vectors=%s", path)) begin
-      $display("RESULT vectors=0 mismatches=0 error: no +vectors=<file>");
-      $finish;
-    end
-    if (!$value$plusargs("seed=%d", seed)) seed = 1;
-    $readmemh(path, vec);
-    n_in = 0;
-    n_out = 0;
-    errors = 0;
-    cycles = 0;
-    idle = 0;
-    clk = 1'b0;
-    rst_n = 1'b1;
-    in_valid = 1'b0;
-    out_ready = 1'b0;
-    #1 rst_n = 1'b0;
-    #20 rst_n = 1'b1;
-  end
-
-  always #5 clk = ~clk;
 
   // Synchronous driver and checker: samples the DUT's outputs as they are before the clock edge.
   always @(posedge clk) begin
@@ -94,14 +70,7 @@ module tb_fp_add;
         end
       end
       out_ready <= ($random(seed) & 3) != 0;
-      if (n_out == N || idle > 1000) begin
-        if (n_out != N) begin
-          errors = errors + 1;
-          $display("MISMATCH: no result for %0d cycles, %0d of %0d checked (deadlock)", idle, n_out, N);
-        end
-        $display("RESULT vectors=%0d mismatches=%0d cycles=%0d", n_out, errors, cycles);
-        $finish;
-      end
+      stream_check_end;
     end
   end
 endmodule

@@ -7,10 +7,8 @@ set -euo pipefail
 [ $# -eq 6 ] || { echo "usage: $0 <spawn_vecgen> <workdir> <FP24|FP32> <rtz|rne> <5|6> <count>" >&2; exit 2; }
 vecgen=$1 work=$2 fmt=$3 mode=$4 st=$5 count=$6
 root=$(cd "$(dirname "$0")/../.." && pwd)
-command -v iverilog >/dev/null && command -v vvp >/dev/null ||
-  { echo "run_spawn_icarus: iverilog/vvp not found (make deps)" >&2; exit 1; }
-case $fmt in FP24) e=7 m=16 ;; FP32) e=8 m=23 ;; *) echo "bad format $fmt" >&2; exit 2 ;; esac
-case $mode in rtz) rne=0 ;; rne) rne=1 ;; *) echo "bad mode $mode" >&2; exit 2 ;; esac
+. "$root/tb/rtl/icarus_lib.sh"
+icarus_setup "$fmt" "$mode"
 # skip-slab: the sweep's 2-ulp slab, back-off 0 (t passes); skip-back: its 4-ulp slab, 1-ulp back-off.
 case $st in 5) slab=2 back=0 ;; 6) slab=4 back=1 ;; *) echo "bad strategy $st" >&2; exit 2 ;; esac
 mkdir -p "$work"
@@ -18,15 +16,11 @@ tag="spawn_s${st}_${fmt}_${mode}"
 vec="$work/$tag.hex"
 n=$("$vecgen" "$fmt" "$mode" "$slab" "$back" "$count" "$vec")
 [ "$n" -gt 0 ] || { echo "run_spawn_icarus: no vectors generated" >&2; exit 1; }
-iverilog -g2005 -Wall -Wno-timescale -o "$work/$tag.vvp" -s tb_spawn_slab \
+iverilog -g2005 -Wall -Wno-timescale -I "$root/tb/rtl" -o "$work/$tag.vvp" -s tb_spawn_slab \
   -P tb_spawn_slab.EXP_BITS=$e -P tb_spawn_slab.MAN_BITS=$m -P tb_spawn_slab.RNE=$rne \
   -P tb_spawn_slab.STAGES=2 -P tb_spawn_slab.STRATEGY=$st -P tb_spawn_slab.N=$n \
   "$root"/rtl/fp/fp_add.v "$root"/rtl/fp/fp_add3.v "$root"/rtl/fp/fp_mul.v "$root"/rtl/fp/fp_div.v \
   "$root"/rtl/fp/fp_round.v "$root"/rtl/fp/fp_pipe.v "$root"/rtl/units/spawn.v "$root"/rtl/units/spawn_ops.v \
   "$root/tb/sweep/tb_spawn_slab.v"
 vvp -n "$work/$tag.vvp" +vectors="$vec" +seed=12345 | tee "$work/$tag.log"
-line=$(grep '^RESULT ' "$work/$tag.log" || true)
-checked=$(sed -n 's/^RESULT vectors=\([0-9]*\).*/\1/p' <<<"$line")
-bad=$(sed -n 's/.* mismatches=\([0-9]*\).*/\1/p' <<<"$line")
-echo "ICARUS spawn STRATEGY=$st $fmt $mode vectors=${checked:-0} of $n mismatches=${bad:-?}"
-[ -n "$checked" ] && [ "$checked" -eq "$n" ] && [ "$checked" -gt 0 ] && [ "$bad" -eq 0 ]
+icarus_result "$work/$tag.log" "$n" "spawn STRATEGY=$st $fmt $mode"

@@ -3,6 +3,7 @@
 //   spawn_vecgen <FP24|FP32> <rtz|rne> <slab ulps> <back ulps> <count> <file>
 // One line per vector, ten hex words: h_x h_y h_z dens tmin scale t back | tmin' t_back; prints
 // the number of vectors written.
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>

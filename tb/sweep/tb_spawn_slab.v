@@ -19,11 +19,8 @@ module tb_spawn_slab;
   localparam integer W = 1 + EXP_BITS + MAN_BITS;
 
   reg [319:0]      vec [0:N-1];
-  reg [8*512-1:0]  path;
-  integer          seed, n_in, n_out, errors, cycles, idle;
+  `include "tb_stream.vh"  // path, seed, counters, clk, rst_n, in_valid, out_ready; reset, clock
 
-  reg              clk, rst_n;
-  reg              in_valid, out_ready;
   reg  [W-1:0]     hx, hy, hz, dens, tmin, scale, t;
   reg  [31:0]      back;
   reg  [15:0]      in_tag;
@@ -55,28 +52,6 @@ module tb_spawn_slab;
     input integer k;
     word = v[(9 - k) * 32 +: W];
   endfunction
-
-  initial begin
-    if (!$value$plusargs("vectors=%s", path)) begin
-      $display("RESULT vectors=0 mismatches=0 error: no +vectors=<file>");
-      $finish;
-    end
-    if (!$value$plusargs("seed=%d", seed)) seed = 1;
-    $readmemh(path, vec);
-    n_in = 0;
-    n_out = 0;
-    errors = 0;
-    cycles = 0;
-    idle = 0;
-    clk = 1'b0;
-    rst_n = 1'b1;
-    in_valid = 1'b0;
-    out_ready = 1'b0;
-    #1 rst_n = 1'b0;
-    #20 rst_n = 1'b1;
-  end
-
-  always #5 clk = ~clk;
 
   always @(posedge clk) begin
     if (rst_n) begin
@@ -127,14 +102,7 @@ module tb_spawn_slab;
         end
       end
       out_ready <= ($random(seed) & 3) != 0;
-      if (n_out == N || idle > 1000) begin
-        if (n_out != N) begin
-          errors = errors + 1;
-          $display("MISMATCH: no result for %0d cycles, %0d of %0d checked (deadlock)", idle, n_out, N);
-        end
-        $display("RESULT vectors=%0d mismatches=%0d cycles=%0d", n_out, errors, cycles);
-        $finish;
-      end
+      stream_check_end;
     end
   end
 endmodule
