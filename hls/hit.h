@@ -36,6 +36,11 @@ struct SpawnParams {
                      // component; skip_slab: slab height in ulps of max |h_i|; skip_back: back-off
                      // in ulps of t
   bool segment = false;  // shadow ray as the segment h + t (light - h), t < 1; else unit direction
+  // Traversal of the shadow ray: any-hit (true) ends it after the first leaf with a hit (the
+  // occluder reported is that leaf's closest; lit/shadowed is the same as closest-hit's), as
+  // ray-tracing hardware does; closest-hit (false) walks on to the nearest occluder, which the
+  // self-intersection metric needs.
+  bool any_hit = false;
 };
 
 // What the hit unit needs of the winning triangle.

@@ -92,7 +92,7 @@ struct Builder {
     const size_t n = refs.size();
     const double a0 = area(cell);
     Split best;
-    best.cost = opt.cost_intersect * double(n);  // the leaf's cost: a split must beat it
+    best.cost = opt.split_ratio * opt.cost_intersect * double(n);  // a split must beat the leaf
     if (!(a0 > 0)) return best;
     std::vector<double> los(n), his(n);
     struct Cand {

@@ -32,7 +32,20 @@ struct BuildOptions {
   double cost_intersect = 1.5;   // one triangle test (4 + 32 bytes, 21 operations, early exits)
   double empty_bonus = 0.2;      // Wald & Havran's lambda = 0.8 for splits with an empty side
   int max_depth = 0;             // <= 0: automatic, round(8 + 1.3 log2 N) (pbrt); capped at 64
+  double split_ratio = 1.0;      // split only when its cost is below split_ratio x the leaf's cost
+                                 //   (RayCore's driver: 0.8, with costs 1.7072 / 3.4623)
 };
+
+// RayCore's driver builder (reference.md): node cost 1.7072, triangle cost 3.4623, leaves of at
+// most 8 triangles, a split only when it beats 0.8 x the leaf cost; the empty bonus and depth limit
+// stay ours (not published).
+inline BuildOptions raycore_build_options() {
+  BuildOptions o;
+  o.cost_traversal = 1.7072;
+  o.cost_intersect = 3.4623;
+  o.split_ratio = 0.8;
+  return o;
+}
 
 struct TreeStats {
   uint64_t nodes = 0, inner = 0, leaves = 0, empty_leaves = 0;

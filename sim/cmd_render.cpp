@@ -32,6 +32,7 @@ void run_render(const sim::RunOptions& o) {
   j["scene"] = sim::scene_json(p.scene);
   j["config"] = sim::config_json(cfg);
   j["image"] = sim::tree_json(p.tree, p.image);
+  if (p.built) j["image"]["builder"] = sim::build_json(sim::build_options(o));
   j["rays"] = {{"primary", st.primary_rays}, {"shadow", st.shadow_rays}};
   j["work"] = {{"inner_steps", st.inner_steps},
                {"leaf_visits", st.leaf_visits},
@@ -49,6 +50,7 @@ void run_render(const sim::RunOptions& o) {
     const double rs = std::chrono::duration<double>(Clock::now() - t0).count();
     m = reference::compute_errors(f, ref, p.scene.tris);
     j["errors"] = reference::to_json(m);
+    j["errors"]["shadow_hit"] = cfg.spawn.any_hit ? "any" : "closest";  // what shadow_tri means
     j["reference"] = {{"wall_seconds", rs}};
   }
   std::filesystem::create_directories(std::filesystem::path(png).parent_path().empty()
@@ -69,9 +71,10 @@ void run_render(const sim::RunOptions& o) {
               (unsigned long long)st.primary_rays, (unsigned long long)st.shadow_rays, st.seconds,
               st.seconds > 0 ? rays / st.seconds : 0.0);
   if (have_ref)
-    std::printf("errors    self-intersections %llu (%.3f%%), shadow errors %llu (false shadow %llu, "
+    std::printf("errors    self-intersections %llu (%.3f%%, %s-hit shadow rays), shadow errors %llu (false shadow %llu, "
                 "light leak %llu), primary errors %llu\n",
                 (unsigned long long)m.self_intersections, m.self_intersection_pct,
+                cfg.spawn.any_hit ? "any" : "closest",
                 (unsigned long long)m.shadow_errors, (unsigned long long)m.false_shadow,
                 (unsigned long long)m.light_leak, (unsigned long long)m.primary_errors);
   else

@@ -47,6 +47,7 @@ void run_simulate(const sim::RunOptions& o, const sc::SimOptions& so) {
   j["config"] = sim::config_json(cfg);
   j["config"].update(sc::config_json(scfg));
   j["image"] = sim::tree_json(p.tree, p.image);
+  if (p.built) j["image"]["builder"] = sim::build_json(sim::build_options(o));
   j["rays"] = {{"primary", r.primary_rays}, {"shadow", r.shadow_rays}};
   j["work"] = {{"inner_steps", gs.inner_steps},
                {"leaf_visits", gs.leaf_visits},
@@ -64,6 +65,7 @@ void run_simulate(const sim::RunOptions& o, const sc::SimOptions& so) {
     const sim::Frame ref = reference::render(p.scene, cfg.width, cfg.height, cfg.threads);
     m = reference::compute_errors(r.frame, ref, p.scene.tris);
     j["errors"] = reference::to_json(m);
+    j["errors"]["shadow_hit"] = cfg.spawn.any_hit ? "any" : "closest";  // what shadow_tri means
     j["reference"] = {{"wall_seconds", std::chrono::duration<double>(Clock::now() - t0).count()}};
   }
   make_parent(png);
@@ -95,8 +97,8 @@ void run_simulate(const sim::RunOptions& o, const sc::SimOptions& so) {
     std::printf("golden    %s\n", ndiff == 0 ? "match (every pixel's tri, t, shadow and shade)"
                                              : ("MISMATCH: " + std::to_string(ndiff) + " pixels").c_str());
     if (have_ref)
-      std::printf("errors    self-intersections %llu, shadow errors %llu, primary errors %llu\n",
-                  (unsigned long long)m.self_intersections, (unsigned long long)m.shadow_errors,
+      std::printf("errors    self-intersections %llu (%s-hit shadow rays), shadow errors %llu, primary errors %llu\n",
+                  (unsigned long long)m.self_intersections, cfg.spawn.any_hit ? "any" : "closest", (unsigned long long)m.shadow_errors,
                   (unsigned long long)m.primary_errors);
     std::printf("wrote     %s\n          %s\n", png.c_str(), rep.c_str());
   }

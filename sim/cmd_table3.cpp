@@ -121,6 +121,7 @@ void run_table3(const Table3Args& a) {
     ro.height = a.height;
     ro.threads = a.threads;
     ro.shadow_ray = a.shadow_ray;
+    ro.shadow_hit = "closest";  // the paper's self-intersection count needs the nearest occluder
     sim::TraceConfig base = sim::trace_config(ro);
     const scenes::Scene scene = [&] {
       sim::Prepared p = sim::prepare(ro, base);  // validates; builds an fp24 image we rebuild below

@@ -53,6 +53,28 @@ void add_run_options(CLI::App& c, RunOptions& o) {
   c.add_option("--threads", o.threads, "host threads (0: all cores)")->check(CLI::Range(0, 1024));
   c.add_option("--leaf-size", o.leaf_size, "kd-tree leaf size")->check(CLI::Range(1, 255))
       ->capture_default_str();
+  c.add_option("--kd", o.kd,
+               "kd-tree builder costs: ours (node 1, triangle 1.5, split below the leaf cost) or "
+               "raycore (RayCore's driver: node 1.7072, triangle 3.4623, split below 0.8 x the leaf cost)")
+      ->check(CLI::IsMember({"ours", "raycore"}))
+      ->capture_default_str();
+  c.add_option("--kd-node-cost", o.kd_node_cost, "SAH cost of a traversal step (0: the preset's)")
+      ->check(CLI::Range(0.0, 1e6));
+  c.add_option("--kd-tri-cost", o.kd_tri_cost, "SAH cost of a triangle test (0: the preset's)")
+      ->check(CLI::Range(0.0, 1e6));
+  c.add_option("--kd-split-ratio", o.kd_split_ratio,
+               "split only below this fraction of the leaf's cost (0: the preset's)")
+      ->check(CLI::Range(0.0, 10.0));
+  c.add_option("--kd-empty-bonus", o.kd_empty_bonus, "SAH bonus for a split with an empty side (0..1)")
+      ->check(CLI::Range(0.0, 1.0));
+  c.add_option("--kd-max-depth", o.kd_max_depth, "kd-tree depth limit (0: round(8 + 1.3 log2 N))")
+      ->check(CLI::Range(0, hls::max_tree_depth));
+  c.add_option("--shadow-hit", o.shadow_hit,
+               "shadow-ray traversal: any (ends at the first leaf with a hit, as hardware does; the "
+               "occluder reported is that leaf's closest) or closest (the nearest occluder, needed "
+               "for the paper's self-intersection count); lit/shadowed is the same in both")
+      ->check(CLI::IsMember({"any", "closest"}))
+      ->capture_default_str();
   c.add_option("--image", o.image_in, "run from a dumped memory image (camera/light from the scene or options)");
   c.add_option("--dump-image", o.dump_image, "write the memory image to this file");
   c.add_option("--out-dir", o.out_dir, "directory for the image and report")->capture_default_str();
@@ -70,6 +92,7 @@ TraceConfig trace_config(const RunOptions& o) {
   c.spawn.spawn = spawn_from_string(o.spawn);
   c.spawn.ulps = o.spawn_ulps > 0 ? o.spawn_ulps : default_spawn_ulps(c.format, c.spawn.spawn);
   c.spawn.segment = o.shadow_ray == "segment";
+  c.spawn.any_hit = o.shadow_hit == "any";
   if (!std::isfinite(o.tmin) || o.tmin < 0) throw cli::UserError("--tmin must be a finite number >= 0");
   c.tmin = o.tmin;
   c.width = o.width;
@@ -81,6 +104,17 @@ TraceConfig trace_config(const RunOptions& o) {
 double max_coordinate(hls::FormatId f) {
   const int emax = f == hls::FormatId::fp24 ? hls::FP24::emax : hls::FP32::emax;
   return std::ldexp(1.0, emax / 2 - 2);
+}
+
+hls::BuildOptions build_options(const RunOptions& o) {
+  hls::BuildOptions bo = o.kd == "raycore" ? hls::raycore_build_options() : hls::BuildOptions{};
+  bo.leaf_size = o.leaf_size;
+  if (o.kd_node_cost > 0) bo.cost_traversal = o.kd_node_cost;
+  if (o.kd_tri_cost > 0) bo.cost_intersect = o.kd_tri_cost;
+  if (o.kd_split_ratio > 0) bo.split_ratio = o.kd_split_ratio;
+  if (o.kd_empty_bonus >= 0) bo.empty_bonus = o.kd_empty_bonus;
+  bo.max_depth = o.kd_max_depth;
+  return bo;
 }
 
 Prepared prepare(const RunOptions& o, const TraceConfig& cfg) {
@@ -109,8 +143,7 @@ Prepared prepare(const RunOptions& o, const TraceConfig& cfg) {
       throw cli::UserError("image '" + o.image_in + "' has " + std::to_string(p.image.tri_count()) +
                            " triangles, the scene " + std::to_string(p.scene.tris.size()));
   } else {
-    hls::BuildOptions bo;
-    bo.leaf_size = o.leaf_size;
+    hls::BuildOptions bo = build_options(o);
     p.image = hls::build_image(p.scene.tris, cfg.format, cfg.rounding, bo, &p.tree);
     p.built = true;
   }
@@ -147,10 +180,17 @@ nlohmann::json config_json(const TraceConfig& c) {
                       {"spawn", to_string(c.spawn.spawn)},
                       {"t_min", c.tmin},
                       {"shadow_ray", c.spawn.segment ? "segment" : "unit"},
+                      {"shadow_hit", c.spawn.any_hit ? "any" : "closest"},
                       {"width", c.width},
                       {"height", c.height}};
   if (spawn_uses_ulps(c.spawn.spawn)) j["spawn_ulps"] = c.spawn.ulps;
   return j;
+}
+
+nlohmann::json build_json(const hls::BuildOptions& b) {
+  return {{"leaf_size", b.leaf_size},       {"node_cost", b.cost_traversal},
+          {"tri_cost", b.cost_intersect},   {"split_ratio", b.split_ratio},
+          {"empty_bonus", b.empty_bonus},   {"max_depth", b.max_depth}};
 }
 
 nlohmann::json tree_json(const hls::TreeStats& t, const hls::Image& img) {

@@ -27,6 +27,10 @@ struct RunOptions {
   double tmin = 1.0 / 4096;
   int width = 800, height = 480, threads = 0;
   int leaf_size = 8;
+  std::string kd = "ours";  // kd-tree cost preset: ours (hls::BuildOptions) or raycore
+  double kd_node_cost = 0, kd_tri_cost = 0, kd_split_ratio = 0, kd_empty_bonus = -1;  // 0/-1: preset's
+  int kd_max_depth = 0;     // 0: automatic
+  std::string shadow_hit = "any";  // any: the walk ends at the first leaf with a hit; closest
   std::string image_in;    // --image: run from a dumped memory image
   std::string dump_image;  // --dump-image
   std::string out_dir = "out";
@@ -52,6 +56,9 @@ struct Prepared {
   bool built = false;  // false: loaded with --image
 };
 
+// The kd-tree builder's options from --leaf-size and the --kd* options.
+hls::BuildOptions build_options(const RunOptions& o);
+
 // Loads or generates the scene, applies overrides, checks camera, light and range, then builds
 // the memory image (or loads --image, which must match format and rounding) and dumps it if asked.
 Prepared prepare(const RunOptions& o, const TraceConfig& cfg);
@@ -61,6 +68,7 @@ std::string config_tag(const TraceConfig& cfg);
 
 nlohmann::json scene_json(const scenes::Scene& s);
 nlohmann::json config_json(const TraceConfig& cfg);
+nlohmann::json build_json(const hls::BuildOptions& b);
 nlohmann::json tree_json(const hls::TreeStats& t, const hls::Image& img);
 
 }  // namespace raycore::sim

@@ -42,9 +42,43 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
   opt("--mem-queue", &SimConfig::mem_queue_depth, "outstanding memory requests", 1u, 4096u);
   opt("--seed", &SimConfig::seed, "randomise memory latency in [L, 2L] (0: fixed)", uint64_t(0),
       ~uint64_t(0));
+  // The shared L2 (SimConfig::l2).
+  auto l2 = [&](const char* name, uint32_t L2Config::*field, const char* help, uint32_t lo, uint32_t hi) {
+    auto value = std::make_shared<uint32_t>(o.cfg.l2.*field);
+    c.add_option(name, *value, help)
+        ->check(CLI::Range(lo, hi))
+        ->default_str(std::to_string(o.cfg.l2.*field))
+        ->each([&o, field, value](const std::string&) {
+          o.overrides.push_back([field, value](SimConfig& s) { s.l2.*field = *value; });
+        });
+  };
+  {
+    auto value = std::make_shared<double>(0);
+    c.add_option("--l2-kb", *value, "L2 shared by all RTUs in front of the memory, KiB (0: none)")
+        ->check(CLI::Range(0.0, 1048576.0))
+        ->default_str("0")
+        ->each([&o, value](const std::string&) {
+          o.overrides.push_back([value](SimConfig& s) { s.l2.size_bytes = uint32_t(*value * 1024); });
+        });
+  }
+  l2("--l2-ways", &L2Config::ways, "L2 associativity", 1u, 64u);
+  l2("--l2-latency", &L2Config::latency, "L2 hit latency in cycles", 1u, 10000u);
+  l2("--l2-bandwidth", &L2Config::bandwidth, "L2 to RTU caches, bytes per cycle", 1u, 4096u);
   opt("--vtu-depth", &SimConfig::vtu_depth, "VTU pipeline depth", 0u, 1000u);
   opt("--rays-in-flight", &SimConfig::rays_in_flight, "ray slots per RTU", 1u, 65535u);
   opt("--trv-latency", &SimConfig::trv_latency, "cycles of one traversal step", 1u, 1000u);
+  opt("--trv-pipes", &SimConfig::trv_pipes, "traversal pipelines per RTU (steps per cycle)", 1u, 16u);
+  c.add_option("--trv-fuse", o.cfg.trv_fuse,
+               "fuse a leaf's first list line into its node step and the popped node's fetch into "
+               "the leaf-end / pop step (fewer, longer traversal passes)")
+      ->default_str(o.cfg.trv_fuse ? "true" : "false")
+      ->each([&o](const std::string& v) {
+        const bool on = v == "true" || v == "1" || v == "on";
+        if (!on && v != "false" && v != "0" && v != "off")
+          throw CLI::ValidationError("--trv-fuse", "must be true/false, on/off or 1/0, not '" + v + "'");
+        o.overrides.push_back([on](SimConfig& s) { s.trv_fuse = on; });
+      });
+  opt("--ist-units", &SimConfig::ist_units, "intersection pipelines per RTU (tests per cycle)", 1u, 16u);
   opt("--ist-latency", &SimConfig::ist_latency, "ist pipeline latency (sum of stages)", 1u, 1000u);
   opt("--hit-latency", &SimConfig::hit_latency, "hit unit latency", 1u, 1000u);
   auto kb = [&](const char* name, CacheConfig SimConfig::*cache, const char* help) {

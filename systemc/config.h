@@ -15,6 +15,16 @@ struct CacheConfig {
   uint32_t hit_latency = 1;  // cycles added to the requester's loop on a hit
 };
 
+// The optional L2 shared by all RTUs, between their caches and the memory (RayCore: per-core L1s
+// in front of L2s shared by all cores). size_bytes 0 = none (requests go straight to memory).
+struct L2Config {
+  uint32_t size_bytes = 0;
+  uint32_t ways = 8;
+  uint32_t line_bytes = 64;
+  uint32_t latency = 20;    // cycles from accepting a request to its first beat on a hit
+  uint32_t bandwidth = 32;  // bytes per cycle from the L2 to the RTUs' caches
+};
+
 // How a unit with a pin-level form is modelled in the frame: the fast transaction-level model
 // (default), its SystemC twin at pin level (systemc/pins/), or its Verilated RTL bound to the same
 // pins. All three give the same cycles and bits (tests: tb/systemc).
@@ -29,6 +39,7 @@ struct SimConfig {
   uint32_t mem_bandwidth = 16;    // bytes per cycle on the shared data bus
   uint32_t mem_queue_depth = 32;  // requests accepted and not yet returned
   uint64_t seed = 0;              // 0: fixed latency; else latency uniform in [L, 2L] per request
+  L2Config l2;                    // shared L2 in front of the memory (size 0: none)
   // vtu: pipeline depth (one 8-byte node or one triangle record per cycle); rtl/units/vtu.v has
   // 3 operator levels of STAGES registers: 6 = STAGES 2, as in docs/area.md.
   uint32_t vtu_depth = 6;
@@ -40,6 +51,12 @@ struct SimConfig {
   // rgu / trv / ist / hit.
   uint32_t rays_in_flight = 64;  // ray slots per RTU (each with its own 64-entry stack)
   uint32_t trv_latency = 4;      // cycles of one traversal step (loop back to the ready queue)
+  uint32_t trv_pipes = 1;        // traversal pipelines per RTU (steps per cycle; RayCore has 2),
+                                 //   sharing the ray slots and the node and list caches' ports
+  bool trv_fuse = false;         // fuse a leaf's first list line into its node step, and the popped
+                                 //   node's fetch into the leaf-end / pop step (a longer pass)
+  uint32_t ist_units = 1;        // intersection pipelines per RTU (tests issued per cycle),
+                                 //   sharing the triangle cache's ports
   uint32_t ist_latency = 20;     // rtl/units/ist.v: 10 operator levels x STAGES 2
   UnitView ist_view = UnitView::model;
   uint32_t ist_queue = 32;       // ist input queue (triangle tests waiting)
@@ -62,8 +79,13 @@ struct CacheStats {
 struct RtuStats {
   uint64_t primary_rays = 0, shadow_rays = 0, retired = 0;
   uint64_t rgu_busy = 0, rgu_stall_no_slot = 0;
+  uint64_t rgu_primary_end = 0;   // cycle after the last primary ray was issued
+  uint64_t rgu_busy_primary = 0;  // rgu_busy up to then (the rest of that span is stalled)
   uint64_t trv_busy = 0, trv_idle = 0, trv_node_miss = 0, trv_list_miss = 0, trv_ist_full = 0;
   uint64_t inner_steps = 0, leaf_visits = 0, pops = 0;
+  uint64_t list_steps = 0;  // list lines read (one per list step or fused list access)
+  uint64_t trv_fused = 0;   // accesses fused into a pass that had one already (--trv-fuse)
+  uint64_t stack_max = 0;   // deepest stack any ray of the RTU reached
   uint64_t ist_busy = 0, ist_tri_miss = 0, tri_tests = 0;
   uint64_t hit_busy = 0;
   uint64_t vtu_busy = 0;  // records transformed (one per cycle)

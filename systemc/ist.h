@@ -29,10 +29,19 @@ class Ist : public sc_core::sc_module {
   using F = typename A::Fmt;
 
  public:
-  Ist(sc_core::sc_module_name name, FrameCtx& fc, RtuChannels& ch, RtuStats& st, uint32_t latency)
-      : sc_core::sc_module(name), fc_(fc), ch_(ch), st_(st), lat_(latency) {}
+  Ist(sc_core::sc_module_name name, FrameCtx& fc, RtuChannels& ch, RtuStats& st, uint32_t latency,
+      uint32_t units = 1)
+      : sc_core::sc_module(name), fc_(fc), ch_(ch), st_(st), lat_(latency), units_(units) {
+    if (units_ < 1 || units_ > 16) throw std::invalid_argument("ist units must be 1..16");
+  }
 
-  void bind(pins::IstPort* p) { port_ = p; }
+  // The pin-level view drives one unit's ports (ist.v); several units run as the model only.
+  void bind(pins::IstPort* p) {
+    if (p && units_ != 1)
+      throw std::invalid_argument("ist at pin level (--pins/--rtl ist) needs --ist-units 1, not " +
+                                  std::to_string(units_));
+    port_ = p;
+  }
   bool wants_edge() const { return edge_; }
 
   bool tick(Cycle now) {
@@ -73,8 +82,21 @@ class Ist : public sc_core::sc_module {
       }
       active = true;
     }
-    // Issue one test.
-    if (!ch_.ist_q.can_pop(now)) return idle_pins() || active;
+    // Issue one test per unit (they share the triangle cache: one access per unit and cycle). A
+    // miss takes its unit's issue slot.
+    if (port_) return issue(now) || active;
+    for (uint32_t u = 0; u < units_ && issue(now); ++u) active = true;
+    return active;
+  }
+
+  Cycle next_event(Cycle now) const {
+    if (port_ && in_flight_ != 0) return now + 1;
+    return std::min(ch_.ist_pipe.head_ready(), ch_.ist_q.head_ready());
+  }
+
+ private:
+  bool issue(Cycle now) {
+    if (!ch_.ist_q.can_pop(now)) return idle_pins();
     constexpr uint32_t rb = uint32_t(hls::tri_record_bytes<F>());
     const IstReq q = ch_.ist_q.front();
     const uint32_t lb = ch_.tri->line_bytes();
@@ -116,12 +138,6 @@ class Ist : public sc_core::sc_module {
     return true;
   }
 
-  Cycle next_event(Cycle now) const {
-    if (port_ && in_flight_ != 0) return now + 1;
-    return std::min(ch_.ist_pipe.head_ready(), ch_.ist_q.head_ready());
-  }
-
- private:
   struct Side {  // what travels beside a test in the pin-level unit (its tag indexes this ring)
     uint16_t slot = 0;
     bool skip = false;
@@ -159,6 +175,7 @@ class Ist : public sc_core::sc_module {
   RtuChannels& ch_;
   RtuStats& st_;
   uint32_t lat_;
+  uint32_t units_;
   pins::IstPort* port_ = nullptr;
   std::array<Side, 1024> side_{};
   uint32_t next_tag_ = 0, in_flight_ = 0;

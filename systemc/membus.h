@@ -12,6 +12,7 @@
 #include <queue>
 #include <vector>
 
+#include "systemc/config.h"
 #include "systemc/fifo.h"
 
 namespace raycore::sc {
@@ -32,9 +33,12 @@ class MemClient {
 };
 
 struct MembusStats {
-  uint64_t requests = 0, bytes = 0, busy_cycles = 0;  // busy: data bus beats
+  uint64_t requests = 0, bytes = 0, busy_cycles = 0;  // memory (DRAM) side: busy = data bus beats
   uint64_t queue_full_cycles = 0;  // cycles a request waited because queue_depth were outstanding
   uint64_t latency_sum = 0;        // accept -> last beat, summed over requests
+  // L2 (when configured): every request is an access; a hit (or a merge with a line still on its
+  // way from memory) is served by the L2 and costs no memory traffic.
+  uint64_t l2_accesses = 0, l2_hits = 0, l2_merges = 0, l2_bytes = 0, l2_busy_cycles = 0;
 };
 
 class Membus : public sc_core::sc_module {
@@ -44,10 +48,11 @@ class Membus : public sc_core::sc_module {
 
   // Binding: a requester's request channel and where its responses go.
   void add_requester(TimedFifo<MemReq>* req, MemClient* client, uint32_t port);
+  void set_l2(const L2Config& c);
 
   bool tick(Cycle now);        // true if anything happened
   Cycle next_event(Cycle now) const;
-  uint32_t outstanding() const { return uint32_t(resp_.size()); }
+  uint32_t outstanding() const { return dram_out_; }  // memory requests accepted, not returned
   const MembusStats& stats() const { return st_; }
 
  private:
@@ -60,11 +65,24 @@ class Membus : public sc_core::sc_module {
     Cycle arrival;
     uint64_t seq;
     uint32_t requester, tag;
+    bool dram;  // holds one of the memory queue's places until it returns
     bool operator>(const Resp& o) const {
       return arrival != o.arrival ? arrival > o.arrival : seq > o.seq;
     }
   };
   uint32_t draw_latency();
+  void copy_line(const MemReq& q) const;
+  struct L2Line {
+    uint64_t tag = 0, stamp = 0;
+    Cycle ready = 0;  // when its data is in the L2 (a line on its way from memory: later)
+    bool valid = false;
+  };
+  // The L2 lines covering [addr, addr + bytes): whether all are present (ready is then the latest
+  // ready of them), else nullptr-free lookup only.
+  bool l2_lookup(uint64_t addr, uint32_t bytes, Cycle& ready) const;
+  void l2_install(uint64_t addr, uint32_t bytes, Cycle ready);
+  L2Line* l2_find(uint64_t line);
+  const L2Line* l2_find(uint64_t line) const;
 
   const std::vector<uint8_t>& mem_;
   uint32_t latency_, bandwidth_, depth_;
@@ -75,6 +93,12 @@ class Membus : public sc_core::sc_module {
   uint64_t seq_ = 0;
   std::priority_queue<Resp, std::vector<Resp>, std::greater<Resp>> resp_;
   MembusStats st_;
+  uint32_t dram_out_ = 0;
+  L2Config l2_;
+  uint32_t l2_sets_ = 0;
+  std::vector<L2Line> l2_lines_;  // l2_sets_ x ways
+  uint64_t l2_clock_ = 0;
+  Cycle l2_free_ = 0;
 };
 
 }  // namespace raycore::sc

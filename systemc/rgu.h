@@ -53,6 +53,10 @@ class Rgu : public sc_core::sc_module {
     ++st_.rgu_busy;
     ++fc_.issued;
     next_pixel();
+    if (!primaries_left()) {
+      st_.rgu_primary_end = now + 1;
+      st_.rgu_busy_primary = st_.rgu_busy;
+    }
     return true;
   }
 

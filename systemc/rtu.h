@@ -41,8 +41,8 @@ class Rtu : public sc_core::sc_module {
                  cfg.node_cache.mshrs + cfg.list_cache.mshrs + cfg.tri_cache.mshrs),
         ch_(make_channels(cfg)),
         rgu("rgu", fc, ch_, st_, index, cfg.rtus, cfg.tile),
-        trv("trv", fc, ch_, st_, cfg.trv_latency),
-        ist("ist", fc, ch_, st_, cfg.ist_latency),
+        trv("trv", fc, ch_, st_, cfg.trv_latency, cfg.trv_pipes, cfg.trv_fuse),
+        ist("ist", fc, ch_, st_, cfg.ist_latency, cfg.ist_units),
         hit("hit", fc, ch_, st_, cfg.hit_latency),
         slots_(cfg.rays_in_flight) {
     ch_.node = &node;
@@ -138,7 +138,8 @@ class Rtu : public sc_core::sc_module {
     for (uint32_t i = cfg.rays_in_flight; i-- > 0;) ch.free_slots.push_back(uint16_t(i));
     ch.trv_q.reset(cfg.rays_in_flight);
     ch.ist_q.reset(std::max<uint32_t>(cfg.ist_queue, 1));
-    ch.ist_pipe.reset(cfg.ist_latency + cfg.tri_cache.hit_latency + 2);
+    ch.ist_pipe.reset(size_t(std::max<uint32_t>(cfg.ist_units, 1)) *
+                      (cfg.ist_latency + cfg.tri_cache.hit_latency + 2));
     ch.hit_q.reset(cfg.rays_in_flight);
     ch.shadow_q.reset(cfg.rays_in_flight);
     return ch;

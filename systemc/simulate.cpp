@@ -3,6 +3,7 @@
 
 #include <sys/resource.h>
 
+#include <algorithm>
 #include <chrono>
 #include <stdexcept>
 
@@ -150,6 +151,9 @@ nlohmann::json hardware_json(const SimResult& r, const SimConfig& cfg) {
     t.inner_steps += s.inner_steps;
     t.leaf_visits += s.leaf_visits;
     t.pops += s.pops;
+    t.list_steps += s.list_steps;
+    t.trv_fused += s.trv_fused;
+    t.stack_max = std::max(t.stack_max, s.stack_max);
     t.ist_busy += s.ist_busy;
     t.ist_tri_miss += s.ist_tri_miss;
     t.tri_tests += s.tri_tests;
@@ -159,17 +163,39 @@ nlohmann::json hardware_json(const SimResult& r, const SimConfig& cfg) {
     add(t.list, s.list);
     add(t.tri, s.tri);
   }
+  uint64_t rgu_stalled = 0;
+  for (const auto& s : r.rtus)
+    rgu_stalled += s.rgu_primary_end > s.rgu_busy_primary ? s.rgu_primary_end - s.rgu_busy_primary : 0;
   const double cyc = double(r.cycles);
   const double unit_cycles = cyc * double(r.rtus.size());  // per-unit utilisation: mean over RTUs
   const double rays = double(r.primary_rays + r.shadow_rays);
-  const uint64_t trv_slots = r.cycles * uint64_t(r.rtus.size());
+  const uint64_t trv_slots = r.cycles * uint64_t(r.rtus.size()) * cfg.trv_pipes;
+  const uint64_t ist_slots = r.cycles * uint64_t(r.rtus.size()) * cfg.ist_units;
+  const uint64_t rtu_cycles = r.cycles * uint64_t(r.rtus.size());
+  // Every issue slot of the frame (cycles x RTUs x pipelines, the cycles the simulator skips
+  // included) is busy, stalled (a reason below) or idle (nothing to do): the three add up to 1.
+  auto share = [](uint64_t busy, uint64_t stalled, uint64_t slots) {
+    const double n = slots ? double(slots) : 1.0;
+    stalled = std::min(stalled, slots > busy ? slots - busy : 0);
+    return nlohmann::json{{"slots", slots},
+                          {"busy", double(busy) / n},
+                          {"stalled", double(stalled) / n},
+                          {"idle", double(slots - std::min(slots, busy + stalled)) / n}};
+  };
+  const nlohmann::json breakdown = {
+      {"rgu", share(t.rgu_busy, rgu_stalled, rtu_cycles)},
+      {"trv", share(t.trv_busy, t.trv_node_miss + t.trv_list_miss + t.trv_ist_full, trv_slots)},
+      {"ist", share(t.ist_busy, t.ist_tri_miss, ist_slots)},
+      {"hit", share(t.hit_busy, 0, rtu_cycles)},
+      {"vtu", share(t.vtu_busy, 0, rtu_cycles)},
+      {"membus", share(r.bus.busy_cycles, 0, r.cycles)}};
   const uint64_t trv_used = t.trv_busy + t.trv_node_miss + t.trv_list_miss + t.trv_ist_full;
   const uint64_t trv_empty = trv_slots > trv_used ? trv_slots - trv_used : 0;
   nlohmann::json per_rtu = nlohmann::json::array();
   for (const auto& s : r.rtus)
     per_rtu.push_back({{"rays", s.primary_rays + s.shadow_rays},
-                       {"trv", cyc ? double(s.trv_busy) / cyc : 0.0},
-                       {"ist", cyc ? double(s.ist_busy) / cyc : 0.0}});
+                       {"trv", cyc ? double(s.trv_busy) / (cyc * cfg.trv_pipes) : 0.0},
+                       {"ist", cyc ? double(s.ist_busy) / (cyc * cfg.ist_units) : 0.0}});
   return {
       {"cycles", r.cycles},
       {"clock_mhz", cfg.clock_mhz},
@@ -179,15 +205,22 @@ nlohmann::json hardware_json(const SimResult& r, const SimConfig& cfg) {
       {"rays_per_cycle_per_rtu", unit_cycles ? rays / unit_cycles : 0.0},
       {"mrays_per_s", cyc ? rays / cyc * cfg.clock_mhz : 0.0},
       {"work", {{"inner_steps", t.inner_steps}, {"leaf_visits", t.leaf_visits}, {"pops", t.pops},
-                {"tri_tests", t.tri_tests}}},
+                {"tri_tests", t.tri_tests}, {"trv_steps", t.trv_busy}, {"list_steps", t.list_steps},
+                {"trv_fused", t.trv_fused}, {"stack_max", t.stack_max}}},
+      {"per_ray",
+       {{"trv_steps", rays > 0 ? double(t.trv_busy) / rays : 0.0},
+        {"inner_steps", rays > 0 ? double(t.inner_steps) / rays : 0.0},
+        {"tri_tests", rays > 0 ? double(t.tri_tests) / rays : 0.0},
+        {"bus_bytes", rays > 0 ? double(r.bus.bytes) / rays : 0.0}}},
       {"utilisation",
        {{"rgu", unit_cycles ? double(t.rgu_busy) / unit_cycles : 0.0},
-        {"trv", unit_cycles ? double(t.trv_busy) / unit_cycles : 0.0},
-        {"ist", unit_cycles ? double(t.ist_busy) / unit_cycles : 0.0},
+        {"trv", trv_slots ? double(t.trv_busy) / double(trv_slots) : 0.0},
+        {"ist", ist_slots ? double(t.ist_busy) / double(ist_slots) : 0.0},
         {"hit", unit_cycles ? double(t.hit_busy) / unit_cycles : 0.0},
         {"vtu", unit_cycles ? double(t.vtu_busy) / unit_cycles : 0.0},
         {"membus", cyc ? double(r.bus.busy_cycles) / cyc : 0.0},
-        {"per_rtu", per_rtu}}},
+        {"per_rtu", per_rtu},
+        {"breakdown", breakdown}}},
       {"caches", {{"node", cache_json(t.node)}, {"list", cache_json(t.list)}, {"tri", cache_json(t.tri)}}},
       {"bus",
        {{"requests", r.bus.requests},
@@ -196,6 +229,15 @@ nlohmann::json hardware_json(const SimResult& r, const SimConfig& cfg) {
         {"bandwidth_gb_s", cyc ? double(r.bus.bytes) / cyc * cfg.clock_mhz * 1e-3 : 0.0},
         {"peak_gb_s", double(cfg.mem_bandwidth) * cfg.clock_mhz * 1e-3},
         {"mean_latency_cycles", ratio(r.bus.latency_sum, r.bus.requests)}}},
+      {"l2",
+       {{"size_kb", cfg.l2.size_bytes / 1024.0},
+        {"accesses", r.bus.l2_accesses},
+        {"hits", r.bus.l2_hits},
+        {"merges", r.bus.l2_merges},
+        {"hit_rate", ratio(r.bus.l2_hits + r.bus.l2_merges, r.bus.l2_accesses)},
+        {"bytes", r.bus.l2_bytes},
+        {"bandwidth_gb_s", cyc ? double(r.bus.l2_bytes) / cyc * cfg.clock_mhz * 1e-3 : 0.0},
+        {"busy", cyc ? double(r.bus.l2_busy_cycles) / cyc : 0.0}}},
       {"stalls",
        {{"trv_node_miss", t.trv_node_miss},
         {"trv_list_miss", t.trv_list_miss},
@@ -241,8 +283,13 @@ nlohmann::json config_json(const SimConfig& c) {
           {"node_cache", cache(c.node_cache)},
           {"list_cache", cache(c.list_cache)},
           {"tri_cache", cache(c.tri_cache)},
+          {"l2", {{"size_kb", c.l2.size_bytes / 1024.0}, {"ways", c.l2.ways}, {"line_bytes", c.l2.line_bytes},
+                  {"latency", c.l2.latency}, {"bandwidth", c.l2.bandwidth}}},
           {"rays_in_flight", c.rays_in_flight},
           {"trv_latency", c.trv_latency},
+          {"trv_pipes", c.trv_pipes},
+          {"trv_fuse", c.trv_fuse},
+          {"ist_units", c.ist_units},
           {"ist_latency", c.ist_latency},
           {"ist_view", unit_view_name(c.ist_view)},
           {"ist_queue", c.ist_queue},
@@ -291,8 +338,26 @@ void config_from_json(const nlohmann::json& j, SimConfig& c) {
     else if (k == "node_cache") cache(*it, k, c.node_cache);
     else if (k == "list_cache") cache(*it, k, c.list_cache);
     else if (k == "tri_cache") cache(*it, k, c.tri_cache);
+    else if (k == "l2") {
+      if (!it->is_object()) throw std::runtime_error("config: 'l2' must be an object");
+      for (auto x = it->begin(); x != it->end(); ++x) {
+        const std::string n = "l2." + x.key();
+        if (x.key() == "size_kb") c.l2.size_bytes = uint32_t(num(*x, n) * 1024);
+        else if (x.key() == "ways") c.l2.ways = u32(*x, n);
+        else if (x.key() == "line_bytes") c.l2.line_bytes = u32(*x, n);
+        else if (x.key() == "latency") c.l2.latency = u32(*x, n);
+        else if (x.key() == "bandwidth") c.l2.bandwidth = u32(*x, n);
+        else throw std::runtime_error("config: unknown key '" + n + "'");
+      }
+    }
     else if (k == "rays_in_flight") c.rays_in_flight = u32(*it, k);
     else if (k == "trv_latency") c.trv_latency = u32(*it, k);
+    else if (k == "trv_pipes") c.trv_pipes = u32(*it, k);
+    else if (k == "trv_fuse") {
+      if (!it->is_boolean()) throw std::runtime_error("config: 'trv_fuse' must be true or false");
+      c.trv_fuse = it->get<bool>();
+    }
+    else if (k == "ist_units") c.ist_units = u32(*it, k);
     else if (k == "ist_latency") c.ist_latency = u32(*it, k);
     else if (k == "ist_queue") c.ist_queue = u32(*it, k);
     else if (k == "hit_latency") c.hit_latency = u32(*it, k);

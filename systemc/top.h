@@ -40,6 +40,7 @@ class Top : public sc_core::sc_module {
         cfg_(cfg),
         bus("membus", mem, cfg.mem_latency, cfg.mem_bandwidth, cfg.mem_queue_depth, cfg.seed),
         period_(1000.0 / cfg.clock_mhz, sc_core::SC_NS) {
+    bus.set_l2(cfg.l2);
     if (cfg.rtus < 1 || cfg.rtus > 64) throw std::invalid_argument("rtus must be 1..64");
     if (cfg.vtu_view != UnitView::model || cfg.ist_view != UnitView::model)
       clock_ = std::make_unique<pins::PinClock>(period_);

@@ -20,13 +20,28 @@ namespace raycore::sc {
 template <class A>
 class Trv : public SlotUnit {
  public:
-  using SlotUnit::SlotUnit;
+  Trv(sc_core::sc_module_name name, FrameCtx& fc, RtuChannels& ch, RtuStats& st, uint32_t latency,
+      uint32_t pipes, bool fuse)
+      : SlotUnit(name, fc, ch, st, latency), pipes_(pipes), fuse_(fuse) {
+    if (pipes_ < 1 || pipes_ > 16) throw std::invalid_argument("trv pipes must be 1..16");
+  }
 
+  // One cycle: each of the pipes takes the ray at the head of the ready queue (pipe 0 first; they
+  // share the node and list caches, which take one access per pipe and cycle: RayCore's L1s have
+  // two request ports for its two traversal units).
   bool tick(Cycle now) {
+    bool any = false;
+    for (uint32_t p = 0; p < pipes_ && step(now); ++p) any = true;
+    return any;
+  }
+
+  Cycle next_event() const { return ch_.trv_q.head_ready(); }
+
+ private:
+  bool step(Cycle now) {
     if (!ch_.trv_q.can_pop(now)) return false;
     const uint16_t s = ch_.trv_q.pop();
     Slot& r = ch_.slots[s];
-    const Cycle again = now + lat_;
     switch (r.state) {
       case SlotState::start: {
         r.best = Best{};
@@ -37,80 +52,13 @@ class Trv : public SlotUnit {
           return finish(s, r, now);
         r.node = 0;
         r.state = SlotState::node;
-        ch_.trv_q.push(s, again);
+        ch_.trv_q.push(s, now + lat_);
         return true;
       }
-      case SlotState::node: {
-        const uint32_t lb = ch_.node->line_bytes();
-        const uint64_t byte = uint64_t(r.node) * 8;
-        const uint8_t* line = ch_.node->access(byte / lb);
-        if (!line) {
-          ++st_.trv_node_miss;
-          ch_.trv_q.push(s, again);
-          return true;
-        }
-        ++st_.trv_busy;
-        const hls::Node nd = hls::decode_node(hls::detail::get_le(line + byte % lb, 8));
-        const Cycle next = again + hit_lat(*ch_.node);
-        if (!nd.leaf()) {
-          ++st_.inner_steps;
-          const hls::SplitStep sp = hls::trv_split<A>(nd.split_or_count, nd.axis, r.ray, r.tnear, r.tfar);
-          const uint32_t first = sp.below_first ? r.node + 1 : nd.index;
-          const uint32_t second = sp.below_first ? nd.index : r.node + 1;
-          if (sp.visit == hls::Visit::first) {
-            r.node = first;
-          } else if (sp.visit == hls::Visit::second) {
-            r.node = second;
-          } else {
-            if (r.sp >= kStackDepth) throw std::runtime_error("trv: kd-tree deeper than the stack (64)");
-            r.stack[size_t(r.sp++)] = {second, sp.tsplit, r.tfar};
-            r.node = first;
-            r.tfar = sp.tsplit;
-          }
-          ch_.trv_q.push(s, next);
-          return true;
-        }
-        ++st_.leaf_visits;
-        if (nd.split_or_count == 0) return leaf_end(s, r, now, next);
-        r.list_first = nd.index;
-        r.list_count = nd.split_or_count;
-        r.list_pos = 0;
-        r.results = 0;
-        r.leaf = Best{};
-        r.state = SlotState::list;
-        ch_.trv_q.push(s, next);
-        return true;
-      }
-      case SlotState::list: {
-        const uint32_t lb = ch_.list->line_bytes();
-        const uint64_t byte = uint64_t(r.list_first + r.list_pos) * 4;
-        const size_t room = ch_.ist_q.capacity() - ch_.ist_q.size();
-        if (room == 0) {
-          ++st_.trv_ist_full;
-          ch_.trv_q.push(s, again);
-          return true;
-        }
-        const uint8_t* line = ch_.list->access(byte / lb);
-        if (!line) {
-          ++st_.trv_list_miss;
-          ch_.trv_q.push(s, again);
-          return true;
-        }
-        ++st_.trv_busy;
-        uint32_t n = std::min<uint32_t>(r.list_count - r.list_pos, uint32_t((lb - byte % lb) / 4));
-        n = std::min<uint32_t>(n, uint32_t(room));
-        const Cycle ready = now + 1 + hit_lat(*ch_.list);
-        for (uint32_t i = 0; i < n; ++i) {
-          const uint32_t tri = uint32_t(hls::detail::get_le(line + byte % lb + size_t(i) * 4, 4));
-          ch_.ist_q.push({s, r.list_pos + i, tri}, ready);
-        }
-        r.list_pos += n;
-        if (r.list_pos == r.list_count)
-          r.state = SlotState::wait_ist;  // the ist re-queues the ray with its last result
-        else
-          ch_.trv_q.push(s, again + hit_lat(*ch_.list));
-        return true;
-      }
+      case SlotState::node:
+        return node_step(s, r, now, 0, false);
+      case SlotState::list:
+        return list_step(s, r, now, 0, false);
       case SlotState::leaf_done: {
         ++st_.trv_busy;
         // Results of the leaf, reduced in list order: the closest, ties to the earliest entry.
@@ -120,27 +68,114 @@ class Trv : public SlotUnit {
           r.best = r.leaf;
           r.tmax = r.leaf.t;
         }
-        return leaf_end(s, r, now, again);
+        return leaf_end(s, r, now, 0, fuse_);
       }
       case SlotState::pop:
         ++st_.trv_busy;
-        return pop(s, r, now, again);
+        return pop(s, r, now, 0, fuse_);
       default:
         throw std::logic_error("trv: ray in an unexpected state");
     }
   }
 
-  Cycle next_event() const { return ch_.trv_q.head_ready(); }
-
- private:
   static uint32_t hit_lat(const Ascache& c) { return c.hit_latency; }
 
-  bool leaf_end(uint16_t s, Slot& r, Cycle now, Cycle again) {
-    if (r.best.found && !A::lt(r.tfar, r.best.t)) return finish(s, r, now);  // hit in this cell
-    return pop(s, r, now, again);
+  // The steps below run at cycle now; `extra` is how far into a fused pass the step starts (the
+  // cycles of the accesses before it), `fused` that the pass is already counted busy. A ray goes
+  // back to the ready queue now + extra + lat_ (+ the cache's hit latency after an access).
+  bool node_step(uint16_t s, Slot& r, Cycle now, uint32_t extra, bool fused) {
+    const Cycle again = now + extra + lat_;
+    const uint32_t lb = ch_.node->line_bytes();
+    const uint64_t byte = uint64_t(r.node) * 8;
+    const uint8_t* line = ch_.node->access(byte / lb);
+    if (!line) {
+      if (!fused) ++st_.trv_node_miss;
+      r.state = SlotState::node;
+      ch_.trv_q.push(s, again);
+      return true;
+    }
+    if (!fused) ++st_.trv_busy;
+    const hls::Node nd = hls::decode_node(hls::detail::get_le(line + byte % lb, 8));
+    const uint32_t x = extra + hit_lat(*ch_.node);
+    const Cycle next = again + hit_lat(*ch_.node);
+    if (!nd.leaf()) {
+      ++st_.inner_steps;
+      const hls::SplitStep sp = hls::trv_split<A>(nd.split_or_count, nd.axis, r.ray, r.tnear, r.tfar);
+      const uint32_t first = sp.below_first ? r.node + 1 : nd.index;
+      const uint32_t second = sp.below_first ? nd.index : r.node + 1;
+      if (sp.visit == hls::Visit::first) {
+        r.node = first;
+      } else if (sp.visit == hls::Visit::second) {
+        r.node = second;
+      } else {
+        if (r.sp >= kStackDepth) throw std::runtime_error("trv: kd-tree deeper than the stack (64)");
+        r.stack[size_t(r.sp++)] = {second, sp.tsplit, r.tfar};
+        st_.stack_max = std::max<uint64_t>(st_.stack_max, uint64_t(r.sp));
+        r.node = first;
+        r.tfar = sp.tsplit;
+      }
+      r.state = SlotState::node;
+      ch_.trv_q.push(s, next);
+      return true;
+    }
+    ++st_.leaf_visits;
+    if (nd.split_or_count == 0) return leaf_end(s, r, now, x, false);  // one node access a pass
+    r.list_first = nd.index;
+    r.list_count = nd.split_or_count;
+    r.list_pos = 0;
+    r.results = 0;
+    r.leaf = Best{};
+    r.state = SlotState::list;
+    if (fuse_) {  // the leaf's first list line in the same pass
+      ++st_.trv_fused;
+      return list_step(s, r, now, x, true);
+    }
+    ch_.trv_q.push(s, next);
+    return true;
   }
-  // One stack entry per step; entries beyond the best hit are skipped (one step each).
-  bool pop(uint16_t s, Slot& r, Cycle now, Cycle again) {
+
+  bool list_step(uint16_t s, Slot& r, Cycle now, uint32_t extra, bool fused) {
+    const Cycle again = now + extra + lat_;
+    const uint32_t lb = ch_.list->line_bytes();
+    const uint64_t byte = uint64_t(r.list_first + r.list_pos) * 4;
+    const size_t room = ch_.ist_q.capacity() - ch_.ist_q.size();
+    if (room == 0) {
+      if (!fused) ++st_.trv_ist_full;
+      ch_.trv_q.push(s, again);
+      return true;
+    }
+    const uint8_t* line = ch_.list->access(byte / lb);
+    if (!line) {
+      if (!fused) ++st_.trv_list_miss;
+      ch_.trv_q.push(s, again);
+      return true;
+    }
+    if (!fused) ++st_.trv_busy;
+    ++st_.list_steps;
+    uint32_t n = std::min<uint32_t>(r.list_count - r.list_pos, uint32_t((lb - byte % lb) / 4));
+    n = std::min<uint32_t>(n, uint32_t(room));
+    const Cycle ready = now + extra + 1 + hit_lat(*ch_.list);
+    for (uint32_t i = 0; i < n; ++i) {
+      const uint32_t tri = uint32_t(hls::detail::get_le(line + byte % lb + size_t(i) * 4, 4));
+      ch_.ist_q.push({s, r.list_pos + i, tri}, ready);
+    }
+    r.list_pos += n;
+    if (r.list_pos == r.list_count)
+      r.state = SlotState::wait_ist;  // the ist re-queues the ray with its last result
+    else
+      ch_.trv_q.push(s, again + hit_lat(*ch_.list));
+    return true;
+  }
+
+  bool leaf_end(uint16_t s, Slot& r, Cycle now, uint32_t extra, bool fuse) {
+    // A hit in this cell ends the walk; an any-hit shadow ray ends at its first leaf with a hit.
+    if (r.best.found && ((r.shadow && fc_.spawn.any_hit) || !A::lt(r.tfar, r.best.t)))
+      return finish(s, r, now);
+    return pop(s, r, now, extra, fuse);
+  }
+  // One stack entry per step; entries beyond the best hit are skipped (one step each). With fuse
+  // (a pass that has not read the node cache yet), the popped node is fetched in the same pass.
+  bool pop(uint16_t s, Slot& r, Cycle now, uint32_t extra, bool fuse) {
     if (r.sp == 0) return finish(s, r, now);
     const Slot::Entry e = r.stack[size_t(--r.sp)];
     ++st_.pops;
@@ -151,8 +186,12 @@ class Trv : public SlotUnit {
       r.tnear = e.tnear;
       r.tfar = e.tfar;
       r.state = SlotState::node;
+      if (fuse) {
+        ++st_.trv_fused;
+        return node_step(s, r, now, extra, true);
+      }
     }
-    ch_.trv_q.push(s, again);
+    ch_.trv_q.push(s, now + extra + lat_);
     return true;
   }
   bool finish(uint16_t s, Slot& r, Cycle now) {
@@ -160,6 +199,9 @@ class Trv : public SlotUnit {
     ch_.hit_q.push(s, now + lat_);
     return true;
   }
+
+  uint32_t pipes_;
+  bool fuse_;
 };
 
 }  // namespace raycore::sc

@@ -52,8 +52,9 @@ class Tracer {
     uint32_t den = 0;
   };
 
-  // Closest hit in (r.tmin, r.tmax), skipping triangle id skip_id.
-  Hit trace(const hls::Ray& r, uint32_t skip_id, TraceStats& st) const {
+  // Closest hit in (r.tmin, r.tmax), skipping triangle id skip_id; with any_hit, the closest hit
+  // of the first leaf that has one (the walk ends there).
+  Hit trace(const hls::Ray& r, uint32_t skip_id, TraceStats& st, bool any_hit = false) const {
     Hit best;
     uint32_t tnear, tfar;
     if (nodes_.empty() || !hls::trv_clip_box<A>(lo_, hi_, r, tnear, tfar)) return best;
@@ -94,7 +95,7 @@ class Tracer {
           tmax = o.t;
         }
       }
-      if (best.found && !A::lt(tfar, best.t)) break;  // the hit lies in this cell
+      if (best.found && (any_hit || !A::lt(tfar, best.t))) break;  // the hit lies in this cell
       for (;;) {
         if (sp == 0) return best;
         const Entry e = stack[size_t(--sp)];
@@ -188,7 +189,7 @@ Frame trace_t(const hls::Image& image_in, const scenes::Camera& cam, const scene
         if (ss.front) {
           ++s.shadow_rays;
           p.shadow_ray = true;
-          const auto sh = tracer.trace(ss.ray, ss.skip_id, s);
+          const auto sh = tracer.trace(ss.ray, ss.skip_id, s, sp.any_hit);
           p.lit = !sh.found;
           p.shadow_tri = sh.found ? int32_t(tracer.tri(sh.tri).id) : -1;
           const double nu = A::to_double(tri.c[hls::kNU]), nv = A::to_double(tri.c[hls::kNV]);

@@ -136,7 +136,9 @@ std::vector<Job> make_jobs(const Options& in) {
     j.id = scene + "-" + f.name + "-vtu" + vtu + "-" + sp.strategy + (sp.ulps ? std::to_string(sp.ulps) : "");
     j.argv = {exe, j.kind, j.scene_arg, "--format", f.format, "--rounding", f.rounding, "--vtu", vtu,
               "--spawn", sp.strategy, "--width", std::to_string(j.width), "--height", std::to_string(j.height),
-              "--threads", std::to_string(o.threads), "--quiet"};
+              "--threads", std::to_string(o.threads), "--quiet",
+              // the error study counts self-intersections: the nearest occluder is needed
+              "--shadow-hit", "closest"};
     if (sp.ulps) j.argv.insert(j.argv.end(), {"--spawn-ulps", std::to_string(sp.ulps)});
   };
 
