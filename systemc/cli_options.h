@@ -66,6 +66,7 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
   l2("--l2-bandwidth", &L2Config::bandwidth, "L2 to RTU caches, bytes per cycle", 1u, 4096u);
   opt("--vtu-depth", &SimConfig::vtu_depth, "VTU pipeline depth", 0u, 1000u);
   opt("--rays-in-flight", &SimConfig::rays_in_flight, "ray slots per RTU", 1u, 65535u);
+  opt("--stack-depth", &SimConfig::stack_depth, "traversal stack entries per ray slot", 1u, 64u);
   opt("--trv-latency", &SimConfig::trv_latency, "cycles of one traversal step", 1u, 1000u);
   opt("--trv-pipes", &SimConfig::trv_pipes, "traversal pipelines per RTU (steps per cycle)", 1u, 16u);
   c.add_option("--trv-fuse", o.cfg.trv_fuse,
@@ -75,7 +76,7 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
       ->each([&o](const std::string& v) {
         const bool on = v == "true" || v == "1" || v == "on";
         if (!on && v != "false" && v != "0" && v != "off")
-          throw CLI::ValidationError("--trv-fuse", "must be true/false, on/off or 1/0, not '" + v + "'");
+          throw CLI::ValidationError("must be true/false, on/off or 1/0, not '" + v + "'");
         o.overrides.push_back([on](SimConfig& s) { s.trv_fuse = on; });
       });
   opt("--ist-units", &SimConfig::ist_units, "intersection pipelines per RTU (tests per cycle)", 1u, 16u);

@@ -49,7 +49,10 @@ struct SimConfig {
   CacheConfig list_cache{8 * 1024, 4, 64, 8, 1};
   CacheConfig tri_cache{32 * 1024, 4, 64, 8, 1};
   // rgu / trv / ist / hit.
-  uint32_t rays_in_flight = 64;  // ray slots per RTU (each with its own 64-entry stack)
+  uint32_t rays_in_flight = 64;  // ray slots per RTU (each with its own stack)
+  uint32_t stack_depth = 64;     // stack entries per ray slot (1..64; a ray that needs more stops
+                                 //   the run with an error: the report's stack_max says what a
+                                 //   scene needs)
   uint32_t trv_latency = 4;      // cycles of one traversal step (loop back to the ready queue)
   uint32_t trv_pipes = 1;        // traversal pipelines per RTU (steps per cycle; RayCore has 2),
                                  //   sharing the ray slots and the node and list caches' ports

@@ -35,20 +35,20 @@ class Ist : public sc_core::sc_module {
     if (units_ < 1 || units_ > 16) throw std::invalid_argument("ist units must be 1..16");
   }
 
-  // The pin-level view drives one unit's ports (ist.v); several units run as the model only.
-  void bind(pins::IstPort* p) {
-    if (p && units_ != 1)
-      throw std::invalid_argument("ist at pin level (--pins/--rtl ist) needs --ist-units 1, not " +
-                                  std::to_string(units_));
-    port_ = p;
+  // The pin-level view: one ist.v (twin or RTL) per unit; unit u drives ports[u].
+  void bind(const std::vector<pins::IstPort*>& ports) {
+    if (ports.size() != units_) throw std::logic_error("ist: one pin-level unit per ist unit");
+    ports_ = ports;
+    port_ = ports_.empty() ? nullptr : ports_[0];
   }
   bool wants_edge() const { return edge_; }
 
   bool tick(Cycle now) {
     bool active = false;
     edge_ = false;
-    if (port_ && port_->out_valid()) {  // a result the pin-level unit put out at the last edge
-      const pins::IstOutRec x = port_->out();
+    for (pins::IstPort* p : ports_) {
+      if (!p->out_valid()) continue;  // a result the pin-level unit put out at the last edge
+      const pins::IstOutRec x = p->out();
       const Side& e = side_[x.tag % side_.size()];
       IstRes o;
       o.slot = e.slot;
@@ -84,9 +84,16 @@ class Ist : public sc_core::sc_module {
     }
     // Issue one test per unit (they share the triangle cache: one access per unit and cycle). A
     // miss takes its unit's issue slot.
-    if (port_) return issue(now) || active;
-    for (uint32_t u = 0; u < units_ && issue(now); ++u) active = true;
-    return active;
+    bool more = true;  // the units after the first that finds nothing ready idle this cycle
+    for (uint32_t u = 0; u < units_; ++u) {
+      if (more && issue(now, u)) {
+        active = true;
+        continue;
+      }
+      more = false;
+      idle_pins(u);
+    }
+    return active || edge_;
   }
 
   Cycle next_event(Cycle now) const {
@@ -95,8 +102,9 @@ class Ist : public sc_core::sc_module {
   }
 
  private:
-  bool issue(Cycle now) {
-    if (!ch_.ist_q.can_pop(now)) return idle_pins();
+  // Unit u issues the test at the head of the queue (false: none ready).
+  bool issue(Cycle now, uint32_t u) {
+    if (!ch_.ist_q.can_pop(now)) return false;
     constexpr uint32_t rb = uint32_t(hls::tri_record_bytes<F>());
     const IstReq q = ch_.ist_q.front();
     const uint32_t lb = ch_.tri->line_bytes();
@@ -106,7 +114,7 @@ class Ist : public sc_core::sc_module {
       ++st_.ist_tri_miss;
       ch_.ist_q.pop();
       ch_.ist_q.push(q, now + 1);  // loop: try again behind the others
-      idle_pins();
+      idle_pins(u);
       return true;
     }
     ch_.ist_q.pop();
@@ -114,7 +122,7 @@ class Ist : public sc_core::sc_module {
     const hls::WaldTri<F> w = hls::decode_tri<F>(line + byte % lb);
     const Slot& r = ch_.slots[q.slot];
     if (port_) {
-      drive_pins(q, w, r);
+      drive_pins(*ports_[u], q, w, r);
       return true;
     }
     IstRes o;
@@ -144,8 +152,8 @@ class Ist : public sc_core::sc_module {
     uint32_t pos = 0, id = 0, k = 0, nu = 0, nv = 0, nd = 0;
   };
 
-  void drive_pins(const IstReq& q, const hls::WaldTri<F>& w, const Slot& r) {
-    if (!port_->in_ready()) throw std::logic_error("ist: pin-level unit not ready with out_ready high");
+  void drive_pins(pins::IstPort& port, const IstReq& q, const hls::WaldTri<F>& w, const Slot& r) {
+    if (!port.in_ready()) throw std::logic_error("ist: pin-level unit not ready with out_ready high");
     pins::IstIn in;
     in.k = w.k;
     for (int i = 0; i < 9; ++i) in.c[i] = w.c[i];
@@ -160,13 +168,13 @@ class Ist : public sc_core::sc_module {
     e = Side{q.slot, w.id == r.skip_id, q.pos, w.id, w.k, w.c[hls::kNU], w.c[hls::kNV], w.c[hls::kND]};
     if (!e.skip) ++st_.tri_tests;
     next_tag_ = (next_tag_ + 1) & 0xFFFFu;  // TAG_BITS 16
-    port_->drive(in);
+    port.drive(in);
     ++in_flight_;
     edge_ = true;
   }
-  bool idle_pins() {
+  bool idle_pins(uint32_t u) {
     if (!port_) return false;
-    port_->idle();
+    ports_[u]->idle();
     edge_ |= in_flight_ != 0;
     return edge_;
   }
@@ -176,7 +184,8 @@ class Ist : public sc_core::sc_module {
   RtuStats& st_;
   uint32_t lat_;
   uint32_t units_;
-  pins::IstPort* port_ = nullptr;
+  std::vector<pins::IstPort*> ports_;  // pin-level view: one per unit (empty: the model)
+  pins::IstPort* port_ = nullptr;      // ports_[0]
   std::array<Side, 1024> side_{};
   uint32_t next_tag_ = 0, in_flight_ = 0;
   bool edge_ = false;

@@ -69,18 +69,23 @@ class Rtu : public sc_core::sc_module {
     }
     if (cfg.ist_view != UnitView::model) {
       const unsigned stages = pin_stages("ist", cfg.ist_latency, 10, "--ist-latency");
-      if (cfg.ist_view == UnitView::twin)
-        ist_port_ = std::make_unique<pins::IstPortT<pins::IstTwin<A>>>(
-            "ist_pins", "SystemC twin", clock->clk, clock->rst_n, stages);
-      else
-        ist_port_ = pins::make_rtl_ist(hls::format_id<F>(), R, stages, "ist_rtl", clock->clk,
-                                       clock->rst_n);
-      if (!ist_port_) no_rtl("ist", stages);
-      ist.bind(ist_port_.get());
+      std::vector<pins::IstPort*> ports;
+      for (uint32_t u = 0; u < cfg.ist_units; ++u) {  // one ist.v per ist unit
+        const std::string n = u == 0 ? std::string("ist") : "ist" + std::to_string(u);
+        if (cfg.ist_view == UnitView::twin)
+          ist_ports_.push_back(std::make_unique<pins::IstPortT<pins::IstTwin<A>>>(
+              (n + "_pins").c_str(), "SystemC twin", clock->clk, clock->rst_n, stages));
+        else
+          ist_ports_.push_back(pins::make_rtl_ist(hls::format_id<F>(), R, stages, (n + "_rtl").c_str(),
+                                                  clock->clk, clock->rst_n));
+        if (!ist_ports_.back()) no_rtl("ist", stages);
+        ports.push_back(ist_ports_.back().get());
+      }
+      ist.bind(ports);
     }
   }
   pins::VtuPort* vtu_port() { return vtu_port_.get(); }
-  pins::IstPort* ist_port() { return ist_port_.get(); }
+  pins::IstPort* ist_port() { return ist_ports_.empty() ? nullptr : ist_ports_[0].get(); }
   bool wants_edge() const { return vtu_unit.wants_edge() || ist.wants_edge(); }
 
   bool tick(Cycle now) {
@@ -148,7 +153,7 @@ class Rtu : public sc_core::sc_module {
   RtuStats st_;
   RtuChannels ch_;
   std::unique_ptr<pins::VtuPort> vtu_port_;
-  std::unique_ptr<pins::IstPort> ist_port_;
+  std::vector<std::unique_ptr<pins::IstPort>> ist_ports_;
 
  public:
   Rgu<A> rgu;

@@ -58,6 +58,9 @@ SimResult run(const hls::Image& image, const scenes::Camera& cam, const scenes::
   }
   fc.tmin = A::from_double(tc.tmin);
   fc.spawn = sim::resolved_spawn(tc);
+  if (cfg.stack_depth < 1 || cfg.stack_depth > uint32_t(kStackDepth))
+    throw std::invalid_argument("stack depth must be 1..64");
+  fc.stack_depth = cfg.stack_depth;
   const uint32_t rb = uint32_t(hls::tri_record_bytes<F>());
   fc.tri_line_records = std::max<uint32_t>(1, (cfg.tri_cache.line_bytes + rb / 2) / rb);
   res.tri_line_bytes = fc.tri_line_records * rb;
@@ -286,6 +289,7 @@ nlohmann::json config_json(const SimConfig& c) {
           {"l2", {{"size_kb", c.l2.size_bytes / 1024.0}, {"ways", c.l2.ways}, {"line_bytes", c.l2.line_bytes},
                   {"latency", c.l2.latency}, {"bandwidth", c.l2.bandwidth}}},
           {"rays_in_flight", c.rays_in_flight},
+          {"stack_depth", c.stack_depth},
           {"trv_latency", c.trv_latency},
           {"trv_pipes", c.trv_pipes},
           {"trv_fuse", c.trv_fuse},
@@ -351,6 +355,7 @@ void config_from_json(const nlohmann::json& j, SimConfig& c) {
       }
     }
     else if (k == "rays_in_flight") c.rays_in_flight = u32(*it, k);
+    else if (k == "stack_depth") c.stack_depth = u32(*it, k);
     else if (k == "trv_latency") c.trv_latency = u32(*it, k);
     else if (k == "trv_pipes") c.trv_pipes = u32(*it, k);
     else if (k == "trv_fuse") {

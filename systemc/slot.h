@@ -72,6 +72,7 @@ struct FrameCtx {
   uint32_t light_world[3] = {0, 0, 0}, box_world_lo[3] = {0, 0, 0}, box_world_hi[3] = {0, 0, 0};
   double offset[3] = {0, 0, 0};
   uint32_t tmin = 0;
+  uint32_t stack_depth = kStackDepth;  // entries per ray the trv's stack SRAM holds
   hls::SpawnParams spawn;
   bool empty_tree = false;
   hls::ImageHeader header;

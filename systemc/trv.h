@@ -108,7 +108,9 @@ class Trv : public SlotUnit {
       } else if (sp.visit == hls::Visit::second) {
         r.node = second;
       } else {
-        if (r.sp >= kStackDepth) throw std::runtime_error("trv: kd-tree deeper than the stack (64)");
+        if (r.sp >= int(fc_.stack_depth))
+          throw std::runtime_error("trv: a ray needs more than the " + std::to_string(fc_.stack_depth) +
+                                   " stack entries of --stack-depth (at most 64, the deepest tree)");
         r.stack[size_t(r.sp++)] = {second, sp.tsplit, r.tfar};
         st_.stack_max = std::max<uint64_t>(st_.stack_max, uint64_t(r.sp));
         r.node = first;
