@@ -128,7 +128,19 @@ class Top : public sc_core::sc_module {
       if (t > sc_core::sc_time_stamp()) wait(t - sc_core::sc_time_stamp());
       synced = c;
     };
+    // Livelock guard: looping for the next chance can thrash a cache that holds fewer lines than
+    // the rays competing for it (each fill evicts a line before its ray comes back for it). No ray
+    // retiring for this many cycles stops the frame with an error instead of running forever.
+    const Cycle stall_limit = std::max<Cycle>(Cycle(1) << 20, Cycle(cfg_.mem_latency) * 4096);
+    uint64_t retired_seen = 0;
+    Cycle progress_at = 0;
     while (!all_done()) {
+      if (fc_.retired != retired_seen) {
+        retired_seen = fc_.retired;
+        progress_at = now;
+      } else if (now - progress_at > stall_limit) {
+        throw std::runtime_error(livelock_message(now, progress_at));
+      }
       bool active = bus.tick(now);
       bool edge = false;
       for (size_t i = 0; i < rtus.size(); ++i) {
@@ -211,6 +223,19 @@ class Top : public sc_core::sc_module {
       fc_.box_lo[i] = A::next_down(fc_.box_lo[i]);
       fc_.box_hi[i] = A::next_up(fc_.box_hi[i]);
     }
+  }
+
+  std::string livelock_message(Cycle now, Cycle since) const {
+    uint64_t node = 0, list = 0, tri = 0;
+    for (const auto& r : rtus) {
+      const RtuStats s = r->stats();
+      node += s.node.misses, list += s.list.misses, tri += s.tri.misses;
+    }
+    return "cycle model: livelock: no ray retired from cycle " + std::to_string(since) + " to " +
+           std::to_string(now) + " (looping for the next chance thrashes a cache smaller than the " +
+           "lines its rays need at once: misses node " + std::to_string(node) + ", list " +
+           std::to_string(list) + ", tri " + std::to_string(tri) +
+           "; use larger caches or fewer rays in flight)";
   }
 
   uint64_t count_primaries() const {

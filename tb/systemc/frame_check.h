@@ -8,6 +8,8 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <csignal>
+#include <cstdlib>
 #include <cstring>
 #include <map>
 #include <stdexcept>
@@ -62,13 +64,22 @@ struct Case {
   sc::SimConfig cfg;
 };
 
-// Runs the cycle model in a child process and compares with `golden` there.
+// Seconds a child may run before it is killed as hung (RAYCORE_CHILD_TIMEOUT, default 600).
+inline unsigned child_timeout() {
+  const char* e = std::getenv("RAYCORE_CHILD_TIMEOUT");
+  const long v = e ? std::strtol(e, nullptr, 10) : 600;
+  return v > 0 ? unsigned(v) : 600u;
+}
+
+// Runs the cycle model in a child process and compares with `golden` there. A child that runs
+// longer than child_timeout() is killed (SIGALRM) and reported as died: a hang fails the test.
 inline Summary run_child(const Case& c, const sim::Frame& golden) {
   int fd[2];
   if (pipe(fd) != 0) throw std::runtime_error("pipe");
   const pid_t pid = fork();
   if (pid == 0) {
     close(fd[0]);
+    alarm(child_timeout());
     Summary s;
     try {
       const sc::SimResult r = sc::simulate(*c.image, c.scene->camera, c.scene->light, c.tc, c.cfg);
@@ -104,7 +115,8 @@ inline Summary run_child(const Case& c, const sim::Frame& golden) {
   waitpid(pid, &status, 0);
   if (n != ssize_t(sizeof s)) {
     s = Summary{};
-    std::snprintf(s.error, sizeof s.error, "child died (status %d)", status);
+    std::snprintf(s.error, sizeof s.error, "child died (status %d%s)", status,
+                  WIFSIGNALED(status) && WTERMSIG(status) == SIGALRM ? ": timed out, a hang?" : "");
   }
   return s;
 }
