@@ -8,7 +8,7 @@ CTEST      := ctest --output-on-failure -j $(JOBS)
 RAYCORE    := $(BUILD)/bin/raycore
 export SYSTEMC_DISABLE_COPYRIGHT_MESSAGE := 1
 
-.PHONY: all deps configure build run test test-release test-asan lint bench area fuzz table3 sweep clean
+.PHONY: all deps configure build run test test-release test-asan lint bench area fuzz table3 sweep throughput clean
 
 all: build
 
@@ -57,6 +57,11 @@ table3: build
 # docs/sweep.md; SWEEP_JOBS, SWEEP_SSHLOGIN and options after ARGS (see docs/sweep.md).
 sweep: build
 	./scripts/sweep.sh $(BUILD) $(ARGS)
+
+# Throughput against RTU area (issue 14): the levers as a ladder and a grid on the three paper
+# frames (GNU parallel): out/throughput/, docs/results.md's tables and docs/throughput.png.
+throughput: build
+	./scripts/throughput.sh $(BUILD) $(ARGS)
 
 # libFuzzer on the glTF loader (clang), bounded time: FUZZ_SECONDS (default 60).
 fuzz: deps

@@ -15,9 +15,10 @@
 #                       e.g. FP_BENCH_ARGS=--benchmark_filter=FP24 for one quick pass)
 #   BENCH_JOBS          parallel test processes (default: nproc)
 #   SHARED_SCENES       where sponza-paper.glb is (default: ../shared/scenes next to the repo)
+#   RAYCORE_RANDOM_CONFIGS  configurations of the random_configs section (default 1000)
 set -uo pipefail
 
-SECTIONS=(fp_bench frames cosim fp_oracle)
+SECTIONS=(fp_bench frames throughput cosim random_configs fp_oracle)
 
 usage() { echo "usage: $0 BUILD_DIR [--list | SECTION ...]; sections: ${SECTIONS[*]}" >&2; exit 2; }
 [ $# -ge 1 ] || usage
@@ -169,6 +170,55 @@ section_cosim() {
     [ "$c0" = "$c1" ] || { echo "cycles differ from the transaction model ($view)"; rc=1; }
     [ "$(json_get "$OUT/simulate-$view.json" golden_match)" = "True" ] || { echo "golden_match false ($view)"; rc=1; }
   done
+  return $rc
+}
+
+# ---- throughput: rays/cycle per RTU of the three paper frames, default and baseline configs -----
+# 800x480, 6 RTUs, 100-cycle memory, FP24 rtz, VTU off: the simulator's defaults (chosen by `make
+# throughput`) and the RayCore-like baseline (configs/baseline.json, closest-hit shadow rays).
+section_throughput() {
+  header "throughput: rays/cycle per RTU, sponza-paper / sibenik-paper / corridor (goal 0.08 at <= 1.1 GB/s)"
+  local rc_bin="$BUILD/bin/raycore"
+  local root; root=$(cd "$(dirname "$0")/.." && pwd)
+  local scenes=${SHARED_SCENES:-$root/../shared/scenes}
+  if [ ! -x "$rc_bin" ]; then echo "raycore not built: skipped"; return 0; fi
+  machine
+  export SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1
+  local rc=0 s arg cfg
+  printf '%-14s %-9s %10s %12s %9s %9s %9s %8s %s
+' scene config cycles rays/cyc/RTU Mrays/s steps/ray tests/ray GB/s golden
+  for s in sponza-paper sibenik-paper corridor; do
+    arg=$s
+    [ "$s" != corridor ] && arg="$scenes/$s.glb"
+    if [ "$s" != corridor ] && [ ! -f "$arg" ]; then echo "$arg not found (set SHARED_SCENES): skipped"; continue; fi
+    for cfg in default baseline; do
+      local extra=() out="$OUT/throughput-$s-$cfg.json"
+      [ $cfg = baseline ] && extra=(--config "$root/configs/baseline.json" --shadow-hit closest)
+      "$rc_bin" simulate "$arg" --vtu off --no-reference --quiet --out-dir "$OUT" --report "$out"         --png "$OUT/throughput-$s-$cfg.png" "${extra[@]}" || { rc=1; continue; }
+      printf '%-14s %-9s %10s %12.4f %9.1f %9.1f %9.1f %8.3f %s
+' "$s" "$cfg"         "$(json_get "$out" hardware.cycles)" "$(json_get "$out" hardware.rays_per_cycle_per_rtu)"         "$(json_get "$out" hardware.mrays_per_s)" "$(json_get "$out" hardware.per_ray.trv_steps)"         "$(json_get "$out" hardware.per_ray.tri_tests)" "$(json_get "$out" hardware.bus.bandwidth_gb_s)"         "$(json_get "$out" golden_match)"
+      [ "$(json_get "$out" golden_match)" = "True" ] || { echo "golden_match false ($s $cfg)"; rc=1; }
+    done
+  done
+  echo "commands: raycore simulate SCENE --vtu off --no-reference [--config configs/baseline.json --shadow-hit closest]"
+  return $rc
+}
+
+# ---- random_configs: the randomised-configuration test, long -----------------------------------
+section_random_configs() {
+  local n=${RAYCORE_RANDOM_CONFIGS:-1000}
+  header "random_configs: $n random configurations of the cycle model, each against the golden tracer"
+  local bin="$BUILD/bin/test_random_config"
+  if [ ! -x "$bin" ]; then echo "test_random_config not built: skipped"; return 0; fi
+  machine
+  local t0=$SECONDS rc=0 seed
+  for seed in 101 102; do
+    echo "command: RAYCORE_RANDOM_CONFIGS=$((n / 2)) RAYCORE_RANDOM_CONFIG_SEED=$seed $bin"
+    SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1 RAYCORE_RANDOM_CONFIGS=$((n / 2)) RAYCORE_RANDOM_CONFIG_SEED=$seed \
+      "$bin" > "$OUT/random_configs-$seed.log" 2>&1 || rc=1
+    grep -E 'RANDOMCONFIGSUM|Failure|RAYCORE_RANDOM_CONFIG_SEED=' "$OUT/random_configs-$seed.log" | head -8
+  done
+  echo "wall time: $((SECONDS - t0)) s; logs: $OUT/random_configs-*.log"
   return $rc
 }
 

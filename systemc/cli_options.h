@@ -66,6 +66,7 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
   l2("--l2-bandwidth", &L2Config::bandwidth, "L2 to RTU caches, bytes per cycle", 1u, 4096u);
   opt("--vtu-depth", &SimConfig::vtu_depth, "VTU pipeline depth", 0u, 1000u);
   opt("--rays-in-flight", &SimConfig::rays_in_flight, "ray slots per RTU", 1u, 65535u);
+  opt("--mailbox", &SimConfig::mailbox, "per-ray mailbox entries (triangles not tested twice; 0: none)", 0u, 64u);
   opt("--stack-depth", &SimConfig::stack_depth, "traversal stack entries per ray slot", 1u, 64u);
   opt("--trv-latency", &SimConfig::trv_latency, "cycles of one traversal step", 1u, 1000u);
   opt("--trv-pipes", &SimConfig::trv_pipes, "traversal pipelines per RTU (steps per cycle)", 1u, 16u);

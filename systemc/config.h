@@ -39,7 +39,7 @@ struct SimConfig {
   uint32_t mem_bandwidth = 16;    // bytes per cycle on the shared data bus
   uint32_t mem_queue_depth = 32;  // requests accepted and not yet returned
   uint64_t seed = 0;              // 0: fixed latency; else latency uniform in [L, 2L] per request
-  L2Config l2;                    // shared L2 in front of the memory (size 0: none)
+  L2Config l2{256 * 1024, 8, 64, 20, 32};  // shared L2 in front of the memory (size 0: none)
   // vtu: pipeline depth (one 8-byte node or one triangle record per cycle); rtl/units/vtu.v has
   // 3 operator levels of STAGES registers: 6 = STAGES 2, as in docs/area.md.
   uint32_t vtu_depth = 6;
@@ -49,16 +49,22 @@ struct SimConfig {
   CacheConfig list_cache{8 * 1024, 4, 64, 8, 1};
   CacheConfig tri_cache{32 * 1024, 4, 64, 8, 1};
   // rgu / trv / ist / hit.
-  uint32_t rays_in_flight = 64;  // ray slots per RTU (each with its own stack)
+  // Defaults of the levers below chosen by the numbers of `make throughput` (docs/results.md: the
+  // least RTU area that reaches 0.08 rays/cycle per RTU at <= 1.1 GB/s on sponza-paper); the
+  // RayCore-like baseline of the paper runs is configs/baseline.json.
+  uint32_t rays_in_flight = 96;  // ray slots per RTU (each with its own stack)
   uint32_t stack_depth = 64;     // stack entries per ray slot (1..64; a ray that needs more stops
                                  //   the run with an error: the report's stack_max says what a
                                  //   scene needs)
   uint32_t trv_latency = 4;      // cycles of one traversal step (loop back to the ready queue)
-  uint32_t trv_pipes = 1;        // traversal pipelines per RTU (steps per cycle; RayCore has 2),
+  uint32_t trv_pipes = 4;        // traversal pipelines per RTU (steps per cycle; RayCore has 2),
                                  //   sharing the ray slots and the node and list caches' ports
-  bool trv_fuse = false;         // fuse a leaf's first list line into its node step, and the popped
+  bool trv_fuse = true;          // fuse a leaf's first list line into its node step, and the popped
                                  //   node's fetch into the leaf-end / pop step (a longer pass)
-  uint32_t ist_units = 1;        // intersection pipelines per RTU (tests issued per cycle),
+  uint32_t mailbox = 0;          // per-ray mailbox of the last M triangles tested (0: none); a list
+                                 //   entry found in it is not tested again (its test could not win:
+                                 //   a miss misses again, a hit is not closer than the best)
+  uint32_t ist_units = 2;        // intersection pipelines per RTU (tests issued per cycle),
                                  //   sharing the triangle cache's ports
   uint32_t ist_latency = 20;     // rtl/units/ist.v: 10 operator levels x STAGES 2
   UnitView ist_view = UnitView::model;
@@ -88,6 +94,7 @@ struct RtuStats {
   uint64_t inner_steps = 0, leaf_visits = 0, pops = 0;
   uint64_t list_steps = 0;  // list lines read (one per list step or fused list access)
   uint64_t trv_fused = 0;   // accesses fused into a pass that had one already (--trv-fuse)
+  uint64_t mailbox_skips = 0;  // list entries not sent to the ist: found in the ray's mailbox
   uint64_t stack_max = 0;   // deepest stack any ray of the RTU reached
   uint64_t ist_busy = 0, ist_tri_miss = 0, tri_tests = 0;
   uint64_t hit_busy = 0;

@@ -61,6 +61,8 @@ SimResult run(const hls::Image& image, const scenes::Camera& cam, const scenes::
   if (cfg.stack_depth < 1 || cfg.stack_depth > uint32_t(kStackDepth))
     throw std::invalid_argument("stack depth must be 1..64");
   fc.stack_depth = cfg.stack_depth;
+  if (cfg.mailbox > 64) throw std::invalid_argument("mailbox must be 0..64 entries");
+  fc.mailbox = cfg.mailbox;
   const uint32_t rb = uint32_t(hls::tri_record_bytes<F>());
   fc.tri_line_records = std::max<uint32_t>(1, (cfg.tri_cache.line_bytes + rb / 2) / rb);
   res.tri_line_bytes = fc.tri_line_records * rb;
@@ -156,6 +158,7 @@ nlohmann::json hardware_json(const SimResult& r, const SimConfig& cfg) {
     t.pops += s.pops;
     t.list_steps += s.list_steps;
     t.trv_fused += s.trv_fused;
+    t.mailbox_skips += s.mailbox_skips;
     t.stack_max = std::max(t.stack_max, s.stack_max);
     t.ist_busy += s.ist_busy;
     t.ist_tri_miss += s.ist_tri_miss;
@@ -209,7 +212,7 @@ nlohmann::json hardware_json(const SimResult& r, const SimConfig& cfg) {
       {"mrays_per_s", cyc ? rays / cyc * cfg.clock_mhz : 0.0},
       {"work", {{"inner_steps", t.inner_steps}, {"leaf_visits", t.leaf_visits}, {"pops", t.pops},
                 {"tri_tests", t.tri_tests}, {"trv_steps", t.trv_busy}, {"list_steps", t.list_steps},
-                {"trv_fused", t.trv_fused}, {"stack_max", t.stack_max}}},
+                {"trv_fused", t.trv_fused}, {"stack_max", t.stack_max}, {"mailbox_skips", t.mailbox_skips}}},
       {"per_ray",
        {{"trv_steps", rays > 0 ? double(t.trv_busy) / rays : 0.0},
         {"inner_steps", rays > 0 ? double(t.inner_steps) / rays : 0.0},
@@ -293,6 +296,7 @@ nlohmann::json config_json(const SimConfig& c) {
           {"trv_latency", c.trv_latency},
           {"trv_pipes", c.trv_pipes},
           {"trv_fuse", c.trv_fuse},
+          {"mailbox", c.mailbox},
           {"ist_units", c.ist_units},
           {"ist_latency", c.ist_latency},
           {"ist_view", unit_view_name(c.ist_view)},
@@ -358,6 +362,7 @@ void config_from_json(const nlohmann::json& j, SimConfig& c) {
     else if (k == "stack_depth") c.stack_depth = u32(*it, k);
     else if (k == "trv_latency") c.trv_latency = u32(*it, k);
     else if (k == "trv_pipes") c.trv_pipes = u32(*it, k);
+    else if (k == "mailbox") c.mailbox = u32(*it, k);
     else if (k == "trv_fuse") {
       if (!it->is_boolean()) throw std::runtime_error("config: 'trv_fuse' must be true or false");
       c.trv_fuse = it->get<bool>();

@@ -41,6 +41,9 @@ struct Slot {
   int sp = 0;
   Best best, leaf;
   uint32_t list_first = 0, list_count = 0, list_pos = 0, results = 0;
+  // Mailbox (--mailbox M): the last M triangle indices this ray sent to the ist, a FIFO ring.
+  std::array<uint32_t, 64> mbox{};
+  uint32_t mbox_n = 0, mbox_head = 0;
   double cos_light = 0;  // primary hit: kept for the pixel's shade after the shadow ray
 };
 
@@ -73,6 +76,7 @@ struct FrameCtx {
   double offset[3] = {0, 0, 0};
   uint32_t tmin = 0;
   uint32_t stack_depth = kStackDepth;  // entries per ray the trv's stack SRAM holds
+  uint32_t mailbox = 0;                // triangle indices per ray remembered (0: no mailbox)
   hls::SpawnParams spawn;
   bool empty_tree = false;
   hls::ImageHeader header;

@@ -46,6 +46,7 @@ class Trv : public SlotUnit {
       case SlotState::start: {
         r.best = Best{};
         r.sp = 0;
+        r.mbox_n = r.mbox_head = 0;
         r.tmax = r.ray.tmax;
         ++st_.trv_busy;
         if (fc_.empty_tree || !hls::trv_clip_box<A>(fc_.box_lo, fc_.box_hi, r.ray, r.tnear, r.tfar))
@@ -79,6 +80,19 @@ class Trv : public SlotUnit {
   }
 
   static uint32_t hit_lat(const Ascache& c) { return c.hit_latency; }
+
+  // Whether triangle index tri is in the ray's mailbox; if not, it goes in (oldest out).
+  bool in_mailbox(Slot& r, uint32_t tri) const {
+    for (uint32_t k = 0; k < r.mbox_n; ++k)
+      if (r.mbox[k] == tri) return true;
+    if (r.mbox_n < fc_.mailbox) {
+      r.mbox[r.mbox_n++] = tri;
+    } else {
+      r.mbox[r.mbox_head] = tri;
+      r.mbox_head = (r.mbox_head + 1) % fc_.mailbox;
+    }
+    return false;
+  }
 
   // The steps below run at cycle now; `extra` is how far into a fused pass the step starts (the
   // cycles of the accesses before it), `fused` that the pass is already counted busy. A ray goes
@@ -159,10 +173,18 @@ class Trv : public SlotUnit {
     const Cycle ready = now + extra + 1 + hit_lat(*ch_.list);
     for (uint32_t i = 0; i < n; ++i) {
       const uint32_t tri = uint32_t(hls::detail::get_le(line + byte % lb + size_t(i) * 4, 4));
+      if (fc_.mailbox != 0 && in_mailbox(r, tri)) {  // tested before: cannot win, counts as done
+        ++st_.mailbox_skips;
+        ++r.results;
+        continue;
+      }
       ch_.ist_q.push({s, r.list_pos + i, tri}, ready);
     }
     r.list_pos += n;
-    if (r.list_pos == r.list_count)
+    if (r.list_pos == r.list_count && r.results == r.list_count) {
+      r.state = SlotState::leaf_done;  // nothing left at the ist (the mailbox took the rest)
+      ch_.trv_q.push(s, again + hit_lat(*ch_.list));
+    } else if (r.list_pos == r.list_count)
       r.state = SlotState::wait_ist;  // the ist re-queues the ray with its last result
     else
       ch_.trv_q.push(s, again + hit_lat(*ch_.list));

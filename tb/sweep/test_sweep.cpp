@@ -6,6 +6,7 @@
 //                             sweep with a missing result.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -18,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "sim/sweep/sweep.h"
+#include "sim/sweep/throughput.h"
 
 namespace fs = std::filesystem;
 using raycore::sweep::Row;
@@ -310,3 +312,95 @@ TEST(Pipeline, TinySweepEndToEnd) {
   EXPECT_NE(c.out.find("grazing-fp24-rtz-vtuon-none.json"), std::string::npos) << c.out;
   fs::remove_all(out);
 }
+
+// ---- raycore throughput (sim/sweep/throughput.h) ------------------------------------------------
+namespace {
+namespace sw = raycore::sweep;
+
+TEST(Throughput, AreaTableAndRtuArea) {
+  const sw::TpArea a = sw::read_tp_area(std::string(RAYCORE_SOURCE_DIR) + "/docs/area.md");
+  EXPECT_GT(a.trv, 10000);
+  EXPECT_GT(a.ist, a.trv);  // the Wald test is the bigger datapath
+  EXPECT_GT(a.ascache, 0);
+  sw::TpConfig c;
+  c.trv_pipes = 2;
+  c.ist_units = 1;
+  c.rays = 10;
+  c.stack = 4;
+  c.l2_kb = 12;
+  const sw::RtuArea r = sw::rtu_area(c, a, 3, {1, 2, 4});
+  EXPECT_DOUBLE_EQ(r.logic, 2 * a.trv + a.ist + 3 * a.ascache);
+  const double node = 8192, list = 16384, tri = 32768, slots = 10 * sw::kSlotBits,
+               stacks = 10 * 4 * sw::kEntryBits, l2 = 12 * 8192 / 3.0;
+  EXPECT_DOUBLE_EQ(r.sram_bits, node + list + tri + slots + stacks + l2);
+  // Node and list caches have 2 ports (2 trv pipes): 1.5 single-port bits each.
+  EXPECT_DOUBLE_EQ(r.sram_nand2, sw::kSramBitNand2 * (1.5 * node + 1.5 * list + tri + slots + stacks + l2));
+  EXPECT_DOUBLE_EQ(r.total, r.logic + r.sram_nand2);
+  EXPECT_THROW(sw::read_tp_area("/nonexistent/area.md"), std::runtime_error);
+}
+
+TEST(Throughput, JobsLadderAndGrid) {
+  sw::TpOptions o;
+  o.scenes = {"corridor"};
+  o.raycore = "raycore";
+  const auto jobs = sw::make_tp_jobs(o);
+  EXPECT_EQ(jobs.size(), sw::tp_configs().size());
+  size_t ladder = 0;
+  for (const auto& c : sw::tp_configs()) ladder += c.ladder;
+  EXPECT_EQ(ladder, 10u);
+  // Every lever is on the command line (the study does not depend on the defaults).
+  for (const char* opt : {"--trv-pipes", "--ist-units", "--rays-in-flight", "--stack-depth", "--trv-fuse",
+                          "--l2-kb", "--mailbox", "--shadow-hit"})
+    EXPECT_NE(std::find(jobs[0].argv.begin(), jobs[0].argv.end(), opt), jobs[0].argv.end()) << opt;
+  o.configs = {"nonesuch"};
+  EXPECT_THROW(sw::make_tp_jobs(o), std::invalid_argument);
+  o.configs = {};
+  o.scenes = {"bogus"};
+  EXPECT_THROW(sw::make_tp_jobs(o), std::invalid_argument);
+}
+
+TEST(Throughput, ParetoGoalAndLeastArea) {
+  sw::TpArea a{50000, 100000, 90000};
+  std::vector<sw::TpRow> rows;
+  auto row = [&](const char* cfg, double rpc, double gbs) {
+    sw::TpRow r;
+    r.scene = "s";
+    r.config = cfg;
+    r.ok = r.golden_match = true;
+    r.rpc_rtu = rpc;
+    r.dram_gb_s = gbs;
+    for (const auto& c : sw::tp_configs())
+      if (c.name == cfg) r.area = sw::rtu_area(c, a, 6);
+    rows.push_back(r);
+  };
+  row("base", 0.02, 0.8);
+  row("p2i1", 0.04, 0.9);
+  row("p4i2", 0.085, 2.0);     // fast but over the bandwidth
+  row("p4i2-l2", 0.09, 0.7);   // meets the goal
+  row("p6i3-l2", 0.095, 0.7);  // meets it too, larger
+  sw::mark_tp(rows);
+  EXPECT_FALSE(rows[2].goal);
+  EXPECT_TRUE(rows[3].goal);
+  EXPECT_TRUE(rows[4].goal);
+  EXPECT_TRUE(rows[0].pareto);
+  const std::string md = sw::tp_markdown(rows, {"s"});
+  EXPECT_NE(md.find("| **p4i2-l2** |"), std::string::npos) << md;
+  EXPECT_NE(md.find("**met, least area**"), std::string::npos) << md;
+  const std::string dat = sw::tp_plot_data(rows, "s");
+  EXPECT_NE(dat.find(" 0.09000 1 1 p4i2-l2"), std::string::npos) << dat;
+}
+
+TEST(Throughput, CliRefusesBadInput) {
+  const std::string rc = RAYCORE_BIN;
+  for (const auto& [args, want] : std::vector<std::pair<std::string, std::string>>{
+           {"throughput", "exactly one of --list and --collect"},
+           {"throughput --list --scenes bogus", "unknown scene 'bogus'"},
+           {"throughput --list --scenes corridor --configs nope", "unknown throughput configuration 'nope'"},
+           {"throughput --collect /nonexistent-tp-dir", "manifest.json"}}) {
+    const Result r = run(rc + " " + args);
+    EXPECT_NE(r.status, 0) << args;
+    EXPECT_NE(r.out.find(want), std::string::npos) << args << ": " << r.out;
+  }
+}
+
+}  // namespace

@@ -89,6 +89,20 @@ TEST(PinsFrame, TwinsFp32StagesOneAndThree) {
   expect_same_frame(tiny_scene(), config(FormatId::fp24, Rounding::rtz, true, 32, 24), cfg,
                     UnitView::twin, UnitView::twin);
 }
+// One ist.v per ist unit: 1 and 3 units at pin level give the transaction model's cycles too
+// (the default is 2), with 1 and 6 trv pipes.
+TEST(PinsFrame, TwinsIstUnitsOneAndThree) {
+  sc::SimConfig cfg;
+  cfg.ist_units = 1;
+  cfg.trv_pipes = 1;
+  expect_same_frame(corridor(), config(FormatId::fp24, Rounding::rtz, true, 32, 20), cfg,
+                    UnitView::model, UnitView::twin);
+  cfg.ist_units = 3;
+  cfg.trv_pipes = 6;
+  cfg.trv_fuse = false;
+  expect_same_frame(corridor(), config(FormatId::fp24, Rounding::rne, false, 32, 20), cfg,
+                    UnitView::twin, UnitView::twin);
+}
 TEST(PinsFrame, TwinsVtuOffBypassesTheUnit) {
   expect_same_frame(corridor(), config(FormatId::fp24, Rounding::rtz, false, 32, 20), {},
                     UnitView::twin, UnitView::twin);
@@ -112,6 +126,16 @@ TEST(PinsFrameRtl, EachSubsetFp24RneRandomLatency) {
   expect_views_fp24_rne(7, {{UnitView::rtl, UnitView::model},
                             {UnitView::model, UnitView::rtl},
                             {UnitView::rtl, UnitView::twin}});
+}
+TEST(PinsFrameRtl, IstUnitsOneAndThree) {
+  sc::SimConfig cfg;
+  cfg.ist_units = 1;
+  expect_same_frame(corridor(), config(FormatId::fp24, Rounding::rtz, true, 32, 20), cfg,
+                    UnitView::rtl, UnitView::rtl);
+  cfg.ist_units = 3;
+  cfg.l2.size_bytes = 0;
+  expect_same_frame(corridor(), config(FormatId::fp24, Rounding::rne, false, 32, 20), cfg,
+                    UnitView::model, UnitView::rtl);
 }
 TEST(PinsFrameRtl, MissingVariantIsNamed) {
   sc::SimConfig cfg;

@@ -98,6 +98,7 @@ Drawn draw(uint64_t seed, uint64_t index) {
   c.trv_pipes = uint32_t(pick(1, 6));
   c.trv_fuse = pick(0, 1) == 1;
   c.ist_units = uint32_t(pick(1, 4));
+  c.mailbox = pick(0, 1) ? uint32_t(pick(1, 16)) : 0;
   c.ist_latency = uint32_t(pick(1, 40));
   c.ist_queue = uint32_t(pick(1, 64));
   c.hit_latency = uint32_t(pick(1, 30));
@@ -116,7 +117,7 @@ Drawn draw(uint64_t seed, uint64_t index) {
      << c.l2.size_bytes << "/" << c.l2.ways << "w/" << c.l2.line_bytes << "B/" << c.l2.latency << "c/"
      << c.l2.bandwidth << "B | rays " << c.rays_in_flight << " stack " << c.stack_depth << " vtu "
      << c.vtu_depth << " trv " << c.trv_latency << "x" << c.trv_pipes << (c.trv_fuse ? " fuse" : "")
-     << " ist " << c.ist_latency << "x" << c.ist_units << " q" << c.ist_queue << " hit " << c.hit_latency
+     << " mailbox " << c.mailbox << " ist " << c.ist_latency << "x" << c.ist_units << " q" << c.ist_queue << " hit " << c.hit_latency
      << " tile " << c.tile;
   d.line = os.str();
   return d;

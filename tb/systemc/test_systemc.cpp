@@ -52,6 +52,52 @@ TEST(GoldenMatch, SpawnStrategies) {
       expect_match(corridor(), tc);
     }
 }
+// Any-hit shadow rays: the same lit/shadowed decisions as closest-hit (so the same image), fewer
+// triangle tests; the golden tracer and the cycle model end the walk at the same leaf.
+TEST(GoldenMatch, AnyHitShadowRays) {
+  for (bool seg : {false, true}) {
+    auto tc = config(FormatId::fp24, Rounding::rtz, true, 48, 30);
+    tc.spawn.segment = seg;
+    const Summary closest = expect_match(corridor(), tc);
+    tc.spawn.any_hit = true;
+    const Summary any = expect_match(corridor(), tc);
+    EXPECT_LE(any.tri_tests, closest.tri_tests);
+    const hls::Image img = hls::build_image(corridor().tris, tc.format, tc.rounding);
+    const sim::Frame fa = sim::trace_golden(img, corridor().camera, corridor().light, tc);
+    tc.spawn.any_hit = false;
+    const sim::Frame fc = sim::trace_golden(img, corridor().camera, corridor().light, tc);
+    for (size_t i = 0; i < fa.px.size(); ++i) {
+      ASSERT_EQ(fa.px[i].lit, fc.px[i].lit) << "pixel " << i;
+      ASSERT_EQ(fa.px[i].shade, fc.px[i].shade) << "pixel " << i;
+    }
+  }
+}
+// The levers of issue 14 one by one and together, and the RayCore-like baseline: golden match.
+TEST(GoldenMatch, ThroughputLevers) {
+  const auto tc = config(FormatId::fp24, Rounding::rtz, true, 48, 30);
+  sc::SimConfig base;
+  base.trv_pipes = 1, base.ist_units = 1, base.rays_in_flight = 64, base.trv_fuse = false;
+  base.l2.size_bytes = 0;
+  const Summary b = expect_match(corridor(), tc, base);
+  sc::SimConfig c = base;
+  c.trv_fuse = true;
+  const Summary fused = expect_match(corridor(), tc, c);
+  EXPECT_LT(fused.cycles, b.cycles);
+  c.trv_pipes = 4;
+  c.ist_units = 2;
+  const Summary wide = expect_match(corridor(), tc, c);
+  EXPECT_LT(wide.cycles, fused.cycles);
+  c.l2.size_bytes = 64 * 1024;
+  const Summary l2 = expect_match(corridor(), tc, c);
+  EXPECT_LT(l2.bus_bytes, wide.bus_bytes);  // the L2 serves repeats of the 6 RTUs' misses
+  c.mailbox = 4;  // the same frame with fewer triangle tests
+  const Summary mb = expect_match(corridor(), tc, c);
+  EXPECT_LT(mb.tri_tests, l2.tri_tests);
+  c.mailbox = 1;
+  expect_match(corridor(), tc, c);
+  c.stack_depth = 2;  // far too shallow: refused with the option's name
+  expect_refused(corridor(), tc, c, "--stack-depth");
+}
 TEST(GoldenMatch, SegmentShadowRays) {
   auto tc = config(FormatId::fp24, Rounding::rtz, true, 48, 30);
   tc.spawn.segment = true;
@@ -216,6 +262,40 @@ TEST(Membus, RoundRobinAndQueueDepth) {
     EXPECT_EQ(rec.ev[i].tag, i / 3) << "response " << i;
   }
   EXPECT_GT(bus.stats().queue_full_cycles, 0u);
+}
+
+// The shared L2: a second request for a line is served by the L2 (its latency, no memory bytes),
+// one for a line still on its way from memory merges (waits for it), and LRU eviction refetches.
+TEST(Membus, L2HitMergeAndEviction) {
+  std::vector<uint8_t> mem(4096);
+  for (size_t i = 0; i < mem.size(); ++i) mem[i] = uint8_t(i * 7);
+  sc::Membus bus("bus", mem, 50, 16, 8, 0);
+  bus.set_l2({2 * 64, 1, 64, 5, 64});  // 2 sets x 1 way x 64 B, hit latency 5, 64 B/cycle
+  Recorder rec;
+  sc::TimedFifo<sc::MemReq> q(8);
+  bus.add_requester(&q, &rec, 0);
+  static uint8_t buf[8][64];
+  q.push({0, 64, 0, buf[0]}, 0);     // miss: memory, 50 + 4 beats -> 54
+  q.push({0, 64, 1, buf[1]}, 0);     // merge: waits for the line -> 54 + 1 L2 beat
+  q.push({128, 64, 2, buf[2]}, 100);  // same set as line 0: miss, evicts it
+  q.push({0, 64, 3, buf[3]}, 200);   // miss again (evicted)
+  q.push({128, 64, 4, buf[4]}, 300);  // miss (line 128 was evicted by line 0)
+  q.push({128, 64, 5, buf[5]}, 400);  // hit: 400 + 5 + 1
+  for (sc::Cycle t = 0; t < 500; ++t) bus.tick(t);
+  ASSERT_EQ(rec.ev.size(), 6u);
+  EXPECT_EQ(rec.ev[0].at, 54u);
+  EXPECT_EQ(rec.ev[1].at, 55u);
+  EXPECT_EQ(rec.ev[5].tag, 5u);
+  EXPECT_EQ(rec.ev[5].at, 406u);
+  EXPECT_EQ(buf[1][10], mem[10]);
+  EXPECT_EQ(buf[5][3], mem[131]);
+  const sc::MembusStats& s = bus.stats();
+  EXPECT_EQ(s.requests, 4u);  // memory requests: 0, 128, 0, 128
+  EXPECT_EQ(s.bytes, 256u);
+  EXPECT_EQ(s.l2_accesses, 6u);
+  EXPECT_EQ(s.l2_merges, 1u);
+  EXPECT_EQ(s.l2_hits, 1u);
+  EXPECT_THROW(bus.set_l2({100, 1, 64, 5, 64}), std::invalid_argument);
 }
 
 TEST(Membus, RandomLatencyWithinBounds) {

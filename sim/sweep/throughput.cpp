@@ -1,0 +1,321 @@
+// sim/sweep/throughput.cpp - see throughput.h.
+#include "sim/sweep/throughput.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <set>
+#include <sstream>
+#include <stdexcept>
+
+#include "sim/sweep/sweep.h"
+
+namespace raycore::sweep {
+
+std::vector<std::string> TpConfig::args() const {
+  return {"--trv-pipes",   std::to_string(trv_pipes), "--ist-units",  std::to_string(ist_units),
+          "--rays-in-flight", std::to_string(rays),   "--stack-depth", std::to_string(stack),
+          "--trv-fuse",    fuse ? "on" : "off",       "--l2-kb",      std::to_string(l2_kb),
+          "--mailbox",     std::to_string(mailbox),
+          "--shadow-hit",  any_hit ? "any" : "closest"};
+}
+
+const std::vector<TpConfig>& tp_configs() {
+  static const std::vector<TpConfig> all = [] {
+    std::vector<TpConfig> v;
+    // The ladder: RayCore-like baseline (one trv and one ist per RTU, closest-hit shadow rays, no
+    // L2), then one lever at a time on top of the step before.
+    TpConfig c;
+    c.any_hit = false;
+    auto step = [&](const char* name, const char* lever) {
+      c.name = name;
+      c.lever = lever;
+      c.ladder = true;
+      v.push_back(c);
+    };
+    step("base", "one trv and one ist per RTU, closest-hit shadow rays, 64 rays, no L2");
+    c.any_hit = true;
+    step("any-hit", "shadow rays end at the first leaf with a hit");
+    c.fuse = true;
+    step("fuse", "list fetch fused into the leaf's node step, node fetch into the pop");
+    c.trv_pipes = 2;
+    step("trv2", "2 trv pipes (2-port node and list caches)");
+    c.ist_units = 2;
+    step("ist2", "2 ist units (2-port triangle cache)");
+    c.trv_pipes = 4;
+    step("trv4", "4 trv pipes");
+    c.rays = 96;
+    step("rays96", "96 rays in flight");
+    c.l2_kb = 256;
+    step("l2-256k", "256 KB L2 shared by the 6 RTUs");
+    c.stack = 16;
+    step("stack16", "16-entry stacks (the three scenes need 11-14)");
+    c.mailbox = 8;
+    step("mailbox8", "8-entry mailbox per ray (a triangle is not tested twice)");
+    // The grid (fused, any-hit, 96 rays, 16-entry stacks).
+    std::set<std::vector<std::string>> seen;
+    for (const auto& x : v) seen.insert(x.args());
+    for (int l2 : {0, 256})
+      for (int p : {1, 2, 3, 4, 6})
+        for (int i : {1, 2, 3}) {
+          TpConfig g;
+          g.trv_pipes = p;
+          g.ist_units = i;
+          g.rays = 96;
+          g.stack = 16;
+          g.fuse = true;
+          g.l2_kb = l2;
+          g.name = "p" + std::to_string(p) + "i" + std::to_string(i) + (l2 ? "-l2" : "");
+          if (seen.insert(g.args()).second) v.push_back(g);
+        }
+    return v;
+  }();
+  return all;
+}
+
+TpArea read_tp_area(const std::string& path) {
+  std::ifstream is(path);
+  if (!is) throw std::runtime_error("cannot read area table '" + path + "' (make area writes it)");
+  TpArea a;
+  std::string line;
+  while (std::getline(is, line)) {
+    // | module | format | rounding | cells | FFs | NAND2 eq. | depth | SRAM bits |
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    std::string cell;
+    while (std::getline(ss, cell, '|')) {
+      const size_t b = cell.find_first_not_of(' '), e = cell.find_last_not_of(' ');
+      f.push_back(b == std::string::npos ? "" : cell.substr(b, e - b + 1));
+    }
+    if (f.size() < 7 || f[2] != "FP24") continue;
+    double nand2 = 0;
+    try {
+      nand2 = std::stod(f[6]);
+    } catch (const std::exception&) {
+      continue;
+    }
+    if (f[1] == "trv" && f[3] == "rtz") a.trv = nand2;
+    if (f[1] == "ist" && f[3] == "rtz") a.ist = nand2;
+    if (f[1] == "ascache") a.ascache = nand2;
+  }
+  if (a.trv <= 0 || a.ist <= 0 || a.ascache <= 0)
+    throw std::runtime_error("area table '" + path + "' lacks the FP24 rtz rows of trv, ist or ascache");
+  return a;
+}
+
+RtuArea rtu_area(const TpConfig& c, const TpArea& a, int rtus, const CacheSizes& k) {
+  RtuArea r;
+  r.logic = c.trv_pipes * a.trv + c.ist_units * a.ist + 3 * a.ascache;
+  auto ported = [](double bits, int ports) { return bits * (1.0 + 0.5 * (ports - 1)); };
+  const double node = k.node_kb * 8192, list = k.list_kb * 8192, tri = k.tri_kb * 8192;
+  const double slots = c.rays * kSlotBits, stacks = double(c.rays) * c.stack * kEntryBits,
+               mailboxes = double(c.rays) * c.mailbox * kMailboxEntryBits;
+  const double l2 = double(c.l2_kb) * 8192 / std::max(rtus, 1);
+  r.sram_bits = node + list + tri + slots + stacks + mailboxes + l2;
+  r.sram_nand2 = kSramBitNand2 * (ported(node, c.trv_pipes) + ported(list, c.trv_pipes) +
+                                  ported(tri, c.ist_units) + slots + stacks + mailboxes + l2);
+  r.total = r.logic + r.sram_nand2;
+  return r;
+}
+
+std::vector<TpJob> make_tp_jobs(const TpOptions& o) {
+  std::vector<const TpConfig*> cfgs;
+  for (const auto& c : tp_configs())
+    if (o.configs.empty() || std::find(o.configs.begin(), o.configs.end(), c.name) != o.configs.end())
+      cfgs.push_back(&c);
+  for (const auto& n : o.configs)
+    if (std::none_of(cfgs.begin(), cfgs.end(), [&](const TpConfig* c) { return c->name == n; }))
+      throw std::invalid_argument("unknown throughput configuration '" + n + "'");
+  if (o.scenes.empty()) throw std::invalid_argument("no scenes");
+  std::vector<TpJob> jobs;
+  for (const auto& s : o.scenes) {
+    const bool paper = s != "corridor" && std::find(paper_scenes().begin(), paper_scenes().end(), s) != paper_scenes().end();
+    const bool known = std::find(paper_scenes().begin(), paper_scenes().end(), s) != paper_scenes().end() ||
+                       std::find(hard_scenes().begin(), hard_scenes().end(), s) != hard_scenes().end();
+    if (!known) throw std::invalid_argument("unknown scene '" + s + "'");
+    const std::string arg = paper ? o.scenes_dir + "/" + s + ".glb" : s;
+    if (paper && !std::ifstream(arg)) throw std::invalid_argument("scene file '" + arg + "' not found");
+    for (const TpConfig* c : cfgs) {
+      TpJob j;
+      j.scene = s;
+      j.scene_arg = arg;
+      j.config = c->name;
+      j.id = s + "-" + c->name;
+      j.json = o.out + "/" + j.id + ".json";
+      j.png = o.out + "/" + j.id + ".png";
+      j.argv = {o.raycore, "simulate", arg, "--format", "fp24", "--rounding", "rtz", "--vtu", "off",
+                "--spawn", "none", "--width", std::to_string(o.width), "--height", std::to_string(o.height),
+                "--threads", std::to_string(o.threads), "--quiet", "--no-reference", "--rtus", "6",
+                "--mem-latency", "100", "--report", j.json, "--png", j.png};
+      for (const auto& x : c->args()) j.argv.push_back(x);
+      jobs.push_back(j);
+    }
+  }
+  return jobs;
+}
+
+namespace {
+const nlohmann::json& key(const nlohmann::json& j, const std::vector<const char*>& path, const TpJob& job) {
+  const nlohmann::json* p = &j;
+  for (const char* k : path) {
+    if (!p->is_object() || !p->contains(k))
+      throw std::runtime_error(job.json + ": no key '" + k + "'");
+    p = &(*p)[k];
+  }
+  return *p;
+}
+}  // namespace
+
+TpRow read_tp_row(const TpJob& j, const nlohmann::json& r, const TpArea& a) {
+  TpRow w;
+  w.scene = j.scene;
+  w.config = j.config;
+  const auto& hw = key(r, {"hardware"}, j);
+  w.golden_match = key(r, {"golden_match"}, j).get<bool>();
+  w.cycles = key(hw, {"cycles"}, j).get<uint64_t>();
+  w.rpc_rtu = key(hw, {"rays_per_cycle_per_rtu"}, j).get<double>();
+  w.trv_steps = key(hw, {"per_ray", "trv_steps"}, j).get<double>();
+  w.tri_tests = key(hw, {"per_ray", "tri_tests"}, j).get<double>();
+  w.bytes_per_ray = key(hw, {"per_ray", "bus_bytes"}, j).get<double>();
+  w.dram_gb_s = key(hw, {"bus", "bandwidth_gb_s"}, j).get<double>();
+  w.trv_busy = key(hw, {"utilisation", "breakdown", "trv", "busy"}, j).get<double>();
+  w.trv_stalled = key(hw, {"utilisation", "breakdown", "trv", "stalled"}, j).get<double>();
+  w.ist_busy = key(hw, {"utilisation", "breakdown", "ist", "busy"}, j).get<double>();
+  w.ist_stalled = key(hw, {"utilisation", "breakdown", "ist", "stalled"}, j).get<double>();
+  w.l2_hit = key(hw, {"l2", "hit_rate"}, j).get<double>();
+  w.stack_max = key(hw, {"work", "stack_max"}, j).get<uint64_t>();
+  const auto it = std::find_if(tp_configs().begin(), tp_configs().end(),
+                               [&](const TpConfig& c) { return c.name == j.config; });
+  if (it == tp_configs().end()) throw std::runtime_error(j.json + ": unknown configuration " + j.config);
+  CacheSizes k;
+  k.node_kb = key(r, {"config", "node_cache", "size_kb"}, j).get<double>();
+  k.list_kb = key(r, {"config", "list_cache", "size_kb"}, j).get<double>();
+  k.tri_kb = key(r, {"config", "tri_cache", "size_kb"}, j).get<double>();
+  w.area = rtu_area(*it, a, key(r, {"config", "rtus"}, j).get<int>(), k);
+  w.ok = true;
+  return w;
+}
+
+void mark_tp(std::vector<TpRow>& rows) {
+  std::map<std::string, std::vector<size_t>> by_scene;
+  for (size_t i = 0; i < rows.size(); ++i)
+    if (rows[i].ok && rows[i].golden_match) by_scene[rows[i].scene].push_back(i);
+  for (const auto& [scene, idx] : by_scene) {
+    std::vector<std::pair<double, double>> p;
+    for (size_t i : idx) p.push_back({rows[i].area.total, rows[i].rpc_rtu});
+    const auto on = pareto_front(p);
+    for (size_t k = 0; k < idx.size(); ++k) {
+      TpRow& r = rows[idx[k]];
+      r.pareto = on[k];
+      r.goal = r.rpc_rtu >= kGoalRpc && r.dram_gb_s <= kGoalGbS;
+    }
+  }
+}
+
+namespace {
+std::string fmt(const char* f, double v) {
+  char b[64];
+  std::snprintf(b, sizeof b, f, v);
+  return b;
+}
+const TpConfig& cfg_of(const std::string& n) {
+  for (const auto& c : tp_configs())
+    if (c.name == n) return c;
+  throw std::runtime_error("unknown configuration " + n);
+}
+}  // namespace
+
+std::string tp_markdown(const std::vector<TpRow>& rows, const std::vector<std::string>& scenes) {
+  std::ostringstream os;
+  // The ladder: one row per lever, one column group per scene.
+  os << "| step | lever added | ";
+  for (const auto& s : scenes) os << s << " rays/cycle/RTU (steps, tests, B/ray, GB/s) | ";
+  os << "RTU logic (NAND2 eq.) | RTU SRAM (kbit) | RTU total (NAND2 eq.) |\n|---|---|";
+  for (size_t i = 0; i < scenes.size(); ++i) os << "---|";
+  os << "---:|---:|---:|\n";
+  for (const auto& c : tp_configs()) {
+    if (!c.ladder) continue;
+    os << "| " << c.name << " | " << c.lever << " | ";
+    const TpRow* any = nullptr;
+    for (const auto& s : scenes) {
+      const auto it = std::find_if(rows.begin(), rows.end(),
+                                   [&](const TpRow& r) { return r.scene == s && r.config == c.name; });
+      if (it == rows.end() || !it->ok) {
+        os << "- | ";
+        continue;
+      }
+      any = &*it;
+      os << (it->goal ? "**" : "") << fmt("%.4f", it->rpc_rtu) << (it->goal ? "**" : "")
+         << (it->golden_match ? "" : " (MISMATCH)") << " (" << fmt("%.1f", it->trv_steps) << ", "
+         << fmt("%.1f", it->tri_tests) << ", " << fmt("%.1f", it->bytes_per_ray) << ", "
+         << fmt("%.2f", it->dram_gb_s) << ") | ";
+    }
+    if (any)
+      os << fmt("%.0f", any->area.logic) << " | " << fmt("%.0f", any->area.sram_bits / 1024) << " | "
+         << fmt("%.0f", any->area.total) << " |\n";
+    else
+      os << "- | - | - |\n";
+  }
+  // Per scene: every configuration, Pareto front and goal marked.
+  for (const auto& s : scenes) {
+    os << "\n**" << s << "** (bold: on the Pareto front of RTU area against rays/cycle per RTU; goal: >= "
+       << kGoalRpc << " rays/cycle per RTU at <= " << kGoalGbS << " GB/s)\n\n"
+       << "| config | trv x ist | rays | L2 KB | rays/cycle/RTU | cycles | trv steps/ray | tests/ray | "
+          "trv busy / stalled | ist busy / stalled | DRAM B/ray | DRAM GB/s | L2 hit | stack used | RTU total "
+          "(NAND2 eq.) | goal |\n|---|---|---:|---:|---:|---:|---:|---:|---|---|---:|---:|---:|---:|---:|---|\n";
+    const TpRow* least = nullptr;
+    for (const auto& r : rows)
+      if (r.scene == s && r.goal && (!least || r.area.total < least->area.total)) least = &r;
+    for (const auto& r : rows) {
+      if (r.scene != s) continue;
+      const TpConfig& c = cfg_of(r.config);
+      if (!r.ok) {
+        os << "| " << r.config << " | (no report) |\n";
+        continue;
+      }
+      const std::string b = r.pareto ? "**" : "";
+      os << "| " << b << r.config << b << " | " << c.trv_pipes << " x " << c.ist_units << " | " << c.rays
+         << " | " << c.l2_kb << " | " << b << fmt("%.4f", r.rpc_rtu) << b << (r.golden_match ? "" : " MISMATCH")
+         << " | " << r.cycles << " | " << fmt("%.1f", r.trv_steps) << " | " << fmt("%.1f", r.tri_tests)
+         << " | " << fmt("%.0f%%", 100 * r.trv_busy) << " / " << fmt("%.0f%%", 100 * r.trv_stalled) << " | "
+         << fmt("%.0f%%", 100 * r.ist_busy) << " / " << fmt("%.0f%%", 100 * r.ist_stalled) << " | "
+         << fmt("%.2f", r.bytes_per_ray) << " | " << fmt("%.2f", r.dram_gb_s) << " | "
+         << fmt("%.0f%%", 100 * r.l2_hit) << " | " << r.stack_max << " | " << fmt("%.0f", r.area.total) << " | "
+         << (&r == least ? "**met, least area**" : r.goal ? "met" : "") << " |\n";
+    }
+  }
+  return os.str();
+}
+
+std::string tp_plot_data(const std::vector<TpRow>& rows, const std::string& scene) {
+  std::ostringstream os;
+  os << "# area_nand2 rays_per_cycle_per_rtu pareto goal config\n";
+  std::vector<const TpRow*> v;
+  for (const auto& r : rows)
+    if (r.scene == scene && r.ok && r.golden_match) v.push_back(&r);
+  std::sort(v.begin(), v.end(), [](const TpRow* a, const TpRow* b) { return a->area.total < b->area.total; });
+  for (const TpRow* r : v)
+    os << fmt("%.0f", r->area.total) << " " << fmt("%.5f", r->rpc_rtu) << " " << int(r->pareto) << " "
+       << int(r->goal) << " " << r->config << "\n";
+  return os.str();
+}
+
+std::string tp_csv(const std::vector<TpRow>& rows) {
+  std::ostringstream os;
+  os << "scene,config,ok,golden_match,cycles,rays_per_cycle_per_rtu,trv_steps_per_ray,tri_tests_per_ray,"
+        "dram_bytes_per_ray,dram_gb_s,trv_busy,trv_stalled,ist_busy,ist_stalled,l2_hit,stack_max,"
+        "logic_nand2,sram_bits,total_nand2,pareto,goal\n";
+  for (const auto& r : rows)
+    os << r.scene << "," << r.config << "," << r.ok << "," << r.golden_match << "," << r.cycles << ","
+       << fmt("%.6f", r.rpc_rtu) << "," << fmt("%.3f", r.trv_steps) << "," << fmt("%.3f", r.tri_tests) << ","
+       << fmt("%.3f", r.bytes_per_ray) << "," << fmt("%.4f", r.dram_gb_s) << "," << fmt("%.4f", r.trv_busy)
+       << "," << fmt("%.4f", r.trv_stalled) << "," << fmt("%.4f", r.ist_busy) << ","
+       << fmt("%.4f", r.ist_stalled) << "," << fmt("%.4f", r.l2_hit) << "," << r.stack_max << ","
+       << fmt("%.0f", r.area.logic) << "," << fmt("%.0f", r.area.sram_bits) << ","
+       << fmt("%.0f", r.area.total) << "," << r.pareto << "," << r.goal << "\n";
+  return os.str();
+}
+
+}  // namespace raycore::sweep
