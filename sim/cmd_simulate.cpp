@@ -2,6 +2,7 @@
 // golden tracer run in the same process; PNG + JSON report (render's keys plus "hardware", "sim",
 // "golden_match").
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -84,12 +85,19 @@ void run_simulate(const sim::RunOptions& o, const sc::SimOptions& so) {
                 (unsigned long long)r.cycles, (unsigned long long)r.primary_rays,
                 (unsigned long long)r.shadow_rays, hw["rays_per_cycle"].get<double>(),
                 hw["rays_per_cycle_per_rtu"].get<double>(), hw["mrays_per_s"].get<double>());
-    std::printf("units     trv %.1f%%, ist %.1f%% busy; hit rates node %.1f%%, list %.1f%%, tri %.1f%%; "
-                "bus %.2f GB/s\n",
-                100 * hw["utilisation"]["trv"].get<double>(), 100 * hw["utilisation"]["ist"].get<double>(),
+    std::printf("units     %u trv pipes %.1f%%, %u ist %.1f%% busy; %.1f trv passes, %.1f tests, %.1f DRAM "
+                "bytes per ray\n",
+                scfg.trv_pipes, 100 * hw["utilisation"]["trv"].get<double>(), scfg.ist_units,
+                100 * hw["utilisation"]["ist"].get<double>(), hw["per_ray"]["trv_steps"].get<double>(),
+                hw["per_ray"]["tri_tests"].get<double>(), hw["per_ray"]["bus_bytes"].get<double>());
+    std::printf("memory    hit rates node %.1f%%, list %.1f%%, tri %.1f%%, L2 %s; DRAM %.2f GB/s\n",
                 100 * hw["caches"]["node"]["hit_rate"].get<double>(),
                 100 * hw["caches"]["list"]["hit_rate"].get<double>(),
                 100 * hw["caches"]["tri"]["hit_rate"].get<double>(),
+                scfg.l2.size_bytes ? (std::to_string(int(std::lround(100 * hw["l2"]["hit_rate"].get<double>()))) +
+                                      "% of " + std::to_string(scfg.l2.size_bytes / 1024) + " KB")
+                                         .c_str()
+                                   : "none",
                 hw["bus"]["bandwidth_gb_s"].get<double>());
     std::printf("sim       %.2f s wall (%.2f s user), %.0f cycles/s, %.0f rays/s\n", r.wall_seconds,
                 r.user_seconds, j["sim"]["cycles_per_second"].get<double>(),
