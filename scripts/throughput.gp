@@ -16,6 +16,7 @@ do for [i=1:n] {
   plot f u ($1/1e6):2 w p pt 7 ps 0.8 lc rgb "#999999" t "configuration", \
        f u ($3 == 1 ? $1/1e6 : 1/0):2 w lp pt 7 ps 1.1 lc rgb "#1f77b4" t "Pareto front", \
        f u ($4 == 1 ? $1/1e6 : 1/0):2 w p pt 6 ps 2 lw 2 lc rgb "#d62728" t "meets the goal", \
+       f u ($6 == 1 ? $1/1e6 : 1/0):2 w p pt 3 ps 3.5 lw 2 lc rgb "#2ca02c" t "least area meeting the goal", \
        f u ($3 == 1 ? $1/1e6 : 1/0):2:5 w labels offset 0,0.8 font ",8" notitle, \
        0.08 w l dt 2 lc rgb "#d62728" t "goal 0.08"
 }
