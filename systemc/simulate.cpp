@@ -69,6 +69,7 @@ SimResult run(const hls::Image& image, const scenes::Camera& cam, const scenes::
 
   Top<A> top("top", fc, cfg, image.bytes, tc.vtu, vtu);
   sc_core::sc_start();
+  if (!top.error.empty()) throw std::runtime_error(top.error);
   if (!top.rtus.empty() && fc.retired == 0 && fc.width * fc.height > 0)
     throw std::runtime_error("cycle model: no ray retired");
 

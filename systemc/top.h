@@ -100,6 +100,7 @@ class Top : public sc_core::sc_module {
   std::vector<std::unique_ptr<Rtu<A>>> rtus;
   Cycle cycles = 0;
   uint64_t pin_edges = 0;  // clock edges given to the pin-level units (frame, without set-up)
+  std::string error;       // why the frame stopped early ("" = it ran to its end)
 
  private:
   struct RtuSignals {
@@ -114,7 +115,17 @@ class Top : public sc_core::sc_module {
     return true;
   }
 
+  // The thread: the frame, with an error (deadlock, livelock, a refused configuration) kept for
+  // simulate() to throw as itself (not wrapped in SystemC's report of an uncaught exception).
   void run() {
+    try {
+      run_frame();
+    } catch (const std::exception& e) {
+      error = e.what();  // the thread ends; with no process left, sc_start returns
+    }
+  }
+
+  void run_frame() {
     const bool tty = cfg_.progress && isatty(2);
     const auto t0 = std::chrono::steady_clock::now();
     auto last = t0;
