@@ -168,14 +168,7 @@ void do_collect(const SweepArgs& a, const std::string& dir) {
   uint64_t mismatches = 0;
   for (const auto& r : rows) mismatches += r.golden_match ? 0 : 1;
   if (!a.doc.empty()) {
-    std::string doc;
-    {
-      std::ifstream is(a.doc);
-      if (is) doc.assign(std::istreambuf_iterator<char>(is), {});
-    }
-    const std::string begin = "<!-- sweep:begin -->", end = "<!-- sweep:end -->";
     std::ostringstream sec;
-    sec << begin << "\n";
     sec << "Collected from `" << dir << "` (" << rows.size() << " simulate jobs, " << maps.size()
         << " error maps; golden_match true in " << rows.size() - mismatches << " of " << rows.size()
         << ").\n\n### The paper's scenes (self-intersections / shadow errors / error pixels = shadow + "
@@ -184,13 +177,9 @@ void do_collect(const SweepArgs& a, const std::string& dir) {
         << compact << "\n### The hard cases\n\n" << compact_hard
         << "\n### The target: 0 self-intersections, shadow errors <= 0.01% of the pixels, <= 5% slower than "
            "fp24-rtz VTU on spawn none (speed = rays per cycle against it; **bold** = met)\n\n"
-        << target << "\n### Every job\n\n" << md << end;
-    const size_t b = doc.find(begin), e = doc.find(end);
-    if (b != std::string::npos && e != std::string::npos && e > b)
-      doc.replace(b, e + end.size() - b, sec.str());
-    else
-      doc += "\n" + sec.str() + "\n";
-    write_text(a.doc, doc);
+        << target << "\n### Every job\n\n" << md;
+    make_parent(a.doc);
+    sim::write_doc_section(a.doc, "sweep", sec.str());
   }
   std::printf("sweep: %zu rows (%zu Pareto), %zu error maps; golden_match %s; wrote %s/sweep.{csv,json,md}%s%s\n",
               rows.size(), size_t(std::count_if(rows.begin(), rows.end(), [](const sweep::Row& r) { return r.pareto; })),

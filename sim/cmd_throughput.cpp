@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "sim/cli.h"
+#include "sim/output.h"
 #include "sim/sweep/sweep.h"
 #include "sim/sweep/throughput.h"
 
@@ -92,18 +93,7 @@ void do_collect(const TpArgs& a) {
   write_file(a.collect + "/throughput.md", md);
   write_file(a.collect + "/throughput.csv", sweep::tp_csv(rows));
   for (const auto& s : scenes) write_file(a.collect + "/plot-" + s + ".dat", sweep::tp_plot_data(rows, s));
-  if (!a.doc.empty()) {
-    std::string doc;
-    if (std::ifstream d(a.doc); d) doc.assign(std::istreambuf_iterator<char>(d), {});
-    const std::string begin = "<!-- throughput:begin -->", end = "<!-- throughput:end -->";
-    const std::string sec = begin + "\n" + md + end;
-    const size_t b = doc.find(begin), e = doc.find(end);
-    if (b != std::string::npos && e != std::string::npos && e > b)
-      doc.replace(b, e + end.size() - b, sec);
-    else
-      doc += "\n" + sec + "\n";
-    write_file(a.doc, doc);
-  }
+  if (!a.doc.empty()) sim::write_doc_section(a.doc, "throughput", md);
   std::cout << "throughput: " << rows.size() - missing << " of " << rows.size() << " reports -> " << a.collect
             << "/throughput.{md,csv}" << (a.doc.empty() ? "" : " and " + a.doc) << "\n";
   if (missing) throw UserError("throughput: " + std::to_string(missing) + " reports missing or incomplete");

@@ -21,6 +21,20 @@ void write_png(const Frame& f, const std::string& path) {
     throw std::runtime_error("cannot write PNG '" + path + "'");
 }
 
+void write_doc_section(const std::string& path, const std::string& name, const std::string& body) {
+  std::string doc;
+  if (std::ifstream is(path); is) doc.assign(std::istreambuf_iterator<char>(is), {});
+  const std::string begin = "<!-- " + name + ":begin -->", end = "<!-- " + name + ":end -->";
+  const std::string sec = begin + "\n" + body + end;
+  const size_t b = doc.find(begin), e = doc.find(end);
+  if (b != std::string::npos && e != std::string::npos && e > b)
+    doc.replace(b, e + end.size() - b, sec);
+  else
+    doc += "\n" + sec + "\n";
+  std::ofstream os(path);
+  if (!(os << doc)) throw std::runtime_error("cannot write '" + path + "'");
+}
+
 void write_json(const nlohmann::json& j, const std::string& path) {
   std::ofstream os(path);
   if (!os) throw std::runtime_error("cannot write '" + path + "'");

@@ -15,4 +15,9 @@ void write_png(const Frame& f, const std::string& path);
 // Writes a JSON document (pretty, trailing newline); throws on failure.
 void write_json(const nlohmann::json& j, const std::string& path);
 
+// Puts `body` into the markdown file `path` between the lines <!-- NAME:begin --> and
+// <!-- NAME:end --> (replacing what was there; appended with the marks when they are missing, the
+// file created when it does not exist); throws on failure.
+void write_doc_section(const std::string& path, const std::string& name, const std::string& body);
+
 }  // namespace raycore::sim
