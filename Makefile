@@ -23,7 +23,10 @@ configure: deps $(BUILD)/CMakeCache.txt
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
-run: build
+# Only what the run needs: the raycore binary and the libraries it links (not the tests, benches
+# and the other Verilated variants, which `make build` / `make test` build).
+run: configure
+	cmake --build $(BUILD) --target raycore -j $(JOBS)
 	./scripts/run.sh $(RAYCORE)
 
 # The unit tests in Release (all of them), then once more under ASan + UBSan (the C++ unit
