@@ -195,7 +195,8 @@ nlohmann::json hardware_json(const SimResult& r, const SimConfig& cfg) {
       {"ist", share(t.ist_busy, t.ist_tri_miss, ist_slots)},
       {"hit", share(t.hit_busy, 0, rtu_cycles)},
       {"vtu", share(t.vtu_busy, 0, rtu_cycles)},
-      {"membus", share(r.bus.busy_cycles, 0, r.cycles)}};
+      {"membus", share(r.bus.busy_cycles, 0, r.cycles)},
+      {"l2_bus", share(r.bus.l2_busy_cycles, 0, r.cycles)}};
   const uint64_t trv_used = t.trv_busy + t.trv_node_miss + t.trv_list_miss + t.trv_ist_full;
   const uint64_t trv_empty = trv_slots > trv_used ? trv_slots - trv_used : 0;
   nlohmann::json per_rtu = nlohmann::json::array();
