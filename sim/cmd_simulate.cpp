@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <filesystem>
 #include <memory>
 #include <stdexcept>
 
@@ -21,10 +20,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-void make_parent(const std::string& path) {
-  const auto d = std::filesystem::path(path).parent_path();
-  if (!d.empty()) std::filesystem::create_directories(d);
-}
+using sim::make_parent;
 
 void run_simulate(const sim::RunOptions& o, const sc::SimOptions& so) {
   const sim::TraceConfig cfg = sim::trace_config(o);

@@ -36,16 +36,8 @@ struct SweepArgs {
   std::string area, doc;
 };
 
-void make_parent(const std::string& path) {
-  const auto d = fs::path(path).parent_path();
-  if (!d.empty()) fs::create_directories(d);
-}
-
-void write_text(const std::string& path, const std::string& s) {
-  make_parent(path);
-  std::ofstream os(path);
-  if (!(os << s)) throw UserError("cannot write '" + path + "'");
-}
+using sim::make_parent;
+using sim::write_text;
 
 std::vector<sweep::Job> jobs_or_error(const sweep::Options& o) {
   try {
@@ -178,7 +170,6 @@ void do_collect(const SweepArgs& a, const std::string& dir) {
         << "\n### The target: 0 self-intersections, shadow errors <= 0.01% of the pixels, <= 5% slower than "
            "fp24-rtz VTU on spawn none (speed = rays per cycle against it; **bold** = met)\n\n"
         << target << "\n### Every job\n\n" << md;
-    make_parent(a.doc);
     sim::write_doc_section(a.doc, "sweep", sec.str());
   }
   std::printf("sweep: %zu rows (%zu Pareto), %zu error maps; golden_match %s; wrote %s/sweep.{csv,json,md}%s%s\n",

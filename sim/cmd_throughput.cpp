@@ -25,13 +25,6 @@ struct TpArgs {
   std::string collect, area = "docs/area.md", doc;
 };
 
-void write_file(const std::string& path, const std::string& s) {
-  const auto d = fs::path(path).parent_path();
-  if (!d.empty()) fs::create_directories(d);
-  std::ofstream os(path);
-  if (!(os << s)) throw UserError("cannot write '" + path + "'");
-}
-
 void do_list(const TpArgs& a) {
   std::vector<sweep::TpJob> jobs;
   try {
@@ -46,7 +39,7 @@ void do_list(const TpArgs& a) {
     for (const auto& x : j.argv) line += (line.empty() ? "" : " ") + sweep::shell_quote(x);
     std::cout << line << "\n";
   }
-  write_file(a.o.out + "/manifest.json", m.dump(1) + "\n");
+  sim::write_text(a.o.out + "/manifest.json", m.dump(1) + "\n");
 }
 
 void do_collect(const TpArgs& a) {
@@ -90,9 +83,9 @@ void do_collect(const TpArgs& a) {
   sweep::mark_tp(rows);
   const std::vector<std::string> scenes = m.at("scenes").get<std::vector<std::string>>();
   const std::string md = sweep::tp_markdown(rows, scenes);
-  write_file(a.collect + "/throughput.md", md);
-  write_file(a.collect + "/throughput.csv", sweep::tp_csv(rows));
-  for (const auto& s : scenes) write_file(a.collect + "/plot-" + s + ".dat", sweep::tp_plot_data(rows, s));
+  sim::write_text(a.collect + "/throughput.md", md);
+  sim::write_text(a.collect + "/throughput.csv", sweep::tp_csv(rows));
+  for (const auto& s : scenes) sim::write_text(a.collect + "/plot-" + s + ".dat", sweep::tp_plot_data(rows, s));
   if (!a.doc.empty()) sim::write_doc_section(a.doc, "throughput", md);
   std::cout << "throughput: " << rows.size() - missing << " of " << rows.size() << " reports -> " << a.collect
             << "/throughput.{md,csv}" << (a.doc.empty() ? "" : " and " + a.doc) << "\n";
@@ -116,10 +109,9 @@ void register_throughput(CLI::App& app) {
   c->add_option("--raycore", a->o.raycore, "the raycore binary in the job lines (default: this one)");
   c->add_option("--area", a->area, "collect: yosys area table (make area)")->capture_default_str();
   c->add_option("--doc", a->doc, "collect: also write the tables into this markdown file");
-  c->callback([a, c] {
+  c->callback([a] {
     if (a->list == !a->collect.empty()) throw UserError("throughput: give exactly one of --list and --collect");
     if (a->o.raycore.empty()) a->o.raycore = fs::read_symlink("/proc/self/exe").string();
-    (void)c;
     if (a->list)
       do_list(*a);
     else

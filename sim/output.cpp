@@ -1,6 +1,7 @@
 // sim/output.cpp - PNG (stb_image_write) and JSON output.
 #include "sim/output.h"
 
+#include <filesystem>
 #include <fstream>
 #include <stdexcept>
 #include <vector>
@@ -21,6 +22,17 @@ void write_png(const Frame& f, const std::string& path) {
     throw std::runtime_error("cannot write PNG '" + path + "'");
 }
 
+void make_parent(const std::string& path) {
+  const auto d = std::filesystem::path(path).parent_path();
+  if (!d.empty()) std::filesystem::create_directories(d);
+}
+
+void write_text(const std::string& path, const std::string& text) {
+  make_parent(path);
+  std::ofstream os(path);
+  if (!(os << text)) throw std::runtime_error("cannot write '" + path + "'");
+}
+
 void write_doc_section(const std::string& path, const std::string& name, const std::string& body) {
   std::string doc;
   if (std::ifstream is(path); is) doc.assign(std::istreambuf_iterator<char>(is), {});
@@ -31,8 +43,7 @@ void write_doc_section(const std::string& path, const std::string& name, const s
     doc.replace(b, e + end.size() - b, sec);
   else
     doc += "\n" + sec + "\n";
-  std::ofstream os(path);
-  if (!(os << doc)) throw std::runtime_error("cannot write '" + path + "'");
+  write_text(path, doc);
 }
 
 void write_json(const nlohmann::json& j, const std::string& path) {

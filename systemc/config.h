@@ -39,7 +39,7 @@ struct SimConfig {
   uint32_t mem_bandwidth = 16;    // bytes per cycle on the shared data bus
   uint32_t mem_queue_depth = 32;  // requests accepted and not yet returned
   uint64_t seed = 0;              // 0: fixed latency; else latency uniform in [L, 2L] per request
-  L2Config l2{256 * 1024, 8, 64, 20, 32};  // shared L2 in front of the memory (size 0: none)
+  L2Config l2{256 * 1024};        // shared L2 in front of the memory (size 0: none)
   // vtu: pipeline depth (one 8-byte node or one triangle record per cycle); rtl/units/vtu.v has
   // 3 operator levels of STAGES registers: 6 = STAGES 2, as in docs/area.md.
   uint32_t vtu_depth = 6;

@@ -39,7 +39,6 @@ class Ist : public sc_core::sc_module {
   void bind(const std::vector<pins::IstPort*>& ports) {
     if (ports.size() != units_) throw std::logic_error("ist: one pin-level unit per ist unit");
     ports_ = ports;
-    port_ = ports_.empty() ? nullptr : ports_[0];
   }
   bool wants_edge() const { return edge_; }
 
@@ -97,7 +96,7 @@ class Ist : public sc_core::sc_module {
   }
 
   Cycle next_event(Cycle now) const {
-    if (port_ && in_flight_ != 0) return now + 1;
+    if (!ports_.empty() && in_flight_ != 0) return now + 1;
     return std::min(ch_.ist_pipe.head_ready(), ch_.ist_q.head_ready());
   }
 
@@ -121,7 +120,7 @@ class Ist : public sc_core::sc_module {
     ++st_.ist_busy;
     const hls::WaldTri<F> w = hls::decode_tri<F>(line + byte % lb);
     const Slot& r = ch_.slots[q.slot];
-    if (port_) {
+    if (!ports_.empty()) {
       drive_pins(*ports_[u], q, w, r);
       return true;
     }
@@ -173,7 +172,7 @@ class Ist : public sc_core::sc_module {
     edge_ = true;
   }
   bool idle_pins(uint32_t u) {
-    if (!port_) return false;
+    if (ports_.empty()) return false;
     ports_[u]->idle();
     edge_ |= in_flight_ != 0;
     return edge_;
@@ -185,7 +184,6 @@ class Ist : public sc_core::sc_module {
   uint32_t lat_;
   uint32_t units_;
   std::vector<pins::IstPort*> ports_;  // pin-level view: one per unit (empty: the model)
-  pins::IstPort* port_ = nullptr;      // ports_[0]
   std::array<Side, 1024> side_{};
   uint32_t next_tag_ = 0, in_flight_ = 0;
   bool edge_ = false;

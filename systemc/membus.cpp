@@ -50,20 +50,26 @@ Membus::L2Line* Membus::l2_find(uint64_t line) {
   return const_cast<L2Line*>(static_cast<const Membus*>(this)->l2_find(line));
 }
 
-bool Membus::l2_lookup(uint64_t addr, uint32_t bytes, Cycle& ready) const {
-  ready = 0;
+std::pair<uint64_t, uint64_t> Membus::l2_span(uint64_t addr, uint32_t bytes) const {
   const uint64_t lb = l2_.line_bytes;
-  for (uint64_t l = addr / lb; l <= (addr + std::max<uint32_t>(bytes, 1) - 1) / lb; ++l) {
+  return {addr / lb, (addr + std::max<uint32_t>(bytes, 1) - 1) / lb};
+}
+
+bool Membus::l2_hit(uint64_t addr, uint32_t bytes, Cycle& ready) {
+  ready = 0;
+  const auto [first, last] = l2_span(addr, bytes);
+  for (uint64_t l = first; l <= last; ++l) {
     const L2Line* x = l2_find(l);
     if (!x) return false;
     ready = std::max(ready, x->ready);
   }
+  for (uint64_t l = first; l <= last; ++l) l2_find(l)->stamp = ++l2_clock_;  // LRU: used now
   return true;
 }
 
 void Membus::l2_install(uint64_t addr, uint32_t bytes, Cycle ready) {
-  const uint64_t lb = l2_.line_bytes;
-  for (uint64_t l = addr / lb; l <= (addr + std::max<uint32_t>(bytes, 1) - 1) / lb; ++l) {
+  const auto [first, last] = l2_span(addr, bytes);
+  for (uint64_t l = first; l <= last; ++l) {
     L2Line* x = l2_find(l);
     if (!x) {  // the set's invalid way, else its least recently used
       const size_t set = size_t(l % l2_sets_) * l2_.ways;
@@ -118,13 +124,10 @@ bool Membus::tick(Cycle now) {
     if (!reqs_[i].req->can_pop(now)) continue;
     const MemReq& front = reqs_[i].req->front();
     Cycle l2_ready = 0;
-    const bool l2_hit = l2_sets_ != 0 && l2_lookup(front.addr, front.bytes, l2_ready);
-    if (l2_hit) {  // served by the L2: no memory queue place, no memory traffic
+    if (l2_sets_ != 0 && l2_hit(front.addr, front.bytes, l2_ready)) {
+      // Served by the L2: no memory queue place, no memory traffic.
       const MemReq q = reqs_[i].req->pop();
       copy_line(q);
-      const uint64_t lb = l2_.line_bytes;
-      for (uint64_t l = q.addr / lb; l <= (q.addr + std::max<uint32_t>(q.bytes, 1) - 1) / lb; ++l)
-        l2_find(l)->stamp = ++l2_clock_;
       const Cycle beats = (q.bytes + l2_.bandwidth - 1) / l2_.bandwidth;
       const Cycle first = std::max({now + l2_.latency, l2_ready, l2_free_});
       const Cycle arrival = first + beats;

@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <queue>
+#include <utility>
 #include <vector>
 
 #include "systemc/config.h"
@@ -77,9 +78,11 @@ class Membus : public sc_core::sc_module {
     Cycle ready = 0;  // when its data is in the L2 (a line on its way from memory: later)
     bool valid = false;
   };
-  // The L2 lines covering [addr, addr + bytes): whether all are present (ready is then the latest
-  // ready of them), else nullptr-free lookup only.
-  bool l2_lookup(uint64_t addr, uint32_t bytes, Cycle& ready) const;
+  // The L2 lines covering [addr, addr + bytes), first and last.
+  std::pair<uint64_t, uint64_t> l2_span(uint64_t addr, uint32_t bytes) const;
+  // Whether all of them are in the L2 (ready: when the last of them has its data); if so they
+  // become the most recently used.
+  bool l2_hit(uint64_t addr, uint32_t bytes, Cycle& ready);
   void l2_install(uint64_t addr, uint32_t bytes, Cycle ready);
   L2Line* l2_find(uint64_t line);
   const L2Line* l2_find(uint64_t line) const;

@@ -104,7 +104,6 @@ class Trv : public SlotUnit {
     const uint8_t* line = ch_.node->access(byte / lb);
     if (!line) {
       if (!fused) ++st_.trv_node_miss;
-      r.state = SlotState::node;
       ch_.trv_q.push(s, again);
       return true;
     }
@@ -130,7 +129,6 @@ class Trv : public SlotUnit {
         r.node = first;
         r.tfar = sp.tsplit;
       }
-      r.state = SlotState::node;
       ch_.trv_q.push(s, next);
       return true;
     }
