@@ -1,20 +1,17 @@
 // `raycore render`: the golden tracer on one frame, with the double-precision reference and the
 // error metrics; writes a PNG and the JSON report of design.md.
-#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
 
 #include "sim/cli.h"
+#include "sim/errors.h"
 #include "sim/output.h"
-#include "sim/reference/metrics.h"
-#include "sim/reference/reference.h"
 #include "sim/run.h"
 
 namespace raycore::cli {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 
 void run_render(const sim::RunOptions& o) {
   const sim::TraceConfig cfg = sim::trace_config(o);
@@ -42,16 +39,11 @@ void run_render(const sim::RunOptions& o) {
   j["sim"] = {{"wall_seconds", st.seconds},
               {"rays_per_second", st.seconds > 0 ? rays / st.seconds : 0.0},
               {"threads", cfg.threads}};
-  reference::ErrorMetrics m;
+  sim::FrameErrors fe;
   const bool have_ref = o.reference && !p.scene.tris.empty();
   if (have_ref) {
-    const auto t0 = Clock::now();
-    const sim::Frame ref = reference::render(p.scene, cfg.width, cfg.height, cfg.threads);
-    const double rs = std::chrono::duration<double>(Clock::now() - t0).count();
-    m = reference::compute_errors(f, ref, p.scene.tris);
-    j["errors"] = reference::to_json(m);
-    j["errors"]["shadow_hit"] = cfg.spawn.any_hit ? "any" : "closest";  // what shadow_tri means
-    j["reference"] = {{"wall_seconds", rs}};
+    fe = sim::measure_errors(f, p.scene, p.image, cfg.threads);
+    sim::add_errors_json(j, fe, cfg.spawn.any_hit);
   }
   std::filesystem::create_directories(std::filesystem::path(png).parent_path().empty()
                                           ? std::filesystem::path(".")
@@ -71,12 +63,7 @@ void run_render(const sim::RunOptions& o) {
               (unsigned long long)st.primary_rays, (unsigned long long)st.shadow_rays, st.seconds,
               st.seconds > 0 ? rays / st.seconds : 0.0);
   if (have_ref)
-    std::printf("errors    self-intersections %llu (%.3f%%, %s-hit shadow rays), shadow errors %llu (false shadow %llu, "
-                "light leak %llu), primary errors %llu\n",
-                (unsigned long long)m.self_intersections, m.self_intersection_pct,
-                cfg.spawn.any_hit ? "any" : "closest",
-                (unsigned long long)m.shadow_errors, (unsigned long long)m.false_shadow,
-                (unsigned long long)m.light_leak, (unsigned long long)m.primary_errors);
+    sim::print_errors(fe, cfg.spawn.any_hit);
   else
     std::printf("errors    (no reference: %s)\n", o.reference ? "no scene triangles" : "--no-reference");
   std::printf("wrote     %s\n          %s\n", png.c_str(), rep.c_str());

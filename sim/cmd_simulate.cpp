@@ -1,16 +1,14 @@
 // `raycore simulate`: the cycle model (systemc/) on one frame, checked pixel by pixel against the
 // golden tracer run in the same process; PNG + JSON report (render's keys plus "hardware", "sim",
 // "golden_match").
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <memory>
 #include <stdexcept>
 
 #include "sim/cli.h"
+#include "sim/errors.h"
 #include "sim/output.h"
-#include "sim/reference/metrics.h"
-#include "sim/reference/reference.h"
 #include "sim/run.h"
 #include "systemc/cli_options.h"
 #include "systemc/simulate.h"
@@ -18,7 +16,6 @@
 namespace raycore::cli {
 namespace {
 
-using Clock = std::chrono::steady_clock;
 
 using sim::make_parent;
 
@@ -55,15 +52,11 @@ void run_simulate(const sim::RunOptions& o, const sc::SimOptions& so) {
   j["golden"] = {{"wall_seconds", gs.seconds}, {"rays", {{"primary", gs.primary_rays}, {"shadow", gs.shadow_rays}}}};
   j["golden_match"] = ndiff == 0;
   j["golden_mismatches"] = ndiff;
-  reference::ErrorMetrics m;
+  sim::FrameErrors fe;
   const bool have_ref = o.reference && !p.scene.tris.empty();
   if (have_ref) {
-    const auto t0 = Clock::now();
-    const sim::Frame ref = reference::render(p.scene, cfg.width, cfg.height, cfg.threads);
-    m = reference::compute_errors(r.frame, ref, p.scene.tris);
-    j["errors"] = reference::to_json(m);
-    j["errors"]["shadow_hit"] = cfg.spawn.any_hit ? "any" : "closest";  // what shadow_tri means
-    j["reference"] = {{"wall_seconds", std::chrono::duration<double>(Clock::now() - t0).count()}};
+    fe = sim::measure_errors(r.frame, p.scene, p.image, cfg.threads);
+    sim::add_errors_json(j, fe, cfg.spawn.any_hit);
   }
   make_parent(png);
   make_parent(rep);
@@ -100,10 +93,7 @@ void run_simulate(const sim::RunOptions& o, const sc::SimOptions& so) {
                 j["sim"]["rays_per_second"].get<double>());
     std::printf("golden    %s\n", ndiff == 0 ? "match (every pixel's tri, t, shadow and shade)"
                                              : ("MISMATCH: " + std::to_string(ndiff) + " pixels").c_str());
-    if (have_ref)
-      std::printf("errors    self-intersections %llu (%s-hit shadow rays), shadow errors %llu, primary errors %llu\n",
-                  (unsigned long long)m.self_intersections, cfg.spawn.any_hit ? "any" : "closest", (unsigned long long)m.shadow_errors,
-                  (unsigned long long)m.primary_errors);
+    if (have_ref) sim::print_errors(fe, cfg.spawn.any_hit);
     std::printf("wrote     %s\n          %s\n", png.c_str(), rep.c_str());
   }
   if (ndiff != 0)

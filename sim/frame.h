@@ -15,8 +15,10 @@ struct PixelResult {
   double t = 0;                // primary hit distance (exact value of t_bits for hardware runs)
   hls::Vec3 hit;               // hit point in world space (double; for hardware runs the exact
                                //   value of the format's hit point, camera offset added back)
-  bool shadow_ray = false;     // a shadow ray was spawned (primary hit, light in front)
-  bool lit = false;            // the shadow ray reached the light
+  bool front = false;          // primary hit with the light on the side the ray came from
+  bool shadow_ray = false;     // a shadow ray was spawned (light in front; with --shadow-spawn
+                               //   all, every primary hit)
+  bool lit = false;            // the pixel is lit: light in front and the shadow ray reached it
   int32_t shadow_tri = -1;     // nearest triangle hit by the shadow ray before the light, -1 none
   uint8_t shade = 0;           // grey level written to the image
 };

@@ -46,6 +46,12 @@ void add_run_options(CLI::App& c, RunOptions& o) {
                "(light - hit; t_min a fraction of the light distance)")
       ->check(CLI::IsMember({"unit", "segment"}))
       ->capture_default_str();
+  c.add_option("--shadow-spawn", o.shadow_spawn,
+               "which primary hits spawn a shadow ray: front (the light on the side the ray came "
+               "from; the others are shadowed without a ray) or all (every hit, as the paper counts; "
+               "the image is the same, the extra rays cost cycles and can self-intersect)")
+      ->check(CLI::IsMember({"front", "all"}))
+      ->capture_default_str();
   c.add_option("--tmin", o.tmin, "ray t_min (default 2^-12, RayCore's)")
       ->check(CLI::Range(0.0, 1e6));
   c.add_option("--width", o.width, "image width")->check(CLI::Range(1, 16384))->capture_default_str();
@@ -93,6 +99,7 @@ TraceConfig trace_config(const RunOptions& o) {
   c.spawn.ulps = o.spawn_ulps > 0 ? o.spawn_ulps : default_spawn_ulps(c.format, c.spawn.spawn);
   c.spawn.segment = o.shadow_ray == "segment";
   c.spawn.any_hit = o.shadow_hit == "any";
+  c.spawn.spawn_all = o.shadow_spawn == "all";
   if (!std::isfinite(o.tmin) || o.tmin < 0) throw cli::UserError("--tmin must be a finite number >= 0");
   c.tmin = o.tmin;
   c.width = o.width;
@@ -153,7 +160,7 @@ Prepared prepare(const RunOptions& o, const TraceConfig& cfg) {
 
 std::string config_tag(const TraceConfig& c) {
   return std::string(hls::format_name(c.format)) + "-" + hls::rounding_name(c.rounding) +
-         (c.vtu ? "-vtu-" : "-novtu-") + to_string(c.spawn.spawn);
+         (c.vtu ? "-vtu-" : "-novtu-") + to_string(c.spawn.spawn) + (c.spawn.spawn_all ? "-all" : "");
 }
 
 static nlohmann::json vec(const hls::Vec3& v) { return {v.x, v.y, v.z}; }
@@ -181,6 +188,7 @@ nlohmann::json config_json(const TraceConfig& c) {
                       {"t_min", c.tmin},
                       {"shadow_ray", c.spawn.segment ? "segment" : "unit"},
                       {"shadow_hit", c.spawn.any_hit ? "any" : "closest"},
+                      {"shadow_spawn", c.spawn.spawn_all ? "all" : "front"},
                       {"width", c.width},
                       {"height", c.height}};
   if (spawn_uses_ulps(c.spawn.spawn)) j["spawn_ulps"] = c.spawn.ulps;

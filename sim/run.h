@@ -30,6 +30,7 @@ struct RunOptions {
   std::string kd = "ours";  // kd-tree cost preset: ours (hls::BuildOptions) or raycore
   double kd_node_cost = 0, kd_tri_cost = 0, kd_split_ratio = 0, kd_empty_bonus = -1;  // 0/-1: preset's
   int kd_max_depth = 0;     // 0: automatic
+  std::string shadow_spawn = "front";  // front: only hits whose light is in front; all: every hit
   std::string shadow_hit = "any";  // any: the walk ends at the first leaf with a hit; closest
   std::string image_in;    // --image: run from a dumped memory image
   std::string dump_image;  // --dump-image

@@ -1,6 +1,6 @@
 // systemc/hit.h - the hit unit: for a finished primary ray the hit point and the shadow ray
-// (hls::hit_shadow with the configured spawn strategy), handed to the rgu in the same slot; for a
-// finished shadow ray the light decision; the pixel written to the frame (sim::shade_pixel, the
+// (hls::hit_shadow with the configured spawn strategy; with --shadow-spawn all also when the light
+// is behind), handed to the rgu in the same slot; for a finished shadow ray the light decision; the pixel written to the frame (sim::shade_pixel, the
 // golden tracer's inputs). One ray per cycle, hit_latency cycles to the pixel write / hand-over.
 #pragma once
 
@@ -28,7 +28,7 @@ class Hit : public SlotUnit {
     const Cycle done = now + lat_;
     ++st_.hit_busy;
     if (r.shadow) {
-      p.lit = !r.best.found;
+      p.lit = p.front && !r.best.found;  // --shadow-spawn all: a ray behind the light is not lit
       p.shadow_tri = r.best.found ? int32_t(r.best.id) : -1;
       p.shade = sim::shade_pixel(true, p.lit, r.cos_light);
       ++fc_.shadow_retired[r.pixel];
@@ -47,7 +47,8 @@ class Hit : public SlotUnit {
     const hls::ShadowSetup ss = hls::hit_shadow<A>(r.ray, b.t, ht, fc_.light, fc_.tmin, fc_.spawn);
     p.hit = {A::to_double(ss.h[0]) + fc_.offset[0], A::to_double(ss.h[1]) + fc_.offset[1],
              A::to_double(ss.h[2]) + fc_.offset[2]};
-    if (!ss.front) {
+    p.front = ss.front;
+    if (!ss.spawn) {
       p.shade = sim::shade_pixel(true, false, 0);
       return retire(s, done);
     }

@@ -115,7 +115,7 @@ std::vector<PixelDiff> diff_frames(const sim::Frame& a, const sim::Frame& b, siz
     for (int x = 0; x < a.width; ++x) {
       const auto& p = a.at(x, y);
       const auto& q = b.at(x, y);
-      if (p.tri == q.tri && p.t_bits == q.t_bits && p.shadow_ray == q.shadow_ray && p.lit == q.lit &&
+      if (p.tri == q.tri && p.t_bits == q.t_bits && p.front == q.front && p.shadow_ray == q.shadow_ray && p.lit == q.lit &&
           p.shadow_tri == q.shadow_tri && p.shade == q.shade)
         continue;
       ++n;

@@ -45,7 +45,8 @@ module spawn #(
   input  wire                       in_valid_i,
   output wire                       in_ready_o,
   input  wire [1:0]                 in_k_i,        // projection axis of the hit triangle
-  input  wire                       in_front_i,    // the light is in front: a shadow ray is spawned
+  input  wire                       in_front_i,    // the light is in front
+  input  wire                       in_all_i,      // --shadow-spawn all: a ray for every hit
   input  wire                       in_side_neg_i, // move along -n (sign of n . d_shadow)
   input  wire [31:0]                in_id_i,       // the hit triangle's id
   input  wire [EXP_BITS+MAN_BITS:0] in_h_x_i,      // hit point
@@ -192,7 +193,7 @@ module spawn #(
                            in_o_x_i, in_o_y_i, in_o_z_i, in_d_x_i, in_d_y_i, in_d_z_i, in_td_x_i,
                            in_td_y_i, in_td_z_i, in_t_i, in_den_i, in_scale_i, in_fixed_i,
                            hk, hu, hv, ok, ou, ov, dk, du, dv, tk, tu, tv,
-                           in_front_i, in_id_i, in_cand_id_i, in_ray_skip_i, in_dens_i};
+                           in_front_i, in_all_i, in_id_i, in_cand_id_i, in_ray_skip_i, in_dens_i};
 
     end else if (STRATEGY == 2 || STRATEGY == 4) begin : g_ulp
       // ---- ulp-offset ----------------------------------------------------------------------------
@@ -254,7 +255,7 @@ module spawn #(
       assign out_tmin_o      = in_tmin_i;
       wire unused_in;
       assign unused_in = ^{unused_s1_rdy, unused_s1_vld, unused_s2_rdy, unused_s2_vld, in_n_d_i,
-                           ok, ou, ov, dk, du, dv, tk, tu, tv, in_t_i, in_den_i, in_front_i,
+                           ok, ou, ov, dk, du, dv, tk, tu, tv, in_t_i, in_den_i, in_front_i, in_all_i,
                            in_id_i, in_cand_id_i, in_ray_skip_i, in_dens_i};
 
     end else if (STRATEGY == 5 || STRATEGY == 6) begin : g_slab
@@ -316,7 +317,7 @@ module spawn #(
                            in_n_u_i, in_n_v_i, in_n_d_i, in_o_x_i, in_o_y_i, in_o_z_i, in_d_x_i,
                            in_d_y_i, in_d_z_i, in_td_x_i, in_td_y_i, in_td_z_i, in_den_i,
                            in_fixed_i, hk, hu, hv, ok, ou, ov, dk, du, dv, tk, tu, tv,
-                           in_front_i, in_id_i, in_cand_id_i, in_ray_skip_i};
+                           in_front_i, in_all_i, in_id_i, in_cand_id_i, in_ray_skip_i};
 
     end else begin : g_bound
       // ---- error-bound (hls::hit_shadow, Spawn::error_bound) ---------------------------------------
@@ -513,7 +514,7 @@ module spawn #(
                            core2[W +: 4*W], core3[W +: 4*W], core4[W +: 4*W], core5[W +: 4*W],
                            core1[W +: 2*W], core3[0 +: W], core4[0 +: W], core5[0 +: W],
                            core6[0 +: 3*W], core2[0 +: W], p7[CW-1 -: TAG_BITS + 3],
-                           in_front_i, in_id_i, in_cand_id_i, in_ray_skip_i, in_scale_i,
+                           in_front_i, in_all_i, in_id_i, in_cand_id_i, in_ray_skip_i, in_scale_i,
                            in_fixed_i, in_dens_i};
     end
   endgenerate
@@ -521,7 +522,9 @@ module spawn #(
   // The skip id and the ist's comparison (skip-origin and the strategies built on it).
   generate
     if (STRATEGY == 1 || STRATEGY >= 4) begin : g_skip
-      assign out_skip_id_o   = in_front_i ? in_id_i : 32'hFFFF_FFFF;
+      // A shadow ray is spawned when the light is in front, or for every hit with in_all_i
+      // (hls::ShadowSetup::spawn); no ray: no skip id.
+      assign out_skip_id_o   = (in_front_i | in_all_i) ? in_id_i : 32'hFFFF_FFFF;
       assign out_cand_skip_o = in_cand_id_i == in_ray_skip_i;
     end else begin : g_noskip
       assign out_skip_id_o   = 32'hFFFF_FFFF;

@@ -186,11 +186,12 @@ Frame trace_t(const hls::Image& image_in, const scenes::Camera& cam, const scene
         p.hit = {A::to_double(ss.h[0]) + offset[0], A::to_double(ss.h[1]) + offset[1],
                  A::to_double(ss.h[2]) + offset[2]};
         double cosl = 0;
-        if (ss.front) {
+        p.front = ss.front;
+        if (ss.spawn) {
           ++s.shadow_rays;
           p.shadow_ray = true;
           const auto sh = tracer.trace(ss.ray, ss.skip_id, s, sp.any_hit);
-          p.lit = !sh.found;
+          p.lit = ss.front && !sh.found;
           p.shadow_tri = sh.found ? int32_t(tracer.tri(sh.tri).id) : -1;
           const double nu = A::to_double(tri.c[hls::kNU]), nv = A::to_double(tri.c[hls::kNV]);
           double l2 = 0;

@@ -43,6 +43,7 @@ ErrorMetrics compute_errors(const sim::Frame& test, const sim::Frame& ref, const
     const bool self = a.shadow_ray && a.tri >= 0 && a.shadow_tri == a.tri;
     if (a.shadow_ray) ++m.shadow_rays;
     if (self) ++m.self_intersections;
+    if (self && a.front) ++m.self_intersections_front;
 
     // Primary: the visible surface.
     if (a.tri >= 0 && r.tri < 0) {
@@ -66,7 +67,7 @@ ErrorMetrics compute_errors(const sim::Frame& test, const sim::Frame& ref, const
     if (!la && lr) {
       ++m.false_shadow;
       if (self) ++m.false_shadow_self;
-      if (!a.shadow_ray) ++m.false_shadow_no_ray;
+      if (!a.front) ++m.false_shadow_no_ray;
     } else if (la && !lr) {
       ++m.light_leak;
     }
@@ -86,6 +87,7 @@ nlohmann::json to_json(const ErrorMetrics& m) {
       {"shadow_rays", m.shadow_rays},
       {"self_intersections", m.self_intersections},
       {"self_intersection_pct", m.self_intersection_pct},
+      {"self_intersections_front", m.self_intersections_front},
       {"shadow_compared", m.shadow_compared},
       {"shadow_errors", m.shadow_errors},
       {"shadow_error_pct", m.shadow_error_pct},

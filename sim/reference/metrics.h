@@ -6,6 +6,9 @@
 // - self_intersections: test pixels with a shadow ray whose nearest hit is the triangle the ray
 //   started on (shadow_tri == tri >= 0), whatever the reference says; self_intersection_pct =
 //   100 * self_intersections / pixels. (The test's own t_min applies: it is in its shadow_tri.)
+//   Of these, self_intersections_front: the light is in front (front), i.e. the ones that can
+//   change the image (with --shadow-spawn all, rays toward a light behind the surface are spawned
+//   too; they self-intersect as often but the pixel is shadowed anyway).
 // - primary_errors = primary_hit_vs_miss + primary_miss_vs_hit + primary_distance:
 //     primary_hit_vs_miss: the test hits, the reference misses;
 //     primary_miss_vs_hit: the test misses, the reference hits;
@@ -18,7 +21,8 @@
 //   and they are already counted once, as primary errors.
 //     false_shadow: test shadowed, reference lit (acne). Of these, for information:
 //       false_shadow_self  - the test's shadow ray hit its own triangle (self-intersection);
-//       false_shadow_no_ray - the test spawned no shadow ray (its light-side decision differs).
+//       false_shadow_no_ray - the test's light-side decision says behind (front false; with
+//       --shadow-spawn front it spawned no shadow ray).
 //     light_leak: test lit, reference shadowed.
 // Percentages (..._pct) are of `pixels`.
 #pragma once
@@ -39,6 +43,7 @@ struct ErrorMetrics {
   uint64_t shadow_rays = 0;   // test frame: pixels with shadow_ray
   uint64_t self_intersections = 0;
   double self_intersection_pct = 0;
+  uint64_t self_intersections_front = 0;  // of those, light in front (the image-changing ones)
   uint64_t shadow_compared = 0;
   uint64_t shadow_errors = 0;
   uint64_t false_shadow = 0;
@@ -62,6 +67,7 @@ constexpr double kPrimaryDistanceTolerance = 0.01;
 ErrorMetrics compute_errors(const sim::Frame& test, const sim::Frame& ref, const std::vector<hls::Tri>& tris);
 
 // Stable keys: pixels, primary_rays, shadow_rays, self_intersections, self_intersection_pct,
+// self_intersections_front,
 // shadow_errors, false_shadow, light_leak, primary_errors, primary_miss_vs_hit,
 // primary_hit_vs_miss, primary_distance, and the informative shadow_compared, false_shadow_self,
 // false_shadow_no_ray, shadow_error_pct, primary_other_tri, primary_error_pct.

@@ -92,6 +92,7 @@ sim::PixelResult Reference::trace(const Ray& primary, bool shadows) const {
   px.hit = hit_point(h);
   if (!shadows) return px;
   const ShadowResult s = shadow(primary.org, h);
+  px.front = s.shadow_ray;  // the reference spawns exactly when the light is strictly in front
   px.shadow_ray = s.shadow_ray;
   px.lit = s.lit;
   px.shadow_tri = s.shadow_tri;

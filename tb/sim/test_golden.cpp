@@ -10,6 +10,7 @@
 #include "hls/image.h"
 #include "scenes/generate.h"
 #include "scenes/scene.h"
+#include "sim/errors.h"
 #include "sim/golden/golden.h"
 #include "sim/reference/metrics.h"
 #include "sim/reference/reference.h"
@@ -189,6 +190,66 @@ TEST(Golden, AgreesWithReference) {
     EXPECT_EQ(m.self_intersections, 0u);
     EXPECT_GT(m.shadow_rays, uint64_t(w * h / 4));
   }
+}
+
+// --shadow-spawn all: one shadow ray per primary hit, the same image and lit decisions as front;
+// the self-intersections with the light in front are front's.
+TEST(Golden, ShadowSpawnAllSameImage) {
+  const scenes::Scene s = scenes::generate("corridor");
+  const int w = 96, h = 60;
+  const sim::Frame ref = raycore::reference::render(s, w, h, 2);
+  for (bool seg : {false, true}) {
+    auto cfg = config(FormatId::fp24, Rounding::rtz, false, w, h);
+    cfg.spawn.segment = seg;
+    sim::TraceStats sf, sa;
+    const sim::Frame ff = trace(s, cfg, &sf);
+    cfg.spawn.spawn_all = true;
+    const sim::Frame fa = trace(s, cfg, &sa);
+    EXPECT_EQ(sa.shadow_rays, sa.primary_hits);
+    EXPECT_LT(sf.shadow_rays, sa.shadow_rays);
+    for (size_t i = 0; i < ff.px.size(); ++i) {
+      ASSERT_EQ(ff.px[i].shade, fa.px[i].shade) << i;
+      ASSERT_EQ(ff.px[i].lit, fa.px[i].lit) << i;
+      ASSERT_EQ(ff.px[i].front, fa.px[i].front) << i;
+      ASSERT_EQ(ff.px[i].shadow_ray, ff.px[i].front) << i;
+    }
+    const auto mf = raycore::reference::compute_errors(ff, ref, s.tris);
+    const auto ma = raycore::reference::compute_errors(fa, ref, s.tris);
+    EXPECT_EQ(mf.self_intersections, mf.self_intersections_front);
+    EXPECT_EQ(ma.self_intersections_front, mf.self_intersections);
+    EXPECT_GT(ma.self_intersections, ma.self_intersections_front);  // rtz: the light-behind rays
+    EXPECT_EQ(ma.shadow_errors, mf.shadow_errors);
+    EXPECT_EQ(ma.primary_errors, mf.primary_errors);
+  }
+}
+
+// The stored scene: vertices recovered from the records' Wald constants. Exact where the
+// constants are (small integers, n_k a power of two), within the format's rounding elsewhere;
+// degenerate records become zero-area triangles; the camera and light are rounded.
+TEST(Golden, StoredSceneRecoversTheRecords) {
+  const Tri exact = {Vec3{-1, -1, -10}, Vec3{3, -1, -10}, Vec3{-1, 3, -10}};  // n_k = 16
+  const Tri sliver = {Vec3{0, 0, -5}, Vec3{1, 1, -5}, Vec3{2, 2, -5}};      // zero area
+  const Tri tilted = {Vec3{0.1, 0.2, -7.3}, Vec3{2.7, -0.4, -6.1}, Vec3{-1.3, 1.9, -8.2}};
+  auto s = make_scene({exact, sliver, tilted}, Vec3{0.1, 0.2, 0.3}, Vec3{0.3, 0.3, 5.1});
+  for (FormatId f : {FormatId::fp24, FormatId::fp32}) {
+    const Rounding r = f == FormatId::fp24 ? Rounding::rtz : Rounding::rne;
+    const hls::Image img = hls::build_image(s.tris, f, r);
+    const scenes::Scene st = sim::stored_scene(s, img);
+    ASSERT_EQ(st.tris.size(), 3u);
+    for (int j = 0; j < 3; ++j)
+      for (int c = 0; c < 3; ++c) EXPECT_EQ(st.tris[0][size_t(j)][c], exact[size_t(j)][c]);
+    EXPECT_EQ(st.tris[1][0][0], st.tris[1][1][0]);  // collapsed
+    EXPECT_EQ(st.tris[1][1][2], st.tris[1][2][2]);
+    const double tol = f == FormatId::fp24 ? 1e-3 : 1e-5;
+    for (int j = 0; j < 3; ++j)
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(st.tris[2][size_t(j)][c], tilted[size_t(j)][c], tol);
+    EXPECT_NE(st.camera.position.x, s.camera.position.x);  // 0.1 is not a binary fraction
+    EXPECT_NEAR(st.camera.position.x, 0.1, tol);
+    EXPECT_NEAR(st.light.position.z, 5.1, tol * 8);
+  }
+  // A VTU-translated image or one of another scene is refused.
+  const hls::Image img = hls::build_image(s.tris, FormatId::fp24, Rounding::rtz);
+  EXPECT_THROW(sim::stored_scene(make_scene({exact}, Vec3{}, Vec3{0, 0, 5}), img), std::invalid_argument);
 }
 
 TEST(Golden, RejectsMismatchedImage) {

@@ -35,7 +35,7 @@ module tb_spawn_slab;
     .STRATEGY(STRATEGY)
   ) dut (
     .clk_i(clk), .rst_ni(rst_n), .in_valid_i(in_valid), .in_ready_o(in_ready),
-    .in_k_i(2'd0), .in_front_i(1'b1), .in_side_neg_i(1'b0), .in_id_i(32'd7),
+    .in_k_i(2'd0), .in_front_i(1'b1), .in_all_i(1'b0), .in_side_neg_i(1'b0), .in_id_i(32'd7),
     .in_h_x_i(hx), .in_h_y_i(hy), .in_h_z_i(hz), .in_n_u_i(z), .in_n_v_i(z), .in_n_d_i(z),
     .in_o_x_i(z), .in_o_y_i(z), .in_o_z_i(z), .in_d_x_i(z), .in_d_y_i(z), .in_d_z_i(z),
     .in_td_x_i(z), .in_td_y_i(z), .in_td_z_i(z), .in_t_i(t), .in_den_i(z), .in_scale_i(scale),

@@ -51,7 +51,7 @@ inline uint64_t frame_hash(const sim::Frame& f) {
   for (const auto& p : f.px) {
     mix(uint64_t(uint32_t(p.tri)));
     mix(p.t_bits);
-    mix(uint64_t(p.shadow_ray) | uint64_t(p.lit) << 1 | uint64_t(p.shade) << 8);
+    mix(uint64_t(p.shadow_ray) | uint64_t(p.lit) << 1 | uint64_t(p.front) << 2 | uint64_t(p.shade) << 8);
     mix(uint64_t(uint32_t(p.shadow_tri)));
   }
   return h;

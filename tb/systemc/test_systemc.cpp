@@ -72,6 +72,30 @@ TEST(GoldenMatch, AnyHitShadowRays) {
     }
   }
 }
+// --shadow-spawn all: every primary hit spawns a shadow ray (the light behind too); golden match in
+// both shadow-ray forms, one shadow ray per primary hit, and the same image as front.
+TEST(GoldenMatch, ShadowSpawnAll) {
+  for (bool seg : {false, true}) {
+    auto tc = config(FormatId::fp24, Rounding::rtz, seg, 48, 30);
+    tc.spawn.segment = seg;
+    const Summary front = expect_match(corridor(), tc);
+    tc.spawn.spawn_all = true;
+    const Summary all = expect_match(corridor(), tc);
+    EXPECT_GT(all.shadow, front.shadow);
+    const hls::Image img = hls::build_image(corridor().tris, tc.format, tc.rounding);
+    sim::TraceStats st;
+    const sim::Frame fa = sim::trace_golden(img, corridor().camera, corridor().light, tc, &st);
+    EXPECT_EQ(all.shadow, st.primary_hits);
+    tc.spawn.spawn_all = false;
+    const sim::Frame ff = sim::trace_golden(img, corridor().camera, corridor().light, tc);
+    for (size_t i = 0; i < fa.px.size(); ++i) {
+      ASSERT_EQ(fa.px[i].shade, ff.px[i].shade) << "pixel " << i;
+      ASSERT_EQ(fa.px[i].lit, ff.px[i].lit) << "pixel " << i;
+      ASSERT_EQ(fa.px[i].front, ff.px[i].front) << "pixel " << i;
+      ASSERT_EQ(fa.px[i].shadow_ray, fa.px[i].tri >= 0) << "pixel " << i;
+    }
+  }
+}
 // The levers of issue 14 one by one and together, and the RayCore-like baseline: golden match.
 TEST(GoldenMatch, ThroughputLevers) {
   const auto tc = config(FormatId::fp24, Rounding::rtz, true, 48, 30);
