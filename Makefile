@@ -51,10 +51,10 @@ bench: build
 	./scripts/bench.sh $(BUILD)
 
 # The paper's Table 3 (three scenes x 24/32-bit x VTU off/on, 800 x 480) into docs/results.md,
-# with unit-direction and with segment shadow rays.
-table3: build
+# under the four shadow-ray conventions {unit, segment} x {front, all}.
+table3: configure
+	cmake --build $(BUILD) --target raycore -j $(JOBS)
 	$(RAYCORE) table3
-	$(RAYCORE) table3 --shadow-ray segment --json out/table3-segment.json
 
 # The speed-against-error sweep (scenes x format x VTU x spawn, GNU parallel): out/sweep/ and
 # docs/sweep.md; SWEEP_JOBS, SWEEP_SSHLOGIN and options after ARGS (see docs/sweep.md).
