@@ -376,4 +376,19 @@ Image transform_image(const Image& img, const Vec3& camera) {
   });
 }
 
+Vec3 store_anchor(const std::vector<Tri>& tris) {
+  if (tris.empty()) return {};
+  Box b;
+  for (const Tri& t : tris)
+    for (const Vec3& v : t) b.extend(v);
+  return (b.lo + b.hi) * 0.5;
+}
+
+std::vector<Tri> relative_to(const std::vector<Tri>& tris, const Vec3& anchor) {
+  std::vector<Tri> out = tris;
+  for (Tri& t : out)
+    for (Vec3& v : t) v = v - anchor;
+  return out;
+}
+
 }  // namespace raycore::hls

@@ -157,6 +157,12 @@ class Image {
 Image build_image(const std::vector<Tri>& tris, FormatId format, Rounding rounding,
                   const BuildOptions& opt = {}, TreeStats* stats = nullptr);
 
+// --store anchored: the point a scene is stored relative to (the centre of its bounding box, in
+// double; 0 for no triangles), and the triangles relative to a point (exact subtraction in double
+// where it is exact; the image rounds the result once, as it rounds world coordinates).
+Vec3 store_anchor(const std::vector<Tri>& tris);
+std::vector<Tri> relative_to(const std::vector<Tri>& tris, const Vec3& anchor);
+
 // Statistics of an image's tree, computed from the image alone (SAH cost with opt's costs; the
 // constant counts: degenerate records and saturated constants; build_seconds = 0).
 TreeStats analyze_image(const Image& img, const BuildOptions& opt = {});

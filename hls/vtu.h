@@ -109,24 +109,27 @@ Image transform_image(const Image& img, const Vtu<F, R>& vtu) {
 // The host's set-up registers of a frame, formed once for every consumer (golden tracer, cycle
 // model, analyses): the camera and the light rounded once with the policy; with the VTU on, the
 // light translated by the VTU and rays starting at 0, else rays starting at the camera.
-// `offset` is what adds a datapath position back into world space (the camera, or 0).
+// `anchor` (--store anchored; 0 = world) is the point the memory image is stored relative to: the
+// camera and the light are taken relative to it in double on the host, then rounded, so the VTU
+// translates by camera - anchor and its hardware is unchanged.
+// `offset` is what adds a datapath position back into world space (anchor + the camera, or anchor).
 template <class F, Rounding R>
 struct FrameSetup {
   using A = Arith<F, R>;
-  Vtu<F, R> vtu;  // c = the camera in the format
+  Vtu<F, R> vtu;  // c = the camera in the format (relative to the anchor)
   bool vtu_on = false;
   uint32_t origin[3] = {0, 0, 0};
   uint32_t light[3] = {0, 0, 0};
   double offset[3] = {0, 0, 0};
 
-  static FrameSetup make(const Vec3& camera, const Vec3& light_pos, bool vtu_on) {
+  static FrameSetup make(const Vec3& camera, const Vec3& light_pos, bool vtu_on, const Vec3& anchor = {}) {
     FrameSetup s;
-    s.vtu = Vtu<F, R>::from_camera(camera);
+    s.vtu = Vtu<F, R>::from_camera(camera - anchor);
     s.vtu_on = vtu_on;
     for (int i = 0; i < 3; ++i) {
-      s.light[i] = A::from_double(light_pos[i]);
+      s.light[i] = A::from_double(light_pos[i] - anchor[i]);
       s.origin[i] = vtu_on ? A::zero : s.vtu.c[i];
-      s.offset[i] = vtu_on ? A::to_double(s.vtu.c[i]) : 0.0;
+      s.offset[i] = anchor[i] + (vtu_on ? A::to_double(s.vtu.c[i]) : 0.0);
     }
     if (vtu_on) s.vtu.point(s.light);
     return s;

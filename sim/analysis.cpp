@@ -16,7 +16,7 @@ HitSideStats hit_side_stats(const Frame& f, const hls::Image& image, const scene
     constexpr hls::Rounding R = decltype(rnd)::value;
     using A = hls::Arith<F, R>;
     HitSideStats s;
-    const auto setup = hls::FrameSetup<F, R>::make(cam.position, light.position, cfg.vtu);
+    const auto setup = hls::FrameSetup<F, R>::make(cam.position, light.position, cfg.vtu, cfg.anchor);
     const uint32_t* l = setup.light;
     const double* off = setup.offset;
     hls::Image moved;

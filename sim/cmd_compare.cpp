@@ -18,7 +18,7 @@ void print_pixel(const char* who, const sim::PixelResult& p) {
 }
 
 void run_compare(const sim::RunOptions& o, const sc::SimOptions& so, int max_list) {
-  const sim::TraceConfig cfg = sim::trace_config(o);
+  sim::TraceConfig cfg = sim::trace_config(o);
   sc::SimConfig scfg = sc::finish_sim_options(so);
   scfg.progress = !o.quiet;
   sim::Prepared p = sim::prepare(o, cfg);

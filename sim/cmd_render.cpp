@@ -14,7 +14,7 @@ namespace {
 
 
 void run_render(const sim::RunOptions& o) {
-  const sim::TraceConfig cfg = sim::trace_config(o);
+  sim::TraceConfig cfg = sim::trace_config(o);
   sim::Prepared p = sim::prepare(o, cfg);
   const std::string tag = p.scene.name + "-" + sim::config_tag(cfg);
   const std::string png = o.png.empty() ? o.out_dir + "/" + tag + ".png" : o.png;
@@ -42,7 +42,7 @@ void run_render(const sim::RunOptions& o) {
   sim::FrameErrors fe;
   const bool have_ref = o.reference && !p.scene.tris.empty();
   if (have_ref) {
-    fe = sim::measure_errors(f, p.scene, p.image, cfg.threads);
+    fe = sim::measure_errors(f, p.scene, p.image, cfg.anchor, cfg.threads);
     sim::add_errors_json(j, fe, cfg.spawn.any_hit);
   }
   std::filesystem::create_directories(std::filesystem::path(png).parent_path().empty()

@@ -20,7 +20,7 @@ namespace {
 using sim::make_parent;
 
 void run_simulate(const sim::RunOptions& o, const sc::SimOptions& so) {
-  const sim::TraceConfig cfg = sim::trace_config(o);
+  sim::TraceConfig cfg = sim::trace_config(o);
   sc::SimConfig scfg = sc::finish_sim_options(so);
   scfg.progress = !o.quiet;
   sim::Prepared p = sim::prepare(o, cfg);
@@ -55,7 +55,7 @@ void run_simulate(const sim::RunOptions& o, const sc::SimOptions& so) {
   sim::FrameErrors fe;
   const bool have_ref = o.reference && !p.scene.tris.empty();
   if (have_ref) {
-    fe = sim::measure_errors(r.frame, p.scene, p.image, cfg.threads);
+    fe = sim::measure_errors(r.frame, p.scene, p.image, cfg.anchor, cfg.threads);
     sim::add_errors_json(j, fe, cfg.spawn.any_hit);
   }
   make_parent(png);

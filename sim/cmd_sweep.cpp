@@ -291,7 +291,7 @@ struct MapArgs {
 };
 
 void run_errormap(const sim::RunOptions& o, const MapArgs& ma) {
-  const sim::TraceConfig cfg = sim::trace_config(o);
+  sim::TraceConfig cfg = sim::trace_config(o);
   sim::Prepared p = sim::prepare(o, cfg);
   if (p.scene.tris.empty()) throw UserError("errormap: the scene has no triangles (needs the reference)");
   const std::string tag = p.scene.name + "-" + sim::config_tag(cfg) + "-errors";

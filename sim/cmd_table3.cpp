@@ -128,7 +128,7 @@ void run_table3(const Table3Args& a) {
     ro.height = a.height;
     ro.threads = a.threads;
     ro.shadow_hit = "closest";  // the paper's self-intersection count needs the nearest occluder
-    const sim::TraceConfig base = sim::trace_config(ro);
+    sim::TraceConfig base = sim::trace_config(ro);
     const scenes::Scene scene = sim::prepare(ro, base).scene;  // validated (the image is rebuilt below)
     names[si] = scene.name;
     std::fprintf(stderr, "table3: %s: reference...\n", sp.what.c_str());

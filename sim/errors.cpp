@@ -13,7 +13,7 @@
 
 namespace raycore::sim {
 
-scenes::Scene stored_scene(const scenes::Scene& scene, const hls::Image& image) {
+scenes::Scene stored_scene(const scenes::Scene& scene, const hls::Image& image, const hls::Vec3& anchor) {
   if (image.vtu_applied()) throw std::invalid_argument("stored_scene: the image is VTU-translated");
   if (image.tri_count() != scene.tris.size())
     throw std::invalid_argument("stored_scene: the image has " + std::to_string(image.tri_count()) +
@@ -43,15 +43,15 @@ scenes::Scene stored_scene(const scenes::Scene& scene, const hls::Image& image) 
         const long double rb = bg[j][0] - bd, rg = bg[j][1] - cd;
         const long double u = (rb * cv - bv * rg) / det, v = (bu * rg - rb * cu) / det;
         hls::Vec3 p;
-        p[a_u] = double(u);
-        p[a_v] = double(v);
-        p[k] = double(nd - nu * u - nv * v);
+        p[k] = double(nd - nu * u - nv * v + static_cast<long double>(anchor[k]));
+        p[a_u] = double(u + static_cast<long double>(anchor[a_u]));
+        p[a_v] = double(v + static_cast<long double>(anchor[a_v]));
         t[size_t(j)] = p;
       }
     }
     for (int i = 0; i < 3; ++i) {
-      s.camera.position[i] = A::to_double(A::from_double(scene.camera.position[i]));
-      s.light.position[i] = A::to_double(A::from_double(scene.light.position[i]));
+      s.camera.position[i] = anchor[i] + A::to_double(A::from_double(scene.camera.position[i] - anchor[i]));
+      s.light.position[i] = anchor[i] + A::to_double(A::from_double(scene.light.position[i] - anchor[i]));
     }
   });
   s.name = scene.name + " (stored)";
@@ -59,12 +59,12 @@ scenes::Scene stored_scene(const scenes::Scene& scene, const hls::Image& image) 
 }
 
 FrameErrors measure_errors(const Frame& f, const scenes::Scene& scene, const hls::Image& image,
-                           int threads) {
+                           const hls::Vec3& anchor, int threads) {
   const auto t0 = std::chrono::steady_clock::now();
   FrameErrors e;
   const Frame ref = reference::render(scene, f.width, f.height, threads);
   e.total = reference::compute_errors(f, ref, scene.tris);
-  const scenes::Scene st = stored_scene(scene, image);
+  const scenes::Scene st = stored_scene(scene, image, anchor);
   const Frame ref_st = reference::render(st, f.width, f.height, threads);
   e.stored = reference::compute_errors(f, ref_st, st.tris);
   e.reference_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();

@@ -52,6 +52,12 @@ void add_run_options(CLI::App& c, RunOptions& o) {
                "the image is the same, the extra rays cost cycles and can self-intersect)")
       ->check(CLI::IsMember({"front", "all"}))
       ->capture_default_str();
+  c.add_option("--store", o.store,
+               "how the memory image holds the scene: world (coordinates as given) or anchored "
+               "(relative to the scene's box centre, chosen on the host in double; the camera and "
+               "light registers relative to it, so the VTU translates by camera - anchor)")
+      ->check(CLI::IsMember({"world", "anchored"}))
+      ->capture_default_str();
   c.add_option("--tmin", o.tmin, "ray t_min (default 2^-12, RayCore's)")
       ->check(CLI::Range(0.0, 1e6));
   c.add_option("--width", o.width, "image width")->check(CLI::Range(1, 16384))->capture_default_str();
@@ -100,6 +106,10 @@ TraceConfig trace_config(const RunOptions& o) {
   c.spawn.segment = o.shadow_ray == "segment";
   c.spawn.any_hit = o.shadow_hit == "any";
   c.spawn.spawn_all = o.shadow_spawn == "all";
+  c.anchored = o.store == "anchored";
+  if (c.anchored && (!o.image_in.empty() || !o.dump_image.empty()))
+    throw cli::UserError("--store anchored builds its image from the scene: it cannot be combined with "
+                         "--image or --dump-image (a dumped image does not record its anchor)");
   if (!std::isfinite(o.tmin) || o.tmin < 0) throw cli::UserError("--tmin must be a finite number >= 0");
   c.tmin = o.tmin;
   c.width = o.width;
@@ -124,7 +134,7 @@ hls::BuildOptions build_options(const RunOptions& o) {
   return bo;
 }
 
-Prepared prepare(const RunOptions& o, const TraceConfig& cfg) {
+Prepared prepare(const RunOptions& o, TraceConfig& cfg) {
   Prepared p;
   if (o.scene.empty()) {
     if (o.image_in.empty()) throw cli::UserError("no scene given (a generator name or a .gltf/.glb file)");
@@ -151,7 +161,13 @@ Prepared prepare(const RunOptions& o, const TraceConfig& cfg) {
                            " triangles, the scene " + std::to_string(p.scene.tris.size()));
   } else {
     hls::BuildOptions bo = build_options(o);
-    p.image = hls::build_image(p.scene.tris, cfg.format, cfg.rounding, bo, &p.tree);
+    cfg.anchor = {};
+    if (cfg.anchored) {
+      cfg.anchor = hls::store_anchor(p.scene.tris);
+      p.image = hls::build_image(hls::relative_to(p.scene.tris, cfg.anchor), cfg.format, cfg.rounding, bo, &p.tree);
+    } else {
+      p.image = hls::build_image(p.scene.tris, cfg.format, cfg.rounding, bo, &p.tree);
+    }
     p.built = true;
   }
   if (!o.dump_image.empty()) p.image.save(o.dump_image);
@@ -160,7 +176,8 @@ Prepared prepare(const RunOptions& o, const TraceConfig& cfg) {
 
 std::string config_tag(const TraceConfig& c) {
   return std::string(hls::format_name(c.format)) + "-" + hls::rounding_name(c.rounding) +
-         (c.vtu ? "-vtu-" : "-novtu-") + to_string(c.spawn.spawn) + (c.spawn.spawn_all ? "-all" : "");
+         (c.vtu ? "-vtu-" : "-novtu-") + to_string(c.spawn.spawn) + (c.spawn.spawn_all ? "-all" : "") +
+         (c.anchored ? "-anchored" : "");
 }
 
 static nlohmann::json vec(const hls::Vec3& v) { return {v.x, v.y, v.z}; }
@@ -189,6 +206,8 @@ nlohmann::json config_json(const TraceConfig& c) {
                       {"shadow_ray", c.spawn.segment ? "segment" : "unit"},
                       {"shadow_hit", c.spawn.any_hit ? "any" : "closest"},
                       {"shadow_spawn", c.spawn.spawn_all ? "all" : "front"},
+                      {"store", c.anchored ? "anchored" : "world"},
+                      {"anchor", vec(c.anchor)},
                       {"width", c.width},
                       {"height", c.height}};
   if (spawn_uses_ulps(c.spawn.spawn)) j["spawn_ulps"] = c.spawn.ulps;

@@ -30,6 +30,8 @@ struct RunOptions {
   std::string kd = "ours";  // kd-tree cost preset: ours (hls::BuildOptions) or raycore
   double kd_node_cost = 0, kd_tri_cost = 0, kd_split_ratio = 0, kd_empty_bonus = -1;  // 0/-1: preset's
   int kd_max_depth = 0;     // 0: automatic
+  std::string store = "world";  // world: the image holds world coordinates; anchored: relative to
+                                //   the scene's box centre (TraceConfig::anchor)
   std::string shadow_spawn = "front";  // front: only hits whose light is in front; all: every hit
   std::string shadow_hit = "any";  // any: the walk ends at the first leaf with a hit; closest
   std::string image_in;    // --image: run from a dumped memory image
@@ -62,7 +64,8 @@ hls::BuildOptions build_options(const RunOptions& o);
 
 // Loads or generates the scene, applies overrides, checks camera, light and range, then builds
 // the memory image (or loads --image, which must match format and rounding) and dumps it if asked.
-Prepared prepare(const RunOptions& o, const TraceConfig& cfg);
+// With --store anchored it sets cfg.anchor (the box centre) and stores the scene relative to it.
+Prepared prepare(const RunOptions& o, TraceConfig& cfg);
 
 // A short name of the configuration, e.g. "fp24-rtz-vtu-none".
 std::string config_tag(const TraceConfig& cfg);

@@ -41,7 +41,7 @@ SimResult run(const hls::Image& image, const scenes::Camera& cam, const scenes::
   fc.shadow_retired.assign(res.frame.px.size(), 0);
   fc.empty_tree = fc.header.node_count == 0;
   // The host's set-up registers, formed as for the golden tracer (hls::FrameSetup).
-  const auto setup = hls::FrameSetup<F, R>::make(cam.position, light.position, tc.vtu);
+  const auto setup = hls::FrameSetup<F, R>::make(cam.position, light.position, tc.vtu, tc.anchor);
   const hls::Vtu<F, R>& vtu = setup.vtu;
   image.box(fc.box_lo, fc.box_hi);
   fc.vtu_on = tc.vtu;

@@ -140,7 +140,7 @@ Frame trace_t(const hls::Image& image_in, const scenes::Camera& cam, const scene
   using F = typename A::Fmt;
   constexpr hls::Rounding R = A::rounding;
   const auto t0 = std::chrono::steady_clock::now();
-  const auto setup = hls::FrameSetup<F, R>::make(cam.position, light.position, cfg.vtu);
+  const auto setup = hls::FrameSetup<F, R>::make(cam.position, light.position, cfg.vtu, cfg.anchor);
   const uint32_t* origin = setup.origin;
   const uint32_t* l = setup.light;
   const double* offset = setup.offset;

@@ -19,6 +19,10 @@ struct TraceConfig {
   hls::FormatId format = hls::FormatId::fp24;
   hls::Rounding rounding = hls::Rounding::rtz;
   bool vtu = false;
+  // --store: the point the memory image is stored relative to (world: 0; anchored: the scene's box
+  // centre, chosen on the host in double by sim::prepare). See hls::FrameSetup.
+  bool anchored = false;
+  hls::Vec3 anchor;
   hls::SpawnParams spawn;     // strategy and (ulp_offset) its ulps
   double tmin = 1.0 / 4096;   // 2^-12, RayCore's
   int width = 800, height = 480;

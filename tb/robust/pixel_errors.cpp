@@ -83,7 +83,7 @@ template <class A>
 void analyse(const sim::RunOptions& o, bool literal, const std::vector<int>& pick_in) {
   const int pick[2] = {pick_in.size() == 2 ? pick_in[0] : -1, pick_in.size() == 2 ? pick_in[1] : -1};
   using F = typename A::Fmt;
-  const sim::TraceConfig cfg = sim::trace_config(o);
+  sim::TraceConfig cfg = sim::trace_config(o);
   const sim::Prepared p = sim::prepare(o, cfg);
   const auto& sc = p.scene;
   const sim::Frame g = sim::trace_golden(p.image, sc.camera, sc.light, cfg);
@@ -97,7 +97,7 @@ void analyse(const sim::RunOptions& o, bool literal, const std::vector<int>& pic
               (unsigned long long)m.light_leak, (unsigned long long)m.primary_errors);
 
   // The datapath's view: frame set-up, (translated) triangles by scene index.
-  const auto setup = hls::FrameSetup<F, A::rounding>::make(sc.camera.position, sc.light.position, cfg.vtu);
+  const auto setup = hls::FrameSetup<F, A::rounding>::make(sc.camera.position, sc.light.position, cfg.vtu, cfg.anchor);
   const hls::Image img = cfg.vtu ? hls::transform_image(p.image, setup.vtu) : p.image;
   std::unordered_map<uint32_t, hls::WaldTri<F>> wt;
   for (uint32_t i = 0; i < img.tri_count(); ++i) {

@@ -163,14 +163,18 @@ inline scenes::Scene tiny_scene() {
 // retired exactly once.
 inline Summary expect_match(const scenes::Scene& s, const sim::TraceConfig& tc, sc::SimConfig cfg = {}) {
   static std::map<std::string, hls::Image> images;  // built once per scene, format and policy
-  const std::string key = s.name + hls::format_name(tc.format) + hls::rounding_name(tc.rounding);
-  if (!images.count(key)) images[key] = hls::build_image(s.tris, tc.format, tc.rounding);
+  const std::string key = s.name + hls::format_name(tc.format) + hls::rounding_name(tc.rounding) +
+                          (tc.anchored ? "anchored" : "");
+  if (!images.count(key))  // --store anchored: relative to tc.anchor (the caller's store_anchor)
+    images[key] = hls::build_image(tc.anchored ? hls::relative_to(s.tris, tc.anchor) : s.tris, tc.format,
+                                   tc.rounding);
   const hls::Image& img = images[key];
   const sim::Frame golden = sim::trace_golden(img, s.camera, s.light, tc);
   const Summary r = run_child({&s, &img, tc, cfg}, golden);
   const std::string what = s.name + " " + hls::format_name(tc.format) + "-" + hls::rounding_name(tc.rounding) +
                            (tc.vtu ? "-vtu-" : "-novtu-") + sim::to_string(tc.spawn.spawn) +
-                           (tc.spawn.segment ? "-segment" : "") + " seed " + std::to_string(cfg.seed) +
+                           (tc.spawn.segment ? "-segment" : "") + (tc.spawn.spawn_all ? "-all" : "") +
+                           (tc.anchored ? "-anchored" : "") + " seed " + std::to_string(cfg.seed) +
                            " rtus " + std::to_string(cfg.rtus);
   EXPECT_TRUE(r.ok) << what << ": " << r.error;
   EXPECT_EQ(r.mismatches, 0u) << what << ": first differing pixel (" << r.first_x << ", "

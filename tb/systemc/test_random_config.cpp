@@ -103,13 +103,16 @@ Drawn draw(uint64_t seed, uint64_t index) {
   c.ist_queue = uint32_t(pick(1, 64));
   c.hit_latency = uint32_t(pick(1, 30));
   c.tile = uint32_t(pick(1, 16));
-  d.tc.spawn.spawn_all = pick(0, 2) == 0;  // drawn last: the earlier draws of a seed stay as they were
+  // Drawn last: the earlier draws of a seed stay as they were.
+  d.tc.spawn.spawn_all = pick(0, 2) == 0;
+  d.tc.anchored = pick(0, 3) == 0;
+  d.tc.anchor = d.tc.anchored ? hls::store_anchor(scene_by_index(d.scene).tris) : hls::Vec3{};
   std::ostringstream os;
   os << "scene " << scene_by_index(d.scene).name << " " << d.tc.width << "x" << d.tc.height << " "
      << hls::format_name(f) << "-" << hls::rounding_name(r) << (d.tc.vtu ? " vtu" : " novtu") << " spawn "
      << sim::to_string(d.tc.spawn.spawn) << (d.tc.spawn.segment ? " segment" : " unit")
      << (d.tc.spawn.any_hit ? " any-hit" : " closest-hit") << (d.tc.spawn.spawn_all ? " spawn-all" : "")
-     << " | rtus " << c.rtus << " mem " << c.mem_latency
+     << (d.tc.anchored ? " anchored" : "") << " | rtus " << c.rtus << " mem " << c.mem_latency
      << "/" << c.mem_bandwidth << "B/q" << c.mem_queue_depth << " seed " << c.seed << " caches "
      << c.node_cache.size_bytes << "/" << c.node_cache.ways << "w/" << c.node_cache.line_bytes << "B/"
      << c.node_cache.mshrs << "m/" << c.node_cache.hit_latency << " " << c.list_cache.size_bytes << "/"
@@ -136,7 +139,8 @@ TEST(RandomConfig, GoldenMatchAndNoHang) {
     std::printf("config %llu: %s\n", (unsigned long long)i, d.line.c_str());
     std::fflush(stdout);
     const scenes::Scene& s = scene_by_index(d.scene);
-    const hls::Image img = hls::build_image(s.tris, d.tc.format, d.tc.rounding);
+    const hls::Image img = hls::build_image(d.tc.anchored ? hls::relative_to(s.tris, d.tc.anchor) : s.tris,
+                                            d.tc.format, d.tc.rounding);
     const sim::Frame golden = sim::trace_golden(img, s.camera, s.light, d.tc);
     const Summary r = run_child({&s, &img, d.tc, d.cfg}, golden);
     if (!r.ok && std::string(r.error).find("--stack-depth") != std::string::npos) {

@@ -96,6 +96,17 @@ TEST(GoldenMatch, ShadowSpawnAll) {
     }
   }
 }
+// --store anchored: the image relative to the scene's box centre, camera and light relative to it
+// (the VTU translates by camera - anchor): golden match with the VTU off and on, on a far scene.
+TEST(GoldenMatch, AnchoredStore) {
+  const scenes::Scene far = scenes::generate("far");
+  for (bool vtu : {false, true}) {
+    auto tc = config(FormatId::fp24, Rounding::rtz, vtu, 40, 24);
+    tc.anchored = true;
+    tc.anchor = hls::store_anchor(far.tris);
+    EXPECT_GT(expect_match(far, tc).shadow, 0u);
+  }
+}
 // The levers of issue 14 one by one and together, and the RayCore-like baseline: golden match.
 TEST(GoldenMatch, ThroughputLevers) {
   const auto tc = config(FormatId::fp24, Rounding::rtz, true, 48, 30);
