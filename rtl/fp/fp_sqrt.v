@@ -56,19 +56,20 @@ module fp_sqrt #(
   wire [NQ:0]          ready  /* verilator split_var */;
   wire [(NQ+1)*PW-1:0] stage  /* verilator split_var */;
 
-  // ---- unpack, special cases ---------------------------------------------------------------------
+  // ---- unpack, special cases --------------------------------------------------------------------
   wire za        = ~|in_a_i[W-2:M];
   wire spec      = za | in_a_i[W-1];        // zero or negative: no root to compute
   wire spec_sign = za & in_a_i[W-1];        // sqrt(-0) = -0; sqrt(negative) = +0
   // e odd <=> the biased exponent is even (the bias is odd).
   wire             e_odd   = ~in_a_i[M];
   wire [EXP_W-1:0] exp_top = ({3'b000, in_a_i[W-2:M]} + BIAS + 1'b1) >> 1;
-  wire [XW-1:0]    x_top   = e_odd ? {2'b00, 1'b1, in_a_i[M-1:0]} : {1'b0, 1'b1, in_a_i[M-1:0], 1'b0};
+  wire [XW-1:0]    x_top   = e_odd ? {2'b00, 1'b1, in_a_i[M-1:0]}
+                                    : {1'b0, 1'b1, in_a_i[M-1:0], 1'b0};
   assign valid[0] = in_valid_i;
   assign in_ready_o = ready[0];
   assign stage[PW-1:0] = {in_tag_i, spec, spec_sign, exp_top, x_top, {RW{1'b0}}, {NQ{1'b0}}};
 
-  // ---- restoring square root: one root bit per step ----------------------------------------------
+  // ---- restoring square root: one root bit per step ---------------------------------------------
   genvar i;
   generate
     for (i = 0; i < NQ; i = i + 1) begin : g_step

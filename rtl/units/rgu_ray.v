@@ -99,7 +99,7 @@ module rgu_ray #(
     .sign_i(1'b0), .exp_i(COORD_EXP), .mag_i({in_y_i, {(M+3){1'b0}}}), .sticky_i(1'b0),
     .res_o(fy));
 
-  // ---- level 1: fx*dx[c] (j = c), fy*dy[c] (j = 3 + c) -------------------------------------------
+  // ---- level 1: fx*dx[c] (j = c), fy*dy[c] (j = 3 + c) ------------------------------------------
   wire [6*W-1:0] l1_a = {fy, fy, fy, fx, fx, fx};
   wire [6*W-1:0] l1_b = {cam_dy_z_i, cam_dy_y_i, cam_dy_x_i, cam_dx_z_i, cam_dx_y_i, cam_dx_x_i};
   wire [6*W-1:0] l1_prod;
@@ -136,7 +136,7 @@ module rgu_ray #(
     end
   endgenerate
 
-  // ---- level 3: squares ---------------------------------------------------------------------------
+  // ---- level 3: squares -------------------------------------------------------------------------
   wire [3*W-1:0] l3_sq;
   wire [2:0]     l3_unused_v, l3_unused_r;
   wire [T-1:0]   c3_tag;
@@ -154,7 +154,7 @@ module rgu_ray #(
     end
   endgenerate
 
-  // ---- level 4: the squared length ----------------------------------------------------------------
+  // ---- level 4: the squared length --------------------------------------------------------------
   wire [W-1:0]   l4_len2;
   wire           l4_unused_v, l4_unused_r;
   wire [T-1:0]   c4_tag;
@@ -168,7 +168,7 @@ module rgu_ray #(
     .in_a_i(l3_sq[0 +: W]), .in_b_i(l3_sq[W +: W]), .in_c_i(l3_sq[2*W +: W]),
     .out_valid_o(l4_unused_v), .out_ready_i(r[5]), .out_res_o(l4_len2));
 
-  // ---- level 5: the length ------------------------------------------------------------------------
+  // ---- level 5: the length ----------------------------------------------------------------------
   wire [W-1:0]   l5_len;
   wire           l5_unused_v, l5_unused_r, l5_unused_tag;
   wire [T-1:0]   c5_tag;
@@ -182,7 +182,7 @@ module rgu_ray #(
     .in_a_i(l4_len2), .in_tag_i(1'b0), .out_valid_o(l5_unused_v), .out_ready_i(r[6]),
     .out_res_o(l5_len), .out_tag_o(l5_unused_tag));
 
-  // ---- level 6: 1 / length ------------------------------------------------------------------------
+  // ---- level 6: 1 / length ----------------------------------------------------------------------
   wire [W-1:0]   l6_rl;
   wire           l6_unused_v, l6_unused_r;
   wire [T-1:0]   c6_tag;
@@ -196,7 +196,7 @@ module rgu_ray #(
     .in_a_i(ONE), .in_b_i(l5_len), .out_valid_o(l6_unused_v), .out_ready_i(r[7]),
     .out_res_o(l6_rl));
 
-  // ---- level 7: the normalised direction ----------------------------------------------------------
+  // ---- level 7: the normalised direction --------------------------------------------------------
   wire [3*W-1:0] l7_d;
   wire [2:0]     l7_unused_v, l7_unused_r;
   wire [T-1:0]   c7_tag;
@@ -212,7 +212,7 @@ module rgu_ray #(
     end
   endgenerate
 
-  // ---- level 8: the reciprocal direction ----------------------------------------------------------
+  // ---- level 8: the reciprocal direction --------------------------------------------------------
   wire [3*W-1:0] l8_inv;
   wire [2:0]     l8_unused_v, l8_unused_r;
   wire [T-1:0]   c8_tag;
@@ -230,7 +230,7 @@ module rgu_ray #(
     end
   endgenerate
 
-  // ---- outputs ------------------------------------------------------------------------------------
+  // ---- outputs ----------------------------------------------------------------------------------
   assign out_o_x_o   = cam_o_x_i;
   assign out_o_y_o   = cam_o_y_i;
   assign out_o_z_o   = cam_o_z_i;
