@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # make area: yosys `synth` + `stat` of every floating-point module of rtl/fp/ and of the units of
-# rtl/units/ (vtu, ist) for FP24 and FP32, each rounding mode, at a fixed pipeline depth (STAGES=2
-# unless RAYCORE_AREA_STAGES says otherwise), written as a markdown table to docs/area.md (or the
-# file given as $1).
+# rtl/units/ (vtu, ist, trv, rgu, ...) for FP24 and FP32, each rounding mode, at a fixed pipeline
+# depth (STAGES=2 unless RAYCORE_AREA_STAGES says otherwise), written as a markdown table to
+# docs/area.md (or the file given as $1).
 #
 # Columns: yosys generic cells after `synth -flatten`, flip-flops among them, a NAND2-equivalent
 # estimate (each generic cell weighted by the area of the matching NanGate 45 nm Open Cell Library
@@ -25,7 +25,7 @@ for f in rtl/units/*.v; do
   done
   [ $helper -eq 0 ] && UNITS+=("$n")
 done
-MODULES=(fp_add fp_add3 fp_mul fp_div fp_cmp "${UNITS[@]}")
+MODULES=(fp_add fp_add3 fp_mul fp_div fp_sqrt fp_cmp "${UNITS[@]}")
 # The sources a module is read from: rtl/fp/*.v, plus for a unit rtl/units/<unit>.v and its
 # helpers rtl/units/<unit>_*.v (so an unfinished file of another unit cannot break this one).
 srcs_for() {

@@ -1,5 +1,6 @@
-// systemc/rgu.h - ray generation: primary rays in tile order (tile i of the frame belongs to RTU
-// i mod N), one ray per cycle into a free slot; shadow rays handed over by hit go first.
+// systemc/rgu.h - ray generation: primary rays in tile order (hls::RguTiles: tile i of the frame
+// belongs to RTU i mod N), one ray per cycle into a free slot, each computed by hls::rgu_primary
+// from the camera registers (FrameCtx::rgu_cam); shadow rays handed over by hit go first.
 #pragma once
 
 #include <systemc>
@@ -14,14 +15,10 @@ class Rgu : public sc_core::sc_module {
  public:
   Rgu(sc_core::sc_module_name name, FrameCtx& fc, RtuChannels& ch, RtuStats& st, int rtu, int rtus,
       uint32_t tile)
-      : sc_core::sc_module(name), fc_(fc), ch_(ch), st_(st), rtu_(rtu), rtus_(rtus), tile_(int(tile)) {
-    tiles_x_ = (fc.width + tile_ - 1) / tile_;
-    tiles_ = tiles_x_ * ((fc.height + tile_ - 1) / tile_);
-    tile_idx_ = rtu_;
-    advance_to_valid();
-  }
+      : sc_core::sc_module(name), fc_(fc), ch_(ch), st_(st),
+        walk_(fc.width, fc.height, int(tile), rtu, rtus) {}
 
-  bool primaries_left() const { return tile_idx_ < tiles_; }
+  bool primaries_left() const { return !walk_.done(); }
 
   bool tick(Cycle now) {
     if (ch_.shadow_q.can_pop(now) && ch_.trv_q.can_push()) {
@@ -39,20 +36,17 @@ class Rgu : public sc_core::sc_module {
     }
     const uint16_t s = ch_.free_slots.back();
     ch_.free_slots.pop_back();
-    const int x = (tile_idx_ % tiles_x_) * tile_ + px_, y = (tile_idx_ / tiles_x_) * tile_ + py_;
-    const hls::Vec3 dv = scenes::primary_direction(fc_.cam, x, y, fc_.width, fc_.height);
-    const double dir[3] = {dv.x, dv.y, dv.z};
     Slot& sl = ch_.slots[s];
-    sl.ray = hls::rgu_primary<A>(fc_.origin, dir, fc_.tmin);
+    sl.ray = hls::rgu_primary<A>(fc_.rgu_cam, uint32_t(walk_.x()), uint32_t(walk_.y()), fc_.tmin);
     sl.shadow = false;
-    sl.pixel = uint32_t(y) * uint32_t(fc_.width) + uint32_t(x);
+    sl.pixel = walk_.pixel();
     sl.skip_id = ~0u;
     sl.state = SlotState::start;
     ch_.trv_q.push(s, now + 1);
     ++st_.primary_rays;
     ++st_.rgu_busy;
     ++fc_.issued;
-    next_pixel();
+    walk_.next();
     if (!primaries_left()) {
       st_.rgu_primary_end = now + 1;
       st_.rgu_busy_primary = st_.rgu_busy;
@@ -67,32 +61,10 @@ class Rgu : public sc_core::sc_module {
   }
 
  private:
-  bool pixel_ok() const {
-    const int x = (tile_idx_ % tiles_x_) * tile_ + px_, y = (tile_idx_ / tiles_x_) * tile_ + py_;
-    return x < fc_.width && y < fc_.height;
-  }
-  void step() {
-    if (++px_ == tile_) {
-      px_ = 0;
-      if (++py_ == tile_) {
-        py_ = 0;
-        tile_idx_ += rtus_;
-      }
-    }
-  }
-  void advance_to_valid() {
-    while (primaries_left() && !pixel_ok()) step();
-  }
-  void next_pixel() {
-    step();
-    advance_to_valid();
-  }
-
   FrameCtx& fc_;
   RtuChannels& ch_;
   RtuStats& st_;
-  int rtu_, rtus_, tile_;
-  int tiles_x_ = 0, tiles_ = 0, tile_idx_ = 0, px_ = 0, py_ = 0;
+  hls::RguTiles walk_;
 };
 
 }  // namespace raycore::sc

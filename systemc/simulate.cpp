@@ -56,6 +56,8 @@ SimResult run(const hls::Image& image, const scenes::Camera& cam, const scenes::
     fc.light[i] = setup.light[i];
     fc.offset[i] = setup.offset[i];
   }
+  fc.rgu_cam = hls::rgu_camera<A>(fc.origin, cam.forward, cam.right, cam.up, cam.yfov, tc.width,
+                                  tc.height);
   fc.tmin = A::from_double(tc.tmin);
   fc.spawn = sim::resolved_spawn(tc);
   if (cfg.stack_depth < 1 || cfg.stack_depth > uint32_t(kStackDepth))

@@ -9,6 +9,7 @@
 
 #include "hls/hit.h"
 #include "hls/ray.h"
+#include "hls/rgu.h"
 #include "scenes/scene.h"
 #include "sim/frame.h"
 #include "systemc/ascache.h"
@@ -68,6 +69,7 @@ struct FrameCtx {
   int width = 0, height = 0;
   scenes::Camera cam;
   uint32_t origin[3] = {0, 0, 0};
+  hls::RguCamera rgu_cam;  // the rgu's camera registers (hls::rgu_camera, origin included)
   uint32_t light[3] = {0, 0, 0};
   uint32_t box_lo[3] = {0, 0, 0}, box_hi[3] = {0, 0, 0};
   // Before the VTU (world space, in the format): a pin-level VTU translates these at set-up.

@@ -153,6 +153,8 @@ Frame trace_t(const hls::Image& image_in, const scenes::Camera& cam, const scene
   const Tracer<A> tracer(*img);
   const uint32_t tmin = A::from_double(cfg.tmin);
   const hls::SpawnParams sp = resolved_spawn(cfg);
+  const hls::RguCamera rgu_cam =
+      hls::rgu_camera<A>(origin, cam.forward, cam.right, cam.up, cam.yfov, cfg.width, cfg.height);
 
   Frame f;
   f.width = cfg.width;
@@ -166,9 +168,7 @@ Frame trace_t(const hls::Image& image_in, const scenes::Camera& cam, const scene
     TraceStats& s = st[size_t(tid)];
     for (int y = tid; y < cfg.height; y += nthreads) {
       for (int x = 0; x < cfg.width; ++x) {
-        const hls::Vec3 dv = scenes::primary_direction(cam, x, y, cfg.width, cfg.height);
-        const double dir[3] = {dv.x, dv.y, dv.z};
-        const hls::Ray pr = hls::rgu_primary<A>(origin, dir, tmin);
+        const hls::Ray pr = hls::rgu_primary<A>(rgu_cam, uint32_t(x), uint32_t(y), tmin);
         ++s.primary_rays;
         PixelResult& p = f.px[size_t(y) * size_t(cfg.width) + size_t(x)];
         const auto h = tracer.trace(pr, ~0u, s);

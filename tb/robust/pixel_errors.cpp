@@ -106,6 +106,8 @@ void analyse(const sim::RunOptions& o, bool literal, const std::vector<int>& pic
   }
   const uint32_t tmin = A::from_double(cfg.tmin);
   const hls::SpawnParams sp = sim::resolved_spawn(cfg);
+  const hls::RguCamera rgu_cam = hls::rgu_camera<A>(setup.origin, sc.camera.forward, sc.camera.right,
+                                                    sc.camera.up, sc.camera.yfov, cfg.width, cfg.height);
   const Vec3 L = sc.light.position, C = sc.camera.position;
   std::map<std::string, int> summary, kinds, floor_by_rel;
 
@@ -125,9 +127,7 @@ void analyse(const sim::RunOptions& o, bool literal, const std::vector<int>& pic
       const double cosl = side * hls::dot(n, L - P) / hls::length(L - P);
       const double cosc = side * hls::dot(n, C - P) / hls::length(C - P);
       // The unit's shadow set-up for this pixel (the golden tracer's operations).
-      const Vec3 dv = raycore::scenes::primary_direction(sc.camera, x, y, cfg.width, cfg.height);
-      const double dir[3] = {dv.x, dv.y, dv.z};
-      const hls::Ray pr = hls::rgu_primary<A>(setup.origin, dir, tmin);
+      const hls::Ray pr = hls::rgu_primary<A>(rgu_cam, uint32_t(x), uint32_t(y), tmin);
       const auto wi = wt.find(uint32_t(a.tri));
       if (wi == wt.end()) continue;  // not in the image (degenerate): cannot have been hit
       const auto& w = wi->second;

@@ -5,7 +5,8 @@
 //   1. fullrate: the first 4096 directed vectors with no stalls (one op per cycle, latency ==
 //      STAGES, checked),
 //   2. directed: the C++ tests' directed operand set (tb/fp/fp_check.h): all pairs (add: with
-//      sub_i 0 and 1; add3: all triples of the small set),
+//      sub_i 0 and 1; add3: all triples of the small set; sqrt: each value, and for FP24 every
+//      mantissa of six exponent fields),
 //   3. random: RAYCORE_RTL_RANDOM (default 10^6) operand sets from the C++ tests' generator
 //      (fptest::Gen, seeded from the test name and RAYCORE_FP_SEED),
 // the last two with random input gaps and random output back-pressure.
@@ -147,6 +148,43 @@ using MulOp = BinOp<F, R, false>;
 template <class F, Rounding R>
 using DivOp = BinOp<F, R, true>;
 
+// Square root: one operand. Directed: the directed set, then every mantissa of the two smallest,
+// the two around 1 and the two largest exponent fields (both parities: the radicand's two
+// alignments) when the format has at most 2^16 mantissas. Random: the adders' generator's
+// operands, positive 7 times in 8 (a negative one's root is +0).
+template <class F, Rounding R>
+struct SqrtOp : OpBase<F> {
+  using Res = Result<F>;
+  static const char* name() { return "fp_sqrt"; }
+  template <class V>
+  static void drive(V& m, const Operands& x) {
+    m.in_a_i = x.a;
+  }
+  static Res expect(const Operands& x) { return Res::one(hls::sqrt<F, R>(x.a)); }
+  static std::string describe(const Operands& x) { return "sqrt " + hex<F>(x.a); }
+  static constexpr uint32_t sweep_mans() { return F::man_bits <= 16 ? (1u << F::man_bits) : 0u; }
+  static constexpr uint32_t sweep_exps[6] = {1, 2, uint32_t(F::bias), uint32_t(F::bias) + 1,
+                                             uint32_t(F::exp_field_max) - 1,
+                                             uint32_t(F::exp_field_max)};
+  static uint64_t directed_count(size_t n) { return uint64_t(n) + 6u * sweep_mans(); }
+  static Operands directed(const std::vector<uint32_t>& d, uint64_t k) {
+    Operands x;
+    if (k < d.size()) {
+      x.a = d[k];
+    } else {
+      k -= d.size();
+      x.a = (sweep_exps[k / sweep_mans()] << F::man_bits) | uint32_t(k % sweep_mans());
+    }
+    return x;
+  }
+  static Operands random(Gen<F>& g) {
+    Operands x;
+    x.a = g.any();
+    if (g.below(8) != 0) x.a &= F::max_mag;
+    return x;
+  }
+};
+
 template <class F, Rounding>
 struct CmpOp : OpBase<F> {
   using Fmt = F;
@@ -203,6 +241,7 @@ void run_variant(const char* variant, const char* mode, int stages) {
 #define RAYCORE_RTL_FP_OP_fp_mul MulOp
 #define RAYCORE_RTL_FP_OP_fp_div DivOp
 #define RAYCORE_RTL_FP_OP_fp_cmp CmpOp
+#define RAYCORE_RTL_FP_OP_fp_sqrt SqrtOp
 #define RAYCORE_RTL_FP_VARIANT(V, module, fmt, mode, stages)                                  \
   TEST(RtlCosim, V) {                                                                         \
     run_variant<::V, RAYCORE_RTL_FP_OP_##module<hls::fmt, Rounding::mode>>(#V, #mode, stages); \

@@ -8,6 +8,7 @@
 
 #include "hls/fp.h"
 #include "hls/image.h"
+#include "hls/rgu.h"
 #include "scenes/generate.h"
 #include "scenes/scene.h"
 #include "sim/errors.h"
@@ -115,7 +116,8 @@ double rne17(double x) {
 }
 
 // The plane z = -10 seen from the origin (FP24 rne, VTU off, t_min = 0, no offset): the hit point
-// is h_z = rne(t d_z), t = rne(-10 rne(1 / d_z)), and the shadow ray to a light above the plane
+// is h_z = rne(t d_z), t = rne(-10 rne(1 / d_z)) (d_z: the rgu's direction, hls::rgu_primary, the
+// one number taken from hls/ here), and the shadow ray to a light above the plane
 // hits its own triangle exactly when h_z < -10 (its distance numerator -10 - h_z is then exact
 // and positive). The expected count is computed here with double arithmetic and explicit
 // rounding; with rtz the hit point never passes the plane (|t d_z| <= 10), so the count is 0.
@@ -128,10 +130,14 @@ TEST(Golden, KnownSelfIntersectionCount) {
     auto cfg = config(FormatId::fp24, r, false, w, h);
     cfg.tmin = 0;
     const sim::Frame fr = trace(s, cfg);
+    using A = hls::Arith<hls::FP24, Rounding::rne>;
+    const uint32_t origin[3] = {0, 0, 0};
+    const hls::RguCamera rc = hls::rgu_camera<A>(origin, s.camera.forward, s.camera.right,
+                                                 s.camera.up, s.camera.yfov, w, h);
     uint64_t expected = 0, got = 0;
     for (int y = 0; y < h; ++y)
       for (int x = 0; x < w; ++x) {
-        const double dz = rne17(scenes::primary_direction(s.camera, x, y, w, h).z);
+        const double dz = A::to_double(hls::rgu_primary<A>(rc, uint32_t(x), uint32_t(y), 0).d[2]);
         const double t = rne17(-10.0 * rne17(1.0 / dz));
         const double hz = rne17(t * dz);
         if (r == Rounding::rne && hz < -10) ++expected;
