@@ -668,7 +668,7 @@ std::string plot_data(const std::vector<Row>& rows, std::vector<std::string>* or
   for (const auto& s : so) {
     if (!first) os << "\n\n";
     first = false;
-    os << "# " << s << "\n# error_pct rays_per_cycle pareto format vtu spawn label\n";
+    os << "# " << s << "\n# error_pct rays_per_cycle pareto format vtu spawn label store\n";
     // Pareto points sorted by error, so a line through them draws the front.
     std::vector<const Row*> v;
     for (const auto& r : rows)
@@ -680,7 +680,8 @@ std::string plot_data(const std::vector<Row>& rows, std::vector<std::string>* or
       const Job& j = r->job;
       os << num(r->error_pct, 6) << " " << num(r->rays_per_cycle, 6) << " " << (r->pareto ? 1 : 0) << " "
          << j.format_name << " " << (j.vtu ? "on" : "off") << " " << j.spawn << " " << j.format_name
-         << (j.vtu ? "/vtu/" : "/-/") << j.spawn << (j.store == "world" ? "" : "/" + j.store) << "\n";
+         << (j.vtu ? "/vtu/" : "/-/") << j.spawn << (j.store == "world" ? "" : "/" + j.store) << " " << j.store
+         << "\n";
     }
   }
   return os.str();

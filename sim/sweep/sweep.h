@@ -180,7 +180,8 @@ std::string target_markdown(const std::vector<Row>& rows, const std::vector<std:
                             const TargetSpec& t = TargetSpec());
 // The scenes of `want` that have rows, in want's order.
 std::vector<std::string> scenes_present(const std::vector<Row>& rows, const std::vector<std::string>& want);
-// Plot data, one block per scene (gnuplot index), columns: error_pct rays_per_cycle pareto label.
+// Plot data, one block per scene (gnuplot index), columns: error_pct rays_per_cycle pareto format vtu
+// spawn label store.
 std::string plot_data(const std::vector<Row>& rows, std::vector<std::string>* scene_order);
 
 }  // namespace raycore::sweep
