@@ -1,7 +1,7 @@
 # scripts/sweep.gp - the sweep's plot: error against throughput, one panel per scene, the Pareto
 # front marked. gnuplot -e "dir='out/sweep'; out='out/sweep/sweep.png'" scripts/sweep.gp
-# Reads dir/plot.dat (one block per scene: error_pct rays_per_cycle pareto format vtu spawn label,
-# Pareto points first, by error) and dir/plot_scenes.txt (the blocks' scene names).
+# Reads dir/plot.dat (one block per scene: error_pct rays_per_cycle pareto format vtu spawn label
+# store, Pareto points first, by error; store anchored points get a black cross over them) and dir/plot_scenes.txt (the blocks' scene names).
 if (!exists("dir")) dir = "out/sweep"
 if (!exists("out")) out = dir."/sweep.png"
 dat = dir."/plot.dat"
@@ -33,6 +33,8 @@ do for [i = 1:n] {
   if (i == 1) { set key } else { unset key }
   plot dat index (i-1) using (fx($1)):2:(spt(strcol(6), strcol(5))):(fmtc(strcol(4))) \
          with points pt variable lc rgb variable ps 1.3 notitle, \
+       dat index (i-1) using (fx($1)):(strcol(8) eq "anchored" ? $2 : 1/0) with points pt 2 ps 1.8 lc rgb "black" \
+         title "store anchored", \
        dat index (i-1) using (fx($1)):($3 == 1 ? $2 : 1/0) with lines lc rgb "black" lw 1.5 title "Pareto front", \
        dat index (i-1) using (fx($1)):($3 == 1 ? $2 : 1/0) with points pt 6 ps 2.4 lc rgb "black" notitle, \
        dat index (i-1) using (fx($1)):($3 == 1 ? $2 : 1/0):7 with labels offset 0, 1.4 font ",7" notitle, \

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# make sweep: the speed-against-error sweep (issue 6; docs/sweep.md).
+# make sweep: the speed-against-error sweep (issues 6 and 15; docs/sweep.md): scenes x format x VTU x
+# spawn x store; --stores and --shadow-spawn go to `raycore sweep --list` like any other option.
 #
 #   scripts/sweep.sh [BUILD] [raycore sweep options...]     e.g. scripts/sweep.sh build --scenes corridor
 #

@@ -1,5 +1,9 @@
 // tb/sweep/test_sweep.cpp - the sweep (sim/sweep/, sim/cmd_sweep.cpp, scripts/sweep.sh).
 //   Pareto.*, Area.*, Jobs.*: the library on hand-made input.
+//   Target.*:                 the issue-6 and issue-15 targets (arithmetic shadow errors, speed
+//                             against spawn none) on hand-made rows.
+//   Collect.*:                `raycore sweep --collect` on fixture reports (errors, errors_stored):
+//                             the arithmetic and storage columns of the CSV/JSON/markdown.
 //   Cli.*:                    bad options give a clear message and a non-zero exit.
 //   Pipeline.*:               scripts/sweep.sh end to end on 4 tiny jobs (2 scenes x 2 spawns)
 //                             and 1 error map; the CSV/JSON hold real numbers; collect refuses a
@@ -145,6 +149,64 @@ TEST(Target, MetOnlyWithinEveryBound) {
   EXPECT_EQ(t.find("absent"), std::string::npos) << "scenes without rows get no column";
 }
 
+TEST(Target, Issue15ArithmeticShadowAndSpeedAgainstNone) {
+  // Scene "a", 384000 pixels (800 x 480): 0.01% = 38 pixels. Totals are high (storage error), the
+  // arithmetic counts decide issue 15; its speed is against the same configuration with spawn none.
+  auto cfg = [](const std::string& fmt, bool vtu, const std::string& spawn, const std::string& store, uint64_t self,
+                uint64_t shadow, uint64_t shadow_arith, double rpc) {
+    Row r = row("a", 0, rpc);
+    r.job.format_name = fmt;
+    r.job.format = fmt.substr(0, 4);
+    r.job.vtu = vtu;
+    r.job.spawn = spawn;
+    r.job.store = store;
+    r.pixels = 384000;
+    r.self_intersections = self;
+    r.shadow_errors = shadow;
+    r.has_stored = true;
+    r.stored.self_intersections = self;
+    r.stored.shadow_errors = shadow_arith;
+    return r;
+  };
+  const std::vector<Row> rows = {
+      cfg("fp24-rtz", true, "none", "world", 50, 900, 100, 0.100),      // the issue-6 base
+      cfg("fp24-rtz", true, "good", "world", 0, 900, 38, 0.096),        // 38 = 0.0099%: 15 met, 6 not
+      cfg("fp24-rtz", true, "over", "world", 0, 38, 39, 0.100),         // 39 arithmetic: not met
+      cfg("fp24-rtz", false, "none", "world", 10, 900, 500, 0.120),     // VTU off's own spawn none
+      cfg("fp24-rtz", false, "fast", "world", 0, 30, 2, 0.110),         // -8.3% vs its none: 15 not met;
+                                                                        //  +10% vs the base: 6 met
+      cfg("fp24-rtz", true, "none", "anchored", 20, 40, 40, 0.050),
+      cfg("fp24-rtz", true, "good", "anchored", 0, 5, 5, 0.048),        // -4% vs anchored none: met
+  };
+  namespace sw = raycore::sweep;
+  auto check = [&](size_t i) { return sw::check_target(rows, rows[i]); };
+  EXPECT_FALSE(check(1).met6);
+  EXPECT_TRUE(check(1).met15);
+  EXPECT_NEAR(check(1).arith_shadow_pct, 100.0 * 38 / 384000, 1e-12);
+  EXPECT_NEAR(check(1).speed_none, 0.96, 1e-12);
+  EXPECT_TRUE(check(2).met6) << "38 total = 0.0099%";
+  EXPECT_FALSE(check(2).met15) << "39 > 38 arithmetic";
+  EXPECT_TRUE(check(4).met6);
+  EXPECT_FALSE(check(4).met15) << "more than 5% slower than its own spawn none";
+  EXPECT_NEAR(check(4).speed_none, 0.110 / 0.120, 1e-12);
+  EXPECT_TRUE(check(6).met15) << "the anchored row's none is the anchored none";
+  EXPECT_NEAR(check(6).speed, 0.48, 1e-12) << "issue 6's base stays world";
+  EXPECT_FALSE(check(6).met6);
+  Row old = rows[1];
+  old.has_stored = false;
+  EXPECT_FALSE(sw::check_target(rows, old).have15) << "a report without errors_stored: no issue-15 verdict";
+
+  const std::string t = sw::target_markdown(rows, {"a"});
+  auto line = [&](const std::string& spawn, const std::string& store) {
+    const size_t b = t.find("| " + spawn + " | " + store + " |");
+    return b == std::string::npos ? std::string("(no row)") : t.substr(b, t.find('\n', b) - b);
+  };
+  EXPECT_NE(line("good", "world").find("/ 0.2344 / -4.00% / **0.0099** / -4.00% | - | a |"), std::string::npos) << t;
+  EXPECT_NE(line("fast", "world").find("**0.0078** / +10.00% / 0.0005 / -8.33% | a | - |"), std::string::npos) << t;
+  EXPECT_NE(line("good", "anchored").find("| - | a |"), std::string::npos) << t;
+  EXPECT_NE(t.find("issue 15 met on"), std::string::npos) << t;
+}
+
 TEST(Area, AddedCellsAgainstThePaperBaseline) {
   const fs::path f = fs::temp_directory_path() / "raycore_test_sweep_area.tsv";
   {
@@ -230,6 +292,185 @@ TEST(Jobs, ListValidatesAndCounts) {
   EXPECT_EQ(raycore::sweep::shell_quote("a b'c"), "'a b'\\''c'");
 }
 
+TEST(Jobs, StoresShadowSpawnAndRaycoreRounding) {
+  namespace sw = raycore::sweep;
+  sw::Options o;
+  o.scenes = {"corridor", "far", "grazing", "origin-far-camera"};
+  o.formats = {"fp24-rtz"};
+  o.vtu = {"on"};
+  o.spawns = {"none"};
+  o.raycore = "rc";
+  o.map_scenes = {"none"};
+  auto ids = [](const std::vector<sw::Job>& jobs) {
+    std::vector<std::string> v;
+    for (const auto& j : jobs) v.push_back(j.id);
+    return v;
+  };
+  auto has = [](const sw::Job& j, const std::string& opt, const std::string& val) {
+    for (size_t i = 0; i + 1 < j.argv.size(); ++i)
+      if (j.argv[i] == opt && j.argv[i + 1] == val) return true;
+    return false;
+  };
+  // Default: world everywhere (ids as before --store), anchored too for far and origin-far-camera.
+  auto jobs = sw::make_jobs(o);
+  EXPECT_EQ(ids(jobs), (std::vector<std::string>{"corridor-fp24-rtz-vtuon-none", "far-fp24-rtz-vtuon-none",
+                                                 "far-fp24-rtz-vtuon-none-anchored", "grazing-fp24-rtz-vtuon-none",
+                                                 "origin-far-camera-fp24-rtz-vtuon-none",
+                                                 "origin-far-camera-fp24-rtz-vtuon-none-anchored"}));
+  for (const auto& j : jobs) {
+    EXPECT_TRUE(has(j, "--store", j.store)) << sw::command_line(j);
+    EXPECT_TRUE(has(j, "--shadow-spawn", "front")) << sw::command_line(j);
+    EXPECT_EQ(j.store == "anchored", j.id.size() > 9 && j.id.substr(j.id.size() - 9) == "-anchored") << j.id;
+  }
+  EXPECT_EQ(jobs[2].store, "anchored");
+  EXPECT_EQ(sw::default_stores("sponza-paper"), std::vector<std::string>{"world"});
+  // Given: every scene gets them; spawn all is passed to every job and recorded, ids unchanged.
+  o.stores = {"anchored", "world"};
+  o.shadow_spawn = "all";
+  o.scenes = {"corridor"};
+  jobs = sw::make_jobs(o);
+  EXPECT_EQ(ids(jobs), (std::vector<std::string>{"corridor-fp24-rtz-vtuon-none-anchored", "corridor-fp24-rtz-vtuon-none"}));
+  for (const auto& j : jobs) EXPECT_TRUE(has(j, "--shadow-spawn", "all")) << sw::command_line(j);
+  // The manifest keeps both; a manifest from before them reads as world / front.
+  auto m = sw::manifest_json(o, jobs);
+  EXPECT_EQ(m["shadow_spawn"], "all");
+  auto back = sw::jobs_from_manifest(m);
+  EXPECT_EQ(back[0].store, "anchored");
+  EXPECT_EQ(back[0].shadow_spawn, "all");
+  m["jobs"][0].erase("store");
+  m["jobs"][0].erase("shadow_spawn");
+  back = sw::jobs_from_manifest(m);
+  EXPECT_EQ(back[0].store, "world");
+  EXPECT_EQ(back[0].shadow_spawn, "front");
+  // Error maps are world jobs with the sweep's shadow spawn.
+  o.map_scenes = {"corridor"};
+  o.map_configs = {"fp24-rtz:on:skip-slab:2"};
+  jobs = sw::make_jobs(o);
+  ASSERT_EQ(jobs.back().kind, "errormap");
+  EXPECT_TRUE(has(jobs.back(), "--store", "world"));
+  EXPECT_TRUE(has(jobs.back(), "--shadow-spawn", "all"));
+  o.map_scenes = {"none"};
+  for (const auto& bad : std::vector<std::vector<std::string>>{{"moon"}, {"world", "world"}}) {
+    o.stores = bad;
+    EXPECT_THROW(sw::make_jobs(o), std::invalid_argument) << bad[0];
+  }
+  o.stores = {};
+  o.shadow_spawn = "sometimes";
+  EXPECT_THROW(sw::make_jobs(o), std::invalid_argument);
+  o.shadow_spawn = "front";
+  // fp24-raycore: accepted as FP24 with the rounding raycore (the job decides whether it runs);
+  // never a default.
+  const auto f = sw::format_spec("fp24-raycore");
+  EXPECT_EQ(f.format, "fp24");
+  EXPECT_EQ(f.rounding, "raycore");
+  o.formats = {"fp24-raycore"};
+  jobs = sw::make_jobs(o);
+  ASSERT_EQ(jobs.size(), 1u);
+  EXPECT_EQ(jobs[0].id, "corridor-fp24-raycore-vtuon-none");
+  EXPECT_TRUE(has(jobs[0], "--rounding", "raycore")) << sw::command_line(jobs[0]);
+  o.formats = {};
+  for (const auto& j : sw::make_jobs(o)) EXPECT_NE(j.rounding, "raycore") << j.id;
+  EXPECT_THROW(sw::format_spec("fp32-raycore"), std::invalid_argument);
+}
+
+// Fixture reports (the keys `raycore simulate` writes, small made-up numbers) collected by the
+// binary: the arithmetic and storage columns carry the reports' values.
+TEST(Collect, ArithmeticAndStorageColumnsFromFixtureReports) {
+  const fs::path out = fs::temp_directory_path() / ("raycore_test_sweep_collect_" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  fs::create_directories(out / "jobs");
+  namespace sw = raycore::sweep;
+  sw::Options o;
+  o.scenes = {"far"};
+  o.formats = {"fp24-rtz"};
+  o.vtu = {"off"};
+  o.spawns = {"none", "skip-slab:2"};
+  o.out = out.string();
+  o.raycore = "rc";
+  const auto jobs = sw::make_jobs(o);
+  ASSERT_EQ(jobs.size(), 4u);  // far: world and anchored
+  {
+    std::ofstream os(out / "manifest.json");
+    os << sw::manifest_json(o, jobs).dump(1);
+  }
+  // per job: self, shadow, primary (total); self, shadow, primary (arithmetic); rays/cycle
+  const uint64_t v[4][6] = {{1071, 3395, 7074, 1071, 20, 7}, {0, 1512, 7074, 0, 30, 7},
+                            {15, 188, 15, 15, 190, 15}, {0, 3, 15, 0, 5, 16}};
+  for (size_t i = 0; i < jobs.size(); ++i) {
+    auto e = [&](uint64_t self, uint64_t shadow, uint64_t prim) {
+      return nlohmann::json{{"pixels", 96000}, {"primary_rays", 96000}, {"shadow_rays", 50000},
+                            {"self_intersections", self}, {"self_intersections_front", self},
+                            {"shadow_errors", shadow}, {"false_shadow", shadow}, {"false_shadow_self", self},
+                            {"false_shadow_no_ray", 0}, {"light_leak", 0}, {"primary_errors", prim}};
+    };
+    nlohmann::json r = {{"errors", e(v[i][0], v[i][1], v[i][2])},
+                        {"hardware", {{"cycles", 1000000}, {"rays_per_cycle", 0.12 + 0.01 * double(i)},
+                                      {"mrays_per_s", 100.0}}},
+                        {"golden_match", true}};
+    if (i != 1) r["errors_stored"] = e(v[i][3], v[i][4], v[i][5]);  // job 1: a report from before issue 15
+    std::ofstream os(jobs[i].json);
+    os << r.dump(1);
+  }
+  const Result c = run(std::string(RAYCORE_BIN) + " sweep --collect " + out.string());
+  ASSERT_EQ(c.status, 0) << c.out;
+  const auto csv = read_csv(out / "sweep.csv");
+  ASSERT_EQ(csv.size(), 5u);
+  const auto& h = csv[0];
+  auto col = [&](const std::string& name) {
+    for (size_t i = 0; i < h.size(); ++i)
+      if (h[i] == name) return i;
+    ADD_FAILURE() << "no column " << name;
+    return size_t(0);
+  };
+  for (size_t i = 0; i < 4; ++i) {
+    const auto& f = csv[i + 1];
+    ASSERT_EQ(f.size(), h.size()) << "row " << i;
+    EXPECT_EQ(f[col("store")], i < 2 ? "world" : "anchored");
+    EXPECT_EQ(f[col("shadow_spawn")], "front");
+    EXPECT_EQ(f[col("shadow_errors")], std::to_string(v[i][1]));
+    if (i == 1) {
+      for (const char* k : {"shadow_errors_stored", "error_pixels_stored", "shadow_errors_storage"})
+        EXPECT_EQ(f[col(k)], "") << k << ": no errors_stored in the report";
+      continue;
+    }
+    EXPECT_EQ(f[col("self_intersections_stored")], std::to_string(v[i][3]));
+    EXPECT_EQ(f[col("shadow_errors_stored")], std::to_string(v[i][4]));
+    EXPECT_EQ(f[col("primary_errors_stored")], std::to_string(v[i][5]));
+    EXPECT_EQ(f[col("error_pixels_stored")], std::to_string(v[i][4] + v[i][5]));
+    EXPECT_EQ(f[col("shadow_errors_storage")], std::to_string(int64_t(v[i][1]) - int64_t(v[i][4])));
+    EXPECT_EQ(f[col("primary_errors_storage")], std::to_string(int64_t(v[i][2]) - int64_t(v[i][5])));
+    EXPECT_EQ(f[col("error_pixels_storage")],
+              std::to_string(int64_t(v[i][1] + v[i][2]) - int64_t(v[i][4] + v[i][5])));
+    EXPECT_EQ(f[col("self_intersections_storage")], "0");
+  }
+  EXPECT_EQ(csv[4][col("shadow_errors_storage")], "-2") << "storage can be negative";
+  const auto j = nlohmann::json::parse(read_file(out / "sweep.json"));
+  EXPECT_EQ(j["shadow_spawn"], "front");
+  EXPECT_EQ(j["rows"][2]["config"]["store"], "anchored");
+  EXPECT_EQ(j["rows"][0]["errors_stored"]["shadow_errors"], 20);
+  EXPECT_EQ(j["rows"][0]["errors_storage"]["shadow_errors"], 3375);
+  EXPECT_TRUE(j["rows"][1]["errors_stored"].is_null());
+  const std::string md = read_file(out / "sweep.md");
+  EXPECT_NE(md.find("| fp24-rtz | off | none | world | 1071 | 3395 (3395 / 1071 / 0 / 0) | 20 | 7074 (7) | "
+                    "10469 (27) |"),
+            std::string::npos)
+      << md;
+  EXPECT_NE(md.find("| fp24-rtz | off | skip-slab:2 | anchored | 0 | 3 (3 / 0 / 0 / 0) | 5 | 15 (16) | 18 (21) |"),
+            std::string::npos)
+      << md;
+  const std::string hard = read_file(out / "sweep-hard.md");
+  EXPECT_NE(hard.find("| fp24-rtz | off | none | anchored | ? | 15 / 188 (190) / 203 (205) / 0.1400 |"),
+            std::string::npos)
+      << hard;
+  const std::string target = read_file(out / "sweep-target.md");
+  // skip-slab:2 anchored: 5 arithmetic shadow errors of 96000 (<= 9), 0 self, +7.1% vs its none;
+  // no issue-6 base (fp24-rtz VTU on) in this sweep.
+  EXPECT_NE(target.find("| fp24-rtz | off | skip-slab:2 | anchored | 0 / - / - / **0.0052** / +7.14% | - | far |"),
+            std::string::npos)
+      << target;
+  fs::remove_all(out);
+}
+
 TEST(Cli, BadOptionsFailClearly) {
   const std::string rc = RAYCORE_BIN;
   struct Case {
@@ -240,6 +481,8 @@ TEST(Cli, BadOptionsFailClearly) {
       {"sweep --list --spawns magic", "unknown spawn strategy 'magic'"},
       {"sweep --list --spawns ,", "empty list"},
       {"sweep --list --vtu maybe", "unknown VTU value"},
+      {"sweep --list --stores moon", "unknown store 'moon'"},
+      {"sweep --list --shadow-spawn sometimes", "--shadow-spawn"},
       {"sweep --collect /nonexistent-sweep-dir", "manifest.json"},
       {"sweep", "exactly one of --list, --run, --collect"},
   };
@@ -259,13 +502,14 @@ TEST(Pipeline, TinySweepEndToEnd) {
                           " SWEEP_DOC= SWEEP_AREA=0 SWEEP_FAR_OFFSET=0 SWEEP_JOBS=2 ./scripts/sweep.sh " +
                           build.string() +
                           " --scenes corridor,grazing --formats fp24-rtz --vtu on --spawns none,skip-slab:2"
+                          " --stores world,anchored"
                           " --width 40 --height 24 --hard-width 32 --hard-height 20"
                           " --map-scenes corridor --map-configs fp24-rtz:on:none";
   const Result r = run(cmd);
   ASSERT_EQ(r.status, 0) << cmd << "\n" << r.out;
 
   const auto csv = read_csv(out / "sweep.csv");
-  ASSERT_EQ(csv.size(), 5u) << read_file(out / "sweep.csv");
+  ASSERT_EQ(csv.size(), 9u) << read_file(out / "sweep.csv");
   const auto& h = csv[0];
   auto col = [&](const std::string& name) {
     for (size_t i = 0; i < h.size(); ++i)
@@ -290,6 +534,16 @@ TEST(Pipeline, TinySweepEndToEnd) {
     if (f[col("spawn")] == "skip-slab:2") {
       EXPECT_EQ(f[col("self_intersections")], "0") << "row " << i;
     }
+    // Arithmetic beside the total, storage the difference, as the job's own report has them.
+    const std::string id = f[col("scene")] + "-fp24-rtz-vtuon-" + (f[col("spawn")] == "none" ? "none" : "skip-slab2") +
+                           (f[col("store")] == "anchored" ? "-anchored" : "");
+    const auto rep = nlohmann::json::parse(read_file(out / "jobs" / (id + ".json")));
+    EXPECT_EQ(rep["config"]["store"], f[col("store")]) << id;
+    for (const char* k : {"self_intersections", "shadow_errors", "primary_errors"}) {
+      EXPECT_EQ(f[col(std::string(k) + "_stored")], std::to_string(rep["errors_stored"][k].get<uint64_t>())) << id << " " << k;
+      EXPECT_EQ(std::stoll(f[col(std::string(k) + "_storage")]),
+                std::stoll(f[col(k)]) - std::stoll(f[col(std::string(k) + "_stored")])) << id << " " << k;
+    }
   }
   // At least one Pareto point per scene.
   for (const char* s : {"corridor", "grazing"}) {
@@ -298,12 +552,12 @@ TEST(Pipeline, TinySweepEndToEnd) {
     EXPECT_GE(n, 1) << s;
   }
   const auto j = nlohmann::json::parse(read_file(out / "sweep.json"));
-  ASSERT_EQ(j["rows"].size(), 4u);
+  ASSERT_EQ(j["rows"].size(), 8u);
   EXPECT_TRUE(j["rows"][0]["hardware"]["rays_per_cycle"].get<double>() > 0);
   ASSERT_EQ(j["error_maps"].size(), 1u);
   EXPECT_TRUE(fs::file_size(out / "sweep.png") > 1000) << "the plot";
   EXPECT_TRUE(fs::file_size(out / "maps-corridor.png") > 1000) << "the error-map montage";
-  EXPECT_NE(read_file(out / "sweep.md").find("| fp24-rtz | on | skip-slab:2 |"), std::string::npos);
+  EXPECT_NE(read_file(out / "sweep.md").find("| fp24-rtz | on | skip-slab:2 | anchored |"), std::string::npos);
 
   // A missing result: collect names it and fails.
   fs::remove(out / "jobs" / "grazing-fp24-rtz-vtuon-none.json");
