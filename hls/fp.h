@@ -34,14 +34,15 @@
 //     bit for bit; with three equal signs the result is rtz's or one ulp below it;
 //   - rcp: a 32-entry table of quadratic segment coefficients indexed by the top 5 mantissa
 //     bits, two small multiplies, every step truncated (rcp_raycore below); exhaustively over all
-//     FP24 mantissas its error is at most 1.19 ulp of the result (measured against MPFR in
-//     tb/fp, RaycoreRcp.Exhaustive: max 1.183 ulp);
+//     FP24 mantissas its error is at most 1.19 ulp of the exact reciprocal (measured against MPFR
+//     in tb/fp, RaycoreRcp.Exhaustive: max 1.183 ulp, from -1.183 to +0.735 in magnitude);
 //   - div(a, b) = mul(a, rcp(b)): relative error < 2.19 * 2^-M (rcp's plus the truncation; tb/fp
 //     measures 2.10 on its vectors); b = 0 saturates as div does; rcp(b) flushes for |b| > 2^62
 //     in FP24, and so does the quotient.
-// A sound unit roundoff for error bounds is 2^(1-M) (hls/hit.h: unit_roundoff): every raycore
-// operation's error is below 2^-M times the magnitudes rtz's analysis uses, with add3 the
-// largest at 1.5 * 2^-M (|a| + |b| + |c|) and rcp at 1.19 * 2^-M |1/x|.
+// A sound unit roundoff for error bounds is u = 2^(1-M) (hls/hit.h: unit_roundoff): every raycore
+// operation the datapaths use errs by less than u times the magnitudes an rtz analysis charges
+// (which uses u = 2^-M): add, mul, conversions, sqrt < 2^-M |exact|, rcp <= 1.19 * 2^-M |exact|,
+// add3 < 1.5 * 2^-M (|a| + |b| + |c|). (div, used by no datapath, errs up to 2.19 * 2^-M.)
 //
 // Written in the synthesizable style: fixed-width integer arithmetic on bit patterns, no host
 // floating point inside the operations, no allocation. The same functions are the datapath of the
