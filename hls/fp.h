@@ -5,13 +5,44 @@
 // E+M, exponent field above the mantissa field), exactly the wires of the hardware.
 //
 // Semantics, for every operation: the exact result, rounded once to M+1 significant bits with the
-// rounding policy (rtz: toward zero, RayCore's; rne: to nearest, ties to even) at unbounded
-// exponent range, then
+// rounding policy (rtz: toward zero; rne: to nearest, ties to even) at unbounded exponent range,
+// then
 //   - flushed to a signed zero if its exponent is below the smallest normal (no denormals), and
 //   - saturated to the largest magnitude with its sign if above the largest (no Inf/NaN).
 // Inputs whose exponent field is 0 are zeros, whatever their mantissa field holds (flush on input).
 // The top exponent field is an ordinary binade (there is no Inf/NaN encoding). An exact zero sum
 // is +0 unless every addend is -0 (IEEE 754's rule for rtz and rne).
+//
+// The third policy, `raycore`, is RayCore's own arithmetic as far as it is published (designed
+// here from those facts; FP24 only: formats with M > 16 are refused at compile time by rcp, and
+// at run time by hls::visit_format). It is NOT correctly rounded:
+//   - conversions, mul and sqrt: exactly rtz (the exact result truncated once), bit for bit;
+//   - add/sub (one guard bit, no sticky): order by magnitude |a| >= |b|; b's significand is
+//     aligned to a's exponent and truncated (toward zero, in magnitude) to a multiple of
+//     2^(ea-M-1), one guard bit below a's last place; the magnitudes are added or subtracted
+//     exactly and the result truncated to M+1 bits (then flush/saturate). An effective addition
+//     equals rtz bit for bit. An effective subtraction |a| - trunc(|b|) is >= the exact
+//     |a| - |b| by less than 2^(ea-M-1), so its result is rtz's or the next magnitude above it:
+//     the exact value lies on either side, |result - exact| < 1 ulp of the exact value, and an
+//     exactly representable difference is exact;
+//   - add3 (two guard bits, no sticky): order by magnitude |a| >= |b| >= |c| (a nonzero); b and c
+//     are aligned to a's exponent and each truncated (in magnitude) to a multiple of
+//     2^(ea-M-2); the signed sum is exact and truncated to M+1 bits. No special cases: an exact
+//     pair cancellation a = -b leaves c truncated to that grid. |result - exact| <
+//     2^(ea-M-1) + ulp(result) (half an ulp of a for the two dropped tails, plus the final
+//     truncation); when every operand's bits fit the grid (exponents >= ea - 2) the sum is rtz's
+//     bit for bit; with three equal signs the result is rtz's or one ulp below it;
+//   - rcp: a 32-entry table of quadratic segment coefficients indexed by the top 5 mantissa
+//     bits, two small multiplies, every step truncated (rcp_raycore below); exhaustively over all
+//     FP24 mantissas its error is at most 1.19 ulp of the exact reciprocal (measured against MPFR
+//     in tb/fp, RaycoreRcp.Exhaustive: max 1.183 ulp, from -1.183 to +0.735 in magnitude);
+//   - div(a, b) = mul(a, rcp(b)): relative error < 2.19 * 2^-M (rcp's plus the truncation; tb/fp
+//     measures 2.10 on its vectors); b = 0 saturates as div does; rcp(b) flushes for |b| > 2^62
+//     in FP24, and so does the quotient.
+// A sound unit roundoff for error bounds is u = 2^(1-M) (hls/hit.h: unit_roundoff): every raycore
+// operation the datapaths use errs by less than u times the magnitudes an rtz analysis charges
+// (which uses u = 2^-M): add, mul, conversions, sqrt < 2^-M |exact|, rcp <= 1.19 * 2^-M |exact|,
+// add3 < 1.5 * 2^-M (|a| + |b| + |c|). (div, used by no datapath, errs up to 2.19 * 2^-M.)
 //
 // Written in the synthesizable style: fixed-width integer arithmetic on bit patterns, no host
 // floating point inside the operations, no allocation. The same functions are the datapath of the
@@ -24,7 +55,7 @@
 
 namespace raycore::hls {
 
-enum class Rounding : uint8_t { rtz, rne };
+enum class Rounding : uint8_t { rtz, rne, raycore };
 
 template <int E, int M>
 struct Format {
@@ -90,7 +121,7 @@ constexpr uint32_t signed_zero(bool sign) {
   return sign ? F::sign_mask : 0u;
 }
 
-// The shared rounding step. The exact value is (-1)^sign * (mag + s) * 2^lsb_exp, where s = 0 if
+// The shared rounding step (raycore truncates here, as rtz). The exact value is (-1)^sign * (mag + s) * 2^lsb_exp, where s = 0 if
 // !sticky and 0 < s < 1 otherwise. Precondition: mag != 0, and if sticky then mag has at least
 // M+2 significant bits (so the dropped part holds a guard bit above the sticky one).
 template <class F, Rounding R, class U>
@@ -190,6 +221,16 @@ constexpr uint32_t add(uint32_t a, uint32_t b) {
   }
   const auto ua = detail::unpack<F>(a), ub = detail::unpack<F>(b);
   const int d = ua.exp - ub.exp;
+  if constexpr (R == Rounding::raycore) {
+    // One guard bit, no sticky: b truncated to a multiple of 2^(ea-M-1) (see the header).
+    constexpr int G1 = 1;
+    const uint64_t ra = uint64_t(ua.sig) << G1;
+    const uint64_t rb =
+        d <= G1 ? uint64_t(ub.sig) << (G1 - d) : (d <= M + 1 + G1 ? uint64_t(ub.sig) >> (d - G1) : 0);
+    const uint64_t rmag = ua.sign == ub.sign ? ra + rb : ra - rb;  // |a| >= |b| >= trunc |b|
+    if (rmag == 0) return 0;
+    return round_pack<F, R>(ua.sign, ua.exp - M - G1, rmag, false);
+  }
   const uint64_t ma = uint64_t(ua.sig) << G;
   uint64_t mb = 0;
   if (d <= G) {
@@ -224,8 +265,46 @@ constexpr uint32_t sub(uint32_t a, uint32_t b) {
 //  - Otherwise |b|, |c| < 2^(ea-2M-5), well below a quarter ulp of a: the rounding depends only on
 //    a and the sign of b + c (which is b's, since |b| > |c| or they are equal with equal signs), so
 //    b + c is replaced by one signed lsb.
+namespace detail {
+// raycore's three-input adder (two guard bits, no sticky; see the header): the window's lsb is
+// 2^(ea-M-2), b and c are truncated to it in magnitude, the signed sum is exact, then truncated.
+template <class F>
+constexpr uint32_t add3_raycore(uint32_t a, uint32_t b, uint32_t c) {
+  constexpr int M = F::man_bits;
+  constexpr int G = 2;
+  if (is_zero<F>(a) && is_zero<F>(b) && is_zero<F>(c))
+    return signed_zero<F>(sign_of<F>(a) && sign_of<F>(b) && sign_of<F>(c));
+  // The largest magnitude first (zeros have exponent field 0: below every nonzero).
+  if ((a & F::max_mag) < (b & F::max_mag)) {
+    const uint32_t t = a;
+    a = b;
+    b = t;
+  }
+  if ((a & F::max_mag) < (c & F::max_mag)) {
+    const uint32_t t = a;
+    a = c;
+    c = t;
+  }
+  const auto ua = unpack<F>(a);
+  auto aligned = [&](uint32_t x) -> int64_t {
+    if (is_zero<F>(x)) return 0;
+    const auto ux = unpack<F>(x);
+    const int d = ua.exp - ux.exp;
+    const int64_t m = d <= G ? int64_t(ux.sig) << (G - d)
+                             : (d <= M + 1 + G ? int64_t(ux.sig >> (d - G)) : 0);
+    return ux.sign ? -m : m;
+  };
+  const int64_t ma = int64_t(ua.sig) << G;
+  const int64_t sum = (ua.sign ? -ma : ma) + aligned(b) + aligned(c);
+  if (sum == 0) return 0;  // exact zero: +0
+  const bool sign = sum < 0;
+  return round_pack<F, Rounding::raycore>(sign, ua.exp - M - G, uint64_t(sign ? -sum : sum), false);
+}
+}  // namespace detail
+
 template <class F, Rounding R>
 constexpr uint32_t add3(uint32_t a, uint32_t b, uint32_t c) {
+  if constexpr (R == Rounding::raycore) return detail::add3_raycore<F>(a, b, c);
   constexpr int M = F::man_bits;
   constexpr int W = 3 * M + 6;
   using S = typename std::conditional<W + 4 <= 63, int64_t, detail::i128>::type;
@@ -295,6 +374,51 @@ constexpr uint32_t mul(uint32_t a, uint32_t b) {
 
 // Division: the quotient of the significands to M+3 bits plus a sticky remainder bit, rounded
 // once. x / 0 saturates with the sign of the quotient; 0 / 0 is +0 (there is no NaN).
+namespace detail {
+// raycore's reciprocal: 1/m for the significand m = 1 + f (f = the mantissa field, widened to 16
+// bits) from a 32-entry table indexed by f's top 5 bits i; with d = f's low 11 bits
+// (delta = d 2^-16 = m - (1 + i/32)), 1/m ~ c0 - delta (c1 - c2 delta):
+//   t1 = (c2 d) >> 7          c2 delta        in units of 2^-16   (8 x 11-bit multiply)
+//   p  = c1 - t1              c1 - c2 delta   in units of 2^-16
+//   t2 = (p d) >> 13          delta p         in units of 2^-19   (17 x 11-bit multiply)
+//   y  = c0 - t2              ~ 1/m           in units of 2^-19, then truncated to M+1 bits
+// Every shift truncates. c0 = 1/m_i's quadratic fit in 2^-19 (c0[0] = 2^19 exactly, so rcp(1) =
+// 1), c1 in 2^-16, c2 in 2^-7: the fit through the three Chebyshev nodes of the segment
+// [1 + i/32, 1 + (i+1)/32), each coefficient rounded to nearest. Worst error over all 2^16
+// mantissas: 1.183 ulp of the result (tb/fp, RaycoreRcp.Exhaustive).
+struct RcpSegment {
+  uint32_t c0, c1, c2;
+};
+inline constexpr RcpSegment kRaycoreRcpTable[32] = {
+    {524288, 65502, 122}, {508400, 61594, 112}, {493447, 58026, 102}, {479349, 54759, 94},
+    {466033, 51760, 86},  {453438, 49001, 80},  {441505, 46457, 74},  {430185, 44106, 68},
+    {419430, 41929, 63},  {409200, 39909, 59},  {399457, 38032, 55},  {390168, 36284, 51},
+    {381300, 34654, 48},  {372827, 33131, 45},  {364722, 31707, 42},  {356962, 30372, 39},
+    {349525, 29120, 37},  {342392, 27944, 35},  {335544, 26838, 33},  {328965, 25796, 31},
+    {322639, 24813, 29},  {316551, 23886, 27},  {310689, 23010, 26},  {305040, 22181, 25},
+    {299593, 21396, 23},  {294337, 20652, 22},  {289262, 19946, 21},  {284360, 19276, 20},
+    {279620, 18639, 19},  {275036, 18033, 18},  {270600, 17456, 17},  {266305, 16906, 16}};
+constexpr int kRaycoreRcpFrac = 19;  // y's lsb is 2^-19
+
+template <class F>
+constexpr uint32_t rcp_raycore(uint32_t a) {
+  constexpr int M = F::man_bits;
+  static_assert(M <= 16, "rounding `raycore` is defined for FP24 (its reciprocal table has 16 "
+                         "mantissa bits)");
+  const bool sign = sign_of<F>(a);
+  if (is_zero<F>(a)) return signed_zero<F>(sign) | F::max_mag;  // 1/0 saturates, as div
+  const auto ua = unpack<F>(a);
+  const uint32_t f = (a & F::man_mask) << (16 - M);
+  const RcpSegment s = kRaycoreRcpTable[f >> 11];
+  const uint32_t d = f & 0x7FFu;
+  const uint32_t t1 = (s.c2 * d) >> 7;
+  const uint32_t p = s.c1 - t1;
+  const uint32_t t2 = (p * d) >> 13;
+  const uint32_t y = s.c0 - t2;  // 1/m in units of 2^-19, in (2^18, 2^19]
+  return round_pack<F, Rounding::raycore>(sign, -ua.exp - kRaycoreRcpFrac, uint64_t(y), false);
+}
+}  // namespace detail
+
 template <class F, Rounding R>
 constexpr uint32_t div(uint32_t a, uint32_t b) {
   constexpr int M = F::man_bits;
@@ -302,19 +426,22 @@ constexpr uint32_t div(uint32_t a, uint32_t b) {
   const bool sign = sign_of<F>(a) != sign_of<F>(b);
   if (is_zero<F>(b)) return is_zero<F>(a) ? 0u : (signed_zero<F>(sign) | F::max_mag);
   if (is_zero<F>(a)) return signed_zero<F>(sign);
+  if constexpr (R == Rounding::raycore) return mul<F, R>(a, detail::rcp_raycore<F>(b));
   const auto ua = detail::unpack<F>(a), ub = detail::unpack<F>(b);
   const uint64_t num = uint64_t(ua.sig) << K;
   const uint64_t q = num / ub.sig, r = num % ub.sig;
   return round_pack<F, R>(sign, ua.exp - ub.exp - K, q, r != 0);
 }
 
+// rcp: div(1, a) for rtz and rne; raycore's table reciprocal (detail::rcp_raycore) for raycore.
 template <class F, Rounding R>
 constexpr uint32_t rcp(uint32_t a) {
-  return div<F, R>(F::one, a);
+  if constexpr (R == Rounding::raycore) return detail::rcp_raycore<F>(a);
+  else return div<F, R>(F::one, a);
 }
 
 // Square root: the exact root of the significand (digit by digit, M+3 or more bits) plus a sticky
-// remainder bit, rounded once. sqrt of a negative number is +0 (there is no NaN); sqrt(-0) = -0.
+// remainder bit, rounded once (raycore: truncated, i.e. rtz's result). sqrt of a negative number is +0 (there is no NaN); sqrt(-0) = -0.
 template <class F, Rounding R>
 constexpr uint32_t sqrt(uint32_t a) {
   constexpr int M = F::man_bits;
@@ -453,6 +580,7 @@ constexpr uint32_t ulp(uint32_t a) {
 
 // Arith<F, R> bundles the operations for one format and rounding policy, so a datapath can be
 // written once as a template on it: `using A = Arith<FP24, Rounding::rtz>; A::mul(x, y)`.
+// Arith<FP24, Rounding::raycore> is RayCore's arithmetic (see the top of this file).
 template <class F, Rounding R>
 struct Arith {
   using Fmt = F;

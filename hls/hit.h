@@ -108,11 +108,16 @@ inline uint32_t slab_tmin(const uint32_t h[3], uint32_t dens, int32_t ulps, uint
 // skip_back's slab (skip_slab's default): the back-off alone leaves the grazing-light neighbours.
 constexpr int32_t kBackSlabUlps = 4;
 
-// The unit roundoff of the rounding policy as a number of the format: 2^-M (rtz), 2^-(M+1) (rne).
+// The unit roundoff of the rounding policy as a number of the format: 2^-M (rtz), 2^-(M+1) (rne),
+// 2^(1-M) (raycore: not correctly rounded; each of its operations errs by less than 2^-M times
+// the magnitudes the bound below charges, add3 by 1.5 * 2^-M, rcp by 1.19 * 2^-M: hls/fp.h).
 template <class A>
 constexpr uint32_t unit_roundoff() {
   using F = typename A::Fmt;
-  constexpr int e = (A::rounding == Rounding::rtz ? -F::man_bits : -F::man_bits - 1) + F::bias;
+  constexpr int e = (A::rounding == Rounding::rtz       ? -F::man_bits
+                     : A::rounding == Rounding::raycore ? 1 - F::man_bits
+                                                        : -F::man_bits - 1) +
+                    F::bias;
   return uint32_t(e) << F::man_bits;
 }
 

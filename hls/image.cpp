@@ -19,11 +19,25 @@ FormatId format_from_string(const std::string& s) {
   if (s == "fp32") return FormatId::fp32;
   throw std::invalid_argument("unknown number format '" + s + "' (fp24 or fp32)");
 }
-const char* rounding_name(Rounding r) { return r == Rounding::rtz ? "rtz" : "rne"; }
+const char* rounding_name(Rounding r) {
+  switch (r) {
+    case Rounding::rtz: return "rtz";
+    case Rounding::rne: return "rne";
+    case Rounding::raycore: return "raycore";
+  }
+  return "?";
+}
 Rounding rounding_from_string(const std::string& s) {
   if (s == "rtz") return Rounding::rtz;
   if (s == "rne") return Rounding::rne;
-  throw std::invalid_argument("unknown rounding '" + s + "' (rtz or rne)");
+  if (s == "raycore") return Rounding::raycore;
+  throw std::invalid_argument("unknown rounding '" + s + "' (rtz, rne or raycore)");
+}
+void check_format_rounding(FormatId f, Rounding r) {
+  if (f == FormatId::fp32 && r == Rounding::raycore)
+    throw std::invalid_argument(
+        "rounding 'raycore' is RayCore's FP24 arithmetic: it needs --format fp24 (fp32 takes rtz "
+        "or rne)");
 }
 
 // ---- header and layout --------------------------------------------------------------------------
@@ -157,7 +171,8 @@ void Image::check(const std::string& what) const {
   if (h.exp_bits == FP24::exp_bits && h.man_bits == FP24::man_bits) fmt = FormatId::fp24;
   else if (h.exp_bits == FP32::exp_bits && h.man_bits == FP32::man_bits) fmt = FormatId::fp32;
   else fail(what, "unsupported number format " + num(h.exp_bits) + "/" + num(h.man_bits) + " (exponent/mantissa bits)");
-  if (h.rounding > 1) fail(what, "unknown rounding code " + num(h.rounding));
+  if (h.rounding > 2) fail(what, "unknown rounding code " + num(h.rounding));
+  if (h.rounding == 2 && fmt != FormatId::fp24) fail(what, "rounding raycore (code 2) is fp24 only");
   const uint64_t rb = fmt == FormatId::fp24 ? tri_record_bytes<FP24>() : tri_record_bytes<FP32>();
   if (h.tri_bytes != rb)
     fail(what, "triangle record size " + num(h.tri_bytes) + " (" + format_name(fmt) + " needs " + num(rb) + ")");
@@ -238,7 +253,7 @@ Image build_t(const std::vector<Tri>& tris, const BuildOptions& opt, TreeStats* 
   h.version = image_version;
   h.exp_bits = uint8_t(F::exp_bits);
   h.man_bits = uint8_t(F::man_bits);
-  h.rounding = R == Rounding::rne ? 1 : 0;
+  h.rounding = R == Rounding::raycore ? 2 : (R == Rounding::rne ? 1 : 0);
   h.tri_bytes = uint8_t(tri_record_bytes<F>());
   h.node_count = uint32_t(tree.nodes.size());
   h.list_count = uint32_t(tree.list.size());

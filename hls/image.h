@@ -51,7 +51,7 @@ enum class FormatId : uint8_t { fp24, fp32 };
 
 const char* format_name(FormatId f);                    // "fp24" / "fp32"
 FormatId format_from_string(const std::string& s);      // throws std::invalid_argument
-const char* rounding_name(Rounding r);                  // "rtz" / "rne"
+const char* rounding_name(Rounding r);                  // "rtz" / "rne" / "raycore"
 Rounding rounding_from_string(const std::string& s);    // throws std::invalid_argument
 
 template <class F>
@@ -60,15 +60,24 @@ constexpr FormatId format_id() {
   return std::is_same<F, FP24>::value ? FormatId::fp24 : FormatId::fp32;
 }
 
+// Throws std::invalid_argument for a pair that does not exist: rounding `raycore` is RayCore's
+// FP24 arithmetic (hls/fp.h), so fp32 + raycore is refused.
+void check_format_rounding(FormatId f, Rounding r);
+
 // Calls fn(F{}, std::integral_constant<Rounding, R>{}) with the format and policy as types:
 //   visit_format(fmt, rnd, [&](auto f, auto r) {
 //     using F = decltype(f); constexpr Rounding R = decltype(r)::value; ... });
+// The pairs: fp24 x {rtz, rne, raycore}, fp32 x {rtz, rne}; fp32 + raycore throws
+// (check_format_rounding).
 template <class Fn>
 decltype(auto) visit_format(FormatId f, Rounding r, Fn&& fn) {
   using rtz = std::integral_constant<Rounding, Rounding::rtz>;
   using rne = std::integral_constant<Rounding, Rounding::rne>;
+  using raycore = std::integral_constant<Rounding, Rounding::raycore>;
+  check_format_rounding(f, r);
   if (f == FormatId::fp24) {
     if (r == Rounding::rtz) return fn(FP24{}, rtz{});
+    if (r == Rounding::raycore) return fn(FP24{}, raycore{});
     return fn(FP24{}, rne{});
   }
   if (r == Rounding::rtz) return fn(FP32{}, rtz{});
@@ -85,7 +94,8 @@ constexpr uint8_t image_flag_vtu = 1u << 0;  // the image was translated by the 
 
 // Header, 64 bytes at address 0 (offsets in bytes, all little endian):
 //    0  magic "RCIMAGE1"        8  version (u16)      10 exp_bits (u8)     11 man_bits (u8)
-//   12  rounding (u8: 0 rtz, 1 rne; the policy the constants and splits were rounded with)
+//   12  rounding (u8: 0 rtz, 1 rne, 2 raycore (fp24 only); the policy the constants and splits
+//       were rounded with, and so the arithmetic the image is traced with)
 //   13  triangle record bytes (u8: 32 fp24, 48 fp32)   14 flags (u8, image_flag_*)   15 zero
 //   16  node count (u32)      20  list count (u32)      24  triangle count (u32)
 //   28  node offset (u32)     32  list offset (u32)     36  triangle offset (u32)
@@ -126,7 +136,9 @@ class Image {
   uint32_t list_count() const { return u32(20); }
   uint32_t tri_count() const { return u32(24); }
   FormatId format() const { return bytes[10] == 7 ? FormatId::fp24 : FormatId::fp32; }
-  Rounding rounding() const { return bytes[12] ? Rounding::rne : Rounding::rtz; }
+  Rounding rounding() const {
+    return bytes[12] == 2 ? Rounding::raycore : (bytes[12] ? Rounding::rne : Rounding::rtz);
+  }
   bool vtu_applied() const { return (bytes[14] & image_flag_vtu) != 0; }
   void box(uint32_t lo[3], uint32_t hi[3]) const;
   template <class F>

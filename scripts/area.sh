@@ -25,7 +25,7 @@ for f in rtl/units/*.v; do
   done
   [ $helper -eq 0 ] && UNITS+=("$n")
 done
-MODULES=(fp_add fp_add3 fp_mul fp_div fp_sqrt fp_cmp "${UNITS[@]}")
+MODULES=(fp_add fp_add3 fp_mul fp_div fp_sqrt fp_rcp fp_cmp "${UNITS[@]}")
 # The sources a module is read from: rtl/fp/*.v, plus for a unit rtl/units/<unit>.v and its
 # helpers rtl/units/<unit>_*.v (so an unfinished file of another unit cannot break this one).
 srcs_for() {
@@ -79,14 +79,20 @@ END { printf "%d\n", bits }
 
 rows=()
 for mod in "${MODULES[@]}"; do
-  for fmt in FP24 FP32; do
+  fmts=(FP24 FP32)
+  grep -q "^// lint: FP24 only" "$(file_of "$mod")" && fmts=(FP24)  # fp_rcp: raycore's, FP24
+  for fmt in "${fmts[@]}"; do
     read -r e m < <(fmt_params "$fmt")
     modes=(rtz rne)
     grep -Eq "parameter +integer +RNE\b" "$(file_of "$mod")" || modes=(-)
+    # Rounding mode raycore (FP24 only): RAYCORE = 1 where the module has the parameter.
+    [ "$fmt" = FP24 ] && grep -Eq "parameter +integer +RAYCORE\b" "$(file_of "$mod")" && modes+=(raycore)
+    [ "$mod" = fp_rcp ] && modes=(raycore)
     for mode in "${modes[@]}"; do
       set_rne=""
       [ "$mode" = rtz ] && set_rne="-set RNE 0"
       [ "$mode" = rne ] && set_rne="-set RNE 1"
+      [ "$mode" = raycore ] && [ "$mod" != fp_rcp ] && set_rne="-set RNE 0 -set RAYCORE 1"
       log="$TMP/$mod-$fmt-$mode"
       yosys -q -l "$log.log" -p "read_verilog $(srcs_for "$mod"); \
         $(grep -Eq "parameter +integer +EXP_BITS" "$(file_of "$mod")" && echo "chparam -set EXP_BITS $e -set MAN_BITS $m -set STAGES $STAGES $set_rne $mod;") \
@@ -111,7 +117,8 @@ done
   echo "$(yosys -V | head -1) on $(date -u +%Y-%m-%d). Do not edit by hand."
   echo
   echo "Each module is synthesised alone: \`read_verilog rtl/fp/*.v [rtl/units/<unit>*.v]; chparam -set EXP_BITS E -set MAN_BITS M"
-  echo "-set STAGES $STAGES [-set RNE 0|1] <module>; synth -flatten -top <module>; stat; ltp -noff\`."
+  echo "-set STAGES $STAGES [-set RNE 0|1] [-set RAYCORE 1] <module>; synth -flatten -top <module>; stat; ltp -noff\`."
+  echo "Rounding raycore (FP24 only): RAYCORE = 1 (RNE = 0); fp_rcp is raycore's reciprocal alone."
   echo "TAG_BITS = each module's default (fp_* and vtu 1; ist 16: its ray/slot tag). A unit's STAGES"
   echo "is per FP operator (vtu: 3 operator levels, latency 3 x STAGES, flattened with its operators)."
   echo

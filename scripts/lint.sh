@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # make lint: every Verilog module under rtl/ through
-#   1. `verilator --lint-only -Wall` (top = the module) for the FP24 and FP32 parameter sets, both
-#      rounding modes and STAGES 0, 1, 2, 4 (parameters a module does not declare are skipped);
+#   1. `verilator --lint-only -Wall` (top = the module) for the FP24 and FP32 parameter sets, the
+#      rounding modes (RNE 0/1; RAYCORE 1 for FP24) and STAGES 0, 1, 2, 4 (parameters a module does
+#      not declare are skipped);
 #      zero warnings allowed, waivers only in rtl/lint/waivers.vlt;
 #   2. a yosys synthesis (`synth -flatten -top <module>`, FP24 and FP32) that must infer no latch
 #      ($dlatch/$_DLATCH_* cells or "Latch inferred" in the log) and pass `check -assert`.
@@ -39,11 +40,17 @@ for src in "${SRCS[@]}"; do
   top=$(basename "$src" .v)
   grep -Eq "^\s*module\s+$top\b" "$src" || { echo "lint: $src does not define module $top" >&2; fail=1; continue; }
   # ---- verilator -Wall ----
+  # A file whose header says "lint: FP24 only" (fp_rcp: rounding mode raycore is FP24's) is
+  # checked for FP24 alone.
+  fmts="FP24 FP32"
+  grep -q "^// lint: FP24 only" "$src" && fmts=FP24
   declare -A seen=()
-  for fmt in FP24 FP32; do
-    for rne in 0 1; do
+  for fmt in $fmts; do
+    # RAYCORE = 1 (rounding mode raycore, FP24 only) overrides RNE: with RNE = 0 only.
+    for mode in "RNE=0 RAYCORE=0" "RNE=1 RAYCORE=0" "RNE=0 RAYCORE=1"; do
+      [ "$fmt" = FP32 ] && [ "$mode" = "RNE=0 RAYCORE=1" ] && continue
       for st in 0 1 2 4; do
-        g=$(params_for "$src" G ${FMT[$fmt]} RNE=$rne STAGES=$st)
+        g=$(params_for "$src" G ${FMT[$fmt]} $mode STAGES=$st)
         [ -n "${seen["x$g"]:-}" ] && continue  # same parameters as an earlier run
         seen["x$g"]=1
         runs=$((runs + 1))
@@ -56,7 +63,7 @@ for src in "${SRCS[@]}"; do
   done
   unset seen
   # ---- yosys synthesis: no latches ----
-  for fmt in FP24 FP32; do
+  for fmt in $fmts; do
     set_args=$(params_for "$src" set ${FMT[$fmt]})
     chparam=""
     [ -n "$set_args" ] && chparam="chparam $set_args $top;"

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "hls/fp.h"
@@ -78,8 +79,14 @@ void run(const FpArgs& a) {
 
 template <class F>
 void run_format(const FpArgs& a) {
-  if (a.rounding == "rtz") run<F, hls::Rounding::rtz>(a);
-  else run<F, hls::Rounding::rne>(a);
+  if (a.rounding == "rtz") {
+    run<F, hls::Rounding::rtz>(a);
+  } else if (a.rounding == "raycore") {
+    if constexpr (std::is_same<F, hls::FP24>::value) run<F, hls::Rounding::raycore>(a);
+    else throw UserError("rounding 'raycore' is RayCore's FP24 arithmetic: it needs --format fp24");
+  } else {
+    run<F, hls::Rounding::rne>(a);
+  }
 }
 
 void register_fp(CLI::App& app) {
@@ -90,7 +97,10 @@ void register_fp(CLI::App& app) {
       ->required();
   c->add_option("operands", args->operands, "decimal numbers or bit patterns (0x...)");
   c->add_option("--format", args->format, "fp24 or fp32")->check(CLI::IsMember({"fp24", "fp32"}));
-  c->add_option("--rounding", args->rounding, "rtz or rne")->check(CLI::IsMember({"rtz", "rne"}));
+  c->add_option("--rounding", args->rounding,
+                "rtz, rne, or raycore (RayCore's FP24 arithmetic: truncating, 1-guard-bit add, "
+                "2-guard-bit add3, table reciprocal)")
+      ->check(CLI::IsMember({"rtz", "rne", "raycore"}));
   c->callback([args] {
     if (args->format == "fp24") run_format<hls::FP24>(*args);
     else run_format<hls::FP32>(*args);

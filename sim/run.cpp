@@ -20,8 +20,11 @@ void add_run_options(CLI::App& c, RunOptions& o) {
   c.add_option("--format", o.format, "number format: fp24 or fp32")
       ->check(CLI::IsMember({"fp24", "fp32"}))
       ->capture_default_str();
-  c.add_option("--rounding", o.rounding, "rounding: rtz (RayCore's) or rne")
-      ->check(CLI::IsMember({"rtz", "rne"}))
+  c.add_option("--rounding", o.rounding,
+               "rounding: rtz (toward zero, correctly rounded), rne, or raycore (RayCore's own FP24 "
+               "arithmetic: truncating, 1-guard-bit add, 2-guard-bit add3, table reciprocal; "
+               "fp24 only)")
+      ->check(CLI::IsMember({"rtz", "rne", "raycore"}))
       ->capture_default_str();
   c.add_option("--vtu", o.vtu, "viewport transfer unit: on or off")
       ->check(CLI::IsMember({"on", "off"}))
@@ -100,6 +103,9 @@ TraceConfig trace_config(const RunOptions& o) {
   TraceConfig c;
   c.format = hls::format_from_string(o.format);
   c.rounding = hls::rounding_from_string(o.rounding);
+  if (c.format == hls::FormatId::fp32 && c.rounding == hls::Rounding::raycore)
+    throw cli::UserError("--rounding raycore is RayCore's FP24 arithmetic: it needs --format fp24 "
+                         "(fp32 takes rtz or rne)");
   c.vtu = o.vtu == "on";
   c.spawn.spawn = spawn_from_string(o.spawn);
   c.spawn.ulps = o.spawn_ulps > 0 ? o.spawn_ulps : default_spawn_ulps(c.format, c.spawn.spawn);

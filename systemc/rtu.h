@@ -130,7 +130,7 @@ class Rtu : public sc_core::sc_module {
   static void no_rtl(const char* unit, unsigned stages) {
     throw std::invalid_argument(std::string("no Verilated ") + unit + " for " +
                                 hls::format_name(hls::format_id<F>()) + " " +
-                                (R == hls::Rounding::rne ? "rne" : "rtz") + " STAGES=" +
+                                hls::rounding_name(R) + " STAGES=" +
                                 std::to_string(stages) + " in this build; built: " +
                                 pins::rtl_models_built());
   }

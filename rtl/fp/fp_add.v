@@ -2,7 +2,9 @@
 //
 // Bit-exact twin of hls::add / hls::sub (hls/fp.h): align the smaller operand to the larger with
 // three guard bits (what falls off is jammed into the lowest bit), add or subtract, round once
-// (fp_round). Zero = exponent field 0 on input; one zero operand returns the other operand's bits;
+// (fp_round). RAYCORE = 1 (hls Rounding::raycore, RayCore's adder; RNE is then ignored): one guard
+// bit and no jam (what falls off is dropped), then truncation. Zero = exponent field 0 on input;
+// one zero operand returns the other operand's bits;
 // two zeros give -0 only if both are -0; an exact cancellation gives +0.
 //
 // Phases, each followed by its share of the STAGES pipeline registers (fp_pipe):
@@ -15,6 +17,7 @@ module fp_add #(
   parameter integer EXP_BITS = 7,
   parameter integer MAN_BITS = 16,
   parameter integer RNE      = 0,
+  parameter integer RAYCORE  = 0,
   parameter integer STAGES   = 2,
   parameter integer TAG_BITS = 1
 ) (
@@ -35,7 +38,8 @@ module fp_add #(
   localparam integer E     = EXP_BITS;
   localparam integer M     = MAN_BITS;
   localparam integer W     = 1 + E + M;
-  localparam integer G     = 3;          // guard bits below the larger operand's lsb
+  localparam integer G     = RAYCORE != 0 ? 1 : 3;  // guard bits below the larger operand's lsb
+  localparam integer RND   = RAYCORE != 0 ? 0 : RNE;
   localparam integer EXP_W = E + 3;      // signed exponent width for fp_round
   localparam integer S_A   = STAGES / 3;
   localparam integer S_B   = (2 * STAGES) / 3 - STAGES / 3;
@@ -51,7 +55,8 @@ module fp_add #(
   wire [E-1:0] diff  = hi[W-2:M] - lo[W-2:M];                // >= 0
   wire [M+G:0] mb_x  = {1'b1, lo[M-1:0], {G{1'b0}}};         // smaller significand, guard bits
   wire [M+G:0] lost  = mb_x & ~({(M+G+1){1'b1}} << diff);    // the bits shifted out
-  wire [M+G:0] a_mb  = (mb_x >> diff) | {{(M+G){1'b0}}, |lost};  // aligned and jammed
+  wire         jam   = RAYCORE == 0 && |lost;                // raycore: no sticky
+  wire [M+G:0] a_mb  = (mb_x >> diff) | {{(M+G){1'b0}}, jam};   // aligned and jammed
 
   // Special results (a zero operand): the other operand, or a zero signed like IEEE's.
   wire         a_spec     = za | zb;
@@ -100,7 +105,7 @@ module fp_add #(
   wire signed [EXP_W-1:0] c_exp_top = $signed({3'b000, c_exp}) + 1;
   wire [W-1:0]            c_rounded;
   fp_round #(
-    .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .MAG_BITS(M + G + 2), .EXP_W(EXP_W)
+    .EXP_BITS(E), .MAN_BITS(M), .RNE(RND), .MAG_BITS(M + G + 2), .EXP_W(EXP_W)
   ) u_round (
     .sign_i(c_sign), .exp_i(c_exp_top), .mag_i(c_mag), .sticky_i(1'b0), .res_o(c_rounded)
   );

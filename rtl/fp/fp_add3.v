@@ -13,10 +13,16 @@
 // Cut j holds floor(STAGES*(j+1)/4) - floor(STAGES*j/4) registers (STAGES = 1: output register
 // only; 2: after B and at the output; 4: one each). Latency = STAGES cycles, one op per cycle.
 // in_tag_i travels along.
+//
+// RAYCORE = 1 (hls Rounding::raycore, RayCore's three-input adder; RNE is then ignored): a window
+// of two guard bits (WIN = M+2), y and z each aligned and truncated (no jam, no one-lsb tiny
+// case), no pair-cancellation special case (only three zeros are special), then truncation: the
+// twin of hls::detail::add3_raycore.
 module fp_add3 #(
   parameter integer EXP_BITS = 7,
   parameter integer MAN_BITS = 16,
   parameter integer RNE      = 0,
+  parameter integer RAYCORE  = 0,
   parameter integer STAGES   = 2,
   parameter integer TAG_BITS = 1
 ) (
@@ -37,7 +43,9 @@ module fp_add3 #(
   localparam integer E     = EXP_BITS;
   localparam integer M     = MAN_BITS;
   localparam integer W     = 1 + E + M;
-  localparam integer WIN   = 3 * M + 6;  // x's leading bit in the accumulator
+  localparam integer RC    = RAYCORE != 0 ? 1 : 0;
+  localparam integer RND   = RC != 0 ? 0 : RNE;
+  localparam integer WIN   = RC != 0 ? M + 2 : 3 * M + 6;  // x's leading bit in the accumulator
   localparam integer ACC_W = WIN + 4;    // signed accumulator: |sum| < 3 * 2^(WIN+1)
   localparam integer EXP_W = E + 3;      // signed exponent width for fp_round
   localparam integer S_A   = STAGES / 4;
@@ -76,11 +84,13 @@ module fp_add3 #(
   reg [W-1:0] a_spec_res;
   always @* begin
     a_spec_res = {za & zb & zc & in_a_i[W-1] & in_b_i[W-1] & in_c_i[W-1], {(W-1){1'b0}}};
-    if (ca_ab) a_spec_res = zc ? {W{1'b0}} : in_c_i;
-    else if (ca_bc) a_spec_res = za ? {W{1'b0}} : in_a_i;
-    else if (ca_ac) a_spec_res = zb ? {W{1'b0}} : in_b_i;
+    if (RC == 0) begin
+      if (ca_ab) a_spec_res = zc ? {W{1'b0}} : in_c_i;
+      else if (ca_bc) a_spec_res = za ? {W{1'b0}} : in_a_i;
+      else if (ca_ac) a_spec_res = zb ? {W{1'b0}} : in_b_i;
+    end
   end
-  wire a_spec = (za & zb & zc) | ca_ab | ca_bc | ca_ac;
+  wire a_spec = (za & zb & zc) | (RC == 0 && (ca_ab | ca_bc | ca_ac));
 
   localparam integer PA_W = TAG_BITS + W + 1 + 3 * W;
   wire [PA_W-1:0] pa_out;
@@ -107,9 +117,9 @@ module fp_add3 #(
   wire [WIN:0] z_lost = z_top & ~({(WIN+1){1'b1}} << dz);
   reg  [WIN:0] my, mz;
   always @* begin
-    my = y_top >> dy;                                  // exact: dy <= 2M+5 = WIN-M-1
-    mz = (z_top >> dz) | {{WIN{1'b0}}, |z_lost};       // jammed
-    if (tiny) begin
+    my = y_top >> dy;                                  // exact: dy <= 2M+5 = WIN-M-1 (raycore: truncated)
+    mz = (z_top >> dz) | {{WIN{1'b0}}, RC == 0 && |z_lost};  // jammed (raycore: truncated)
+    if (tiny && RC == 0) begin
       my = {{WIN{1'b0}}, 1'b1};                        // y + z: one lsb with y's sign
       mz = {(WIN+1){1'b0}};
     end
@@ -163,7 +173,7 @@ module fp_add3 #(
   wire [EXP_W-1:0] d_exp_top = {3'b000, d_ex} + 2;
   wire [W-1:0]     d_rounded;
   fp_round #(
-    .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .MAG_BITS(ACC_W - 1), .EXP_W(EXP_W)
+    .EXP_BITS(E), .MAN_BITS(M), .RNE(RND), .MAG_BITS(ACC_W - 1), .EXP_W(EXP_W)
   ) u_round (
     .sign_i(d_sign), .exp_i(d_exp_top), .mag_i(d_mag), .sticky_i(1'b0), .res_o(d_rounded)
   );

@@ -1,10 +1,11 @@
 // fp_add3_nt - fp_add3 (out_res_o = in_a_i + in_b_i + in_c_i) without a tag, for units that carry
 // their tag and side data in one fp_pipe per level beside the operators (ist, vtu). The operator's
-// tag (TAG_BITS = its default, 1) is tied to 0 and optimised away. Latency = STAGES cycles.
+// tag (TAG_BITS = its default, 1) is tied to 0 and optimised away. RAYCORE: as fp_add3's. Latency = STAGES cycles.
 module fp_add3_nt #(
   parameter integer EXP_BITS = 7,
   parameter integer MAN_BITS = 16,
   parameter integer RNE      = 0,
+  parameter integer RAYCORE  = 0,
   parameter integer STAGES   = 2
 ) (
   input  wire                       clk_i,
@@ -20,7 +21,8 @@ module fp_add3_nt #(
 );
 
   wire unused_tag;  // always 0: the tag is not used
-  fp_add3 #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .STAGES(STAGES)) u_op (
+  fp_add3 #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE),
+            .STAGES(STAGES)) u_op (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(in_valid_i), .in_ready_o(in_ready_o),
     .in_a_i(in_a_i), .in_b_i(in_b_i), .in_c_i(in_c_i), .in_tag_i(1'b0),
     .out_valid_o(out_valid_o), .out_ready_i(out_ready_i), .out_res_o(out_res_o),

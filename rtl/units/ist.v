@@ -14,7 +14,7 @@
 // phase flags):
 //    1  m_nud = n_u*d_u, m_nvd = n_v*d_v, m_nuo = n_u*o_u, m_nvo = n_v*o_v, s1 = n_d - o_k
 //    2  den = add3(d_k, m_nud, m_nvd), s2 = m_nuo + m_nvo
-//    3  num = s1 - s2, rcp = 1 / den (fp_div)
+//    3  num = s1 - s2, rcp = 1 / den (fp_div; RAYCORE: fp_rcp, the table reciprocal)
 //    4  t = num * rcp
 //    5  lt(tmin, t), lt(t, tmax) (fp_cmp), t*d_u, t*d_v
 //    6  hu = o_u + t*d_u, hv = o_v + t*d_v
@@ -34,6 +34,7 @@ module ist #(
   parameter integer EXP_BITS = 7,
   parameter integer MAN_BITS = 16,
   parameter integer RNE      = 0,
+  parameter integer RAYCORE  = 0,   // rounding mode raycore (hls Rounding::raycore; RNE ignored)
   parameter integer STAGES   = 2,
   parameter integer TAG_BITS = 16
 ) (
@@ -125,13 +126,13 @@ module ist #(
   genvar gj;
   generate
     for (gj = 0; gj < 4; gj = gj + 1) begin : g_l1_mul
-      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_mul (
+      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_mul (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[gj]),
         .in_a_i(l1_pa[gj*W +: W]), .in_b_i(l1_pb[gj*W +: W]), .out_valid_o(l1_unused_v[gj]),
         .out_ready_i(r[2]), .out_res_o(l1_prod[gj*W +: W]));
     end
   endgenerate
-  fp_op2_nt #(.OP("sub"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l1_s1 (
+  fp_op2_nt #(.OP("sub"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_l1_s1 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[4]),
     .in_a_i(in_c2_i), .in_b_i(o_k), .out_valid_o(l1_unused_v[4]), .out_ready_i(r[2]),
     .out_res_o(l1_s1));
@@ -144,11 +145,11 @@ module ist #(
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(r[2]),
     .in_data_i({c1_tag, c1_ka, l1_s1, c1_kb}), .out_valid_o(v[2]), .out_ready_i(r[3]),
     .out_data_o({c2_tag, c2_ka, c2_s1, c2_kb}));
-  fp_add3_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l2_den (
+  fp_add3_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_l2_den (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[0]),
     .in_a_i(c1_dk), .in_b_i(l1_nud), .in_c_i(l1_nvd), .out_valid_o(l2_unused_v[0]),
     .out_ready_i(r[3]), .out_res_o(l2_den));
-  fp_op2_nt #(.OP("add"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l2_s2 (
+  fp_op2_nt #(.OP("add"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_l2_s2 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[1]),
     .in_a_i(l1_nuo), .in_b_i(l1_nvo), .out_valid_o(l2_unused_v[1]), .out_ready_i(r[3]),
     .out_res_o(l2_s2));
@@ -161,14 +162,24 @@ module ist #(
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(r[3]),
     .in_data_i({c2_tag, c2_ka, l2_den, c2_kb}), .out_valid_o(v[3]), .out_ready_i(r[4]),
     .out_data_o({c3_tag, c3_ka, c3_den, c3_kb}));
-  fp_op2_nt #(.OP("sub"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l3_num (
+  fp_op2_nt #(.OP("sub"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_l3_num (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[0]),
     .in_a_i(c2_s1), .in_b_i(l2_s2), .out_valid_o(l3_unused_v[0]), .out_ready_i(r[4]),
     .out_res_o(l3_num));
-  fp_op2_nt #(.OP("div"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l3_rcp (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[1]),
-    .in_a_i(ONE), .in_b_i(l2_den), .out_valid_o(l3_unused_v[1]),
-    .out_ready_i(r[4]), .out_res_o(l3_rcp));
+  generate
+    if (RAYCORE != 0) begin : g_rcp_table  // raycore: the table reciprocal (hls::rcp<F, raycore>)
+      wire unused_tag;
+      fp_rcp #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(STAGES)) u_l3_rcp (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[1]),
+        .in_a_i(l2_den), .in_tag_i(1'b0), .out_valid_o(l3_unused_v[1]),
+        .out_ready_i(r[4]), .out_res_o(l3_rcp), .out_tag_o(unused_tag));
+    end else begin : g_rcp_div  // rtz, rne: 1 / den, rounded once
+      fp_op2_nt #(.OP("div"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l3_rcp (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[1]),
+        .in_a_i(ONE), .in_b_i(l2_den), .out_valid_o(l3_unused_v[1]),
+        .out_ready_i(r[4]), .out_res_o(l3_rcp));
+    end
+  endgenerate
 
   // ---- level 4 ----------------------------------------------------------------------------------
   wire [W-1:0] l4_t;
@@ -180,7 +191,7 @@ module ist #(
     .out_data_o({c4_tag, c4_ka, c4_den, c4_kb}));
   wire [W-1:0] c4_tmin = c4_ka[5*W +: W];
   wire [W-1:0] c4_tmax = c4_ka[4*W +: W];
-  fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l4_t (
+  fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_l4_t (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(l4_unused_r),
     .in_a_i(l3_num), .in_b_i(l3_rcp), .out_valid_o(l4_unused_v), .out_ready_i(r[5]),
     .out_res_o(l4_t));
@@ -212,7 +223,7 @@ module ist #(
         .in_a_i(l5_ca[gj*W +: W]), .in_b_i(l5_cb[gj*W +: W]), .out_valid_o(l5_unused_v[gj]),
         .out_ready_i(r[6]), .out_lt_o(l5_lt[gj]), .out_eq_o(l5_unused_eq[gj]),
         .out_min_o(l5_unused_mm[2*gj*W +: W]), .out_max_o(l5_unused_mm[(2*gj+1)*W +: W]));
-      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_mul (
+      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_mul (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(l5_unused_r[2+gj]),
         .in_a_i(l4_t), .in_b_i(l5_pb[gj*W +: W]), .out_valid_o(l5_unused_v[2+gj]),
         .out_ready_i(r[6]), .out_res_o(l5_prod[gj*W +: W]));
@@ -236,7 +247,7 @@ module ist #(
   wire [2*W-1:0] l6_sum;  // {hv, hu}
   generate
     for (gj = 0; gj < 2; gj = gj + 1) begin : g_l6_add
-      fp_op2_nt #(.OP("add"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_add (
+      fp_op2_nt #(.OP("add"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_add (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(l6_unused_r[gj]),
         .in_a_i(l6_a[gj*W +: W]), .in_b_i(l5_prod[gj*W +: W]), .out_valid_o(l6_unused_v[gj]),
         .out_ready_i(r[7]), .out_res_o(l6_sum[gj*W +: W]));
@@ -260,7 +271,7 @@ module ist #(
   wire [4*W-1:0] l7_prod;  // {cv, cu, bv, bu}
   generate
     for (gj = 0; gj < 4; gj = gj + 1) begin : g_l7_mul
-      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_mul (
+      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_mul (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(l7_unused_r[gj]),
         .in_a_i(l7_pa[gj*W +: W]), .in_b_i(l6_sum[(gj%2)*W +: W]), .out_valid_o(l7_unused_v[gj]),
         .out_ready_i(r[8]), .out_res_o(l7_prod[gj*W +: W]));
@@ -286,7 +297,7 @@ module ist #(
   assign {l8_gamma, l8_beta} = l8_sum;
   generate
     for (gj = 0; gj < 2; gj = gj + 1) begin : g_l8_add3
-      fp_add3_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_add3 (
+      fp_add3_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_add3 (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(l8_unused_r[gj]),
         .in_a_i(l7_prod[2*gj*W +: W]), .in_b_i(l7_prod[(2*gj+1)*W +: W]),
         .in_c_i(l8_c[gj*W +: W]), .out_valid_o(l8_unused_v[gj]), .out_ready_i(r[9]),
@@ -310,7 +321,7 @@ module ist #(
     .out_valid_o(v[9]), .out_ready_i(r[10]),
     .out_data_o({c9_tag, c9_den, c9_t, c9_p1, c9_bfail, c9_gfail})
   );
-  fp_op2_nt #(.OP("add"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l9_sum (
+  fp_op2_nt #(.OP("add"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_l9_sum (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[8]), .in_ready_o(l9_unused_r),
     .in_a_i(l8_beta), .in_b_i(l8_gamma), .out_valid_o(l9_unused_v), .out_ready_i(r[10]),
     .out_res_o(l9_sum));

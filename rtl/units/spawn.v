@@ -36,6 +36,7 @@ module spawn #(
   parameter integer EXP_BITS = 7,
   parameter integer MAN_BITS = 16,
   parameter integer RNE      = 0,
+  parameter integer RAYCORE  = 0,   // rounding mode raycore (hls Rounding::raycore; RNE ignored)
   parameter integer STAGES   = 2,
   parameter integer TAG_BITS = 1,
   parameter integer STRATEGY = 3
@@ -211,7 +212,7 @@ module spawn #(
       wire [4*W-1:0] l1_res;
       wire           l1_valid, l2_ready, unused_s1_rdy, unused_s1_vld;
       wire [S1-1:0]  s1;
-      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES), .OP(0), .N(4)) u_l1 (
+      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES), .OP(0), .N(4)) u_l1 (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(in_valid_i), .in_ready_o(in_ready_o),
         .in_a_i({in_fixed_i, in_fixed_i, in_scale_i, in_scale_i}), .in_b_i({nv, nu, nv, nu}),
         .in_c_i({4*W{1'b0}}), .in_sub_i(4'b0), .out_valid_o(l1_valid), .out_ready_i(l2_ready),
@@ -235,7 +236,7 @@ module spawn #(
       wire [3*W-1:0] l2_res;
       wire           unused_s2_rdy, unused_s2_vld;
       wire [S2-1:0]  s2;
-      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES), .OP(1), .N(3)) u_l2 (
+      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES), .OP(1), .N(3)) u_l2 (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(l1_valid), .in_ready_o(l2_ready),
         .in_a_i({s1_hv, s1_hu, s1_hk}), .in_b_i({f_v, f_u, s1_fk}), .in_c_i({3*W{1'b0}}),
         .in_sub_i(3'b0), .out_valid_o(out_valid_o), .out_ready_i(out_ready_i), .out_res_o(l2_res)
@@ -279,12 +280,12 @@ module spawn #(
       wire         v1, r2, unused_d1_rdy, unused_d1_vld, unused_p1_rdy, unused_p1_vld;
       localparam integer P1 = TAG_BITS + 4 * W;
       wire [P1-1:0] p1;
-      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES), .OP(0), .N(1)) u_m1 (
+      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES), .OP(0), .N(1)) u_m1 (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(in_valid_i), .in_ready_o(in_ready_o),
         .in_a_i(in_scale_i), .in_b_i(uh), .in_c_i({W{1'b0}}), .in_sub_i(1'b0),
         .out_valid_o(v1), .out_ready_i(r2), .out_res_o(slab)
       );
-      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES), .OP(3), .N(1)) u_d1 (
+      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES), .OP(3), .N(1)) u_d1 (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(in_valid_i), .in_ready_o(unused_d1_rdy),
         .in_a_i(ONE), .in_b_i(dmax), .in_c_i({W{1'b0}}), .in_sub_i(1'b0),
         .out_valid_o(unused_d1_vld), .out_ready_i(r2), .out_res_o(rcp)
@@ -298,7 +299,7 @@ module spawn #(
       wire [W-1:0]  t0;
       wire          unused_p2_rdy, unused_p2_vld;
       wire [P1-1:0] p2;
-      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES), .OP(0), .N(1)) u_m2 (
+      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES), .OP(0), .N(1)) u_m2 (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v1), .in_ready_o(r2),
         .in_a_i(slab), .in_b_i(rcp), .in_c_i({W{1'b0}}), .in_sub_i(1'b0),
         .out_valid_o(out_valid_o), .out_ready_i(out_ready_i), .out_res_o(t0)
@@ -335,13 +336,13 @@ module spawn #(
       wire           v1, r2, unused_a1_rdy, unused_a1_vld, unused_p1_rdy, unused_p1_vld;
       localparam integer P1 = CW + 2 * W;
       wire [P1-1:0] p1;
-      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES), .OP(0), .N(7)) u_m1 (
+      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES), .OP(0), .N(7)) u_m1 (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(in_valid_i), .in_ready_o(in_ready_o),
         .in_a_i({in_n_v_i, in_n_u_i, in_t_i, in_n_v_i, in_n_u_i, in_n_v_i, in_n_u_i}),
         .in_b_i({hv, hu, in_den_i, dv, du, ov, ou}), .in_c_i({7*W{1'b0}}), .in_sub_i(7'b0),
         .out_valid_o(v1), .out_ready_i(r2), .out_res_o(m1)
       );
-      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES), .OP(1), .N(5)) u_a1 (
+      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES), .OP(1), .N(5)) u_a1 (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(in_valid_i), .in_ready_o(unused_a1_rdy),
         .in_a_i({fabs(tv), fabs(tu), fabs(tk), fabs(in_n_d_i), fabs(in_n_d_i)}),
         .in_b_i({fabs(hv), fabs(hu), fabs(hk), fabs(hk), fabs(ok)}), .in_c_i({5*W{1'b0}}),
@@ -367,14 +368,14 @@ module spawn #(
       wire           v2, r3, unused_m2_rdy, unused_m2_vld, unused_p2_rdy, unused_p2_vld;
       localparam integer P2 = CW + 3 * W;
       wire [P2-1:0] p2;
-      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES), .OP(2), .N(4)) u_e2 (
+      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES), .OP(2), .N(4)) u_e2 (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v1), .in_ready_o(r2),
         .in_a_i({fabs(c1_hk), ndhk, adk, ndok}),
         .in_b_i({fabs(nuhu), fabs(nuhu), fabs(nudu), fabs(nuou)}),
         .in_c_i({fabs(nvhv), fabs(nvhv), fabs(nvdv), fabs(nvov)}), .in_sub_i(4'b0),
         .out_valid_o(v2), .out_ready_i(r3), .out_res_o(e2)
       );
-      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES), .OP(0), .N(2)) u_m2 (
+      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES), .OP(0), .N(2)) u_m2 (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v1), .in_ready_o(unused_m2_rdy),
         .in_a_i({fabs(c1_nv), fabs(c1_nu)}), .in_b_i({sv, su}), .in_c_i({2*W{1'b0}}),
         .in_sub_i(2'b0), .out_valid_o(unused_m2_vld), .out_ready_i(r3), .out_res_o(m2)
@@ -395,12 +396,12 @@ module spawn #(
       wire           v3, r4, unused_m3_rdy, unused_m3_vld, unused_p3_rdy, unused_p3_vld;
       localparam integer P3 = CW + 2 * W;
       wire [P3-1:0] p3;
-      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES), .OP(2), .N(1)) u_e3 (
+      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES), .OP(2), .N(1)) u_e3 (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v2), .in_ready_o(r3),
         .in_a_i(sk2), .in_b_i(m2[0 +: W]), .in_c_i(m2[W +: W]), .in_sub_i(1'b0),
         .out_valid_o(v3), .out_ready_i(r4), .out_res_o(e_hit)
       );
-      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES), .OP(0), .N(3)) u_m3 (
+      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES), .OP(0), .N(3)) u_m3 (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v2), .in_ready_o(unused_m3_rdy),
         .in_a_i({C5, at2, C5}), .in_b_i({e_snum, e_den, e_num}), .in_c_i({3*W{1'b0}}),
         .in_sub_i(3'b0), .out_valid_o(unused_m3_vld), .out_ready_i(r4), .out_res_o(m3)
@@ -418,12 +419,12 @@ module spawn #(
       wire         v4, r5, unused_a4_rdy, unused_a4_vld, unused_p4_rdy, unused_p4_vld;
       localparam integer P4 = CW + 3 * W;
       wire [P4-1:0] p4;
-      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES), .OP(0), .N(1)) u_m4 (
+      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES), .OP(0), .N(1)) u_m4 (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v3), .in_ready_o(r4),
         .in_a_i(C3), .in_b_i(m3[W +: W]), .in_c_i({W{1'b0}}), .in_sub_i(1'b0),
         .out_valid_o(v4), .out_ready_i(r5), .out_res_o(c3ted)
       );
-      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES), .OP(1), .N(1)) u_a4 (
+      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES), .OP(1), .N(1)) u_a4 (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v3), .in_ready_o(unused_a4_rdy),
         .in_a_i(m3[2*W +: W]), .in_b_i(e_move3), .in_c_i({W{1'b0}}), .in_sub_i(1'b0),
         .out_valid_o(unused_a4_vld), .out_ready_i(r5), .out_res_o(snmv)
@@ -441,7 +442,7 @@ module spawn #(
       wire         v5, r6, unused_p5_rdy, unused_p5_vld;
       localparam integer P5 = CW + 2 * W;
       wire [P5-1:0] p5;
-      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES), .OP(2), .N(1)) u_e5 (
+      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES), .OP(2), .N(1)) u_e5 (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v4), .in_ready_o(r5),
         .in_a_i(c5num4), .in_b_i(c3ted), .in_c_i(c2tden4), .in_sub_i(1'b0),
         .out_valid_o(v5), .out_ready_i(r6), .out_res_o(b1)
@@ -457,7 +458,7 @@ module spawn #(
       wire [W-1:0]  bnd;
       wire          v6, r7, unused_p6_rdy, unused_p6_vld;
       wire [CW-1:0] core6;
-      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES), .OP(2), .N(1)) u_e6 (
+      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES), .OP(2), .N(1)) u_e6 (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v5), .in_ready_o(r6),
         .in_a_i(b1), .in_b_i(p5[CW +: W]), .in_c_i(p5[CW+W +: W]), .in_sub_i(1'b0),
         .out_valid_o(v6), .out_ready_i(r7), .out_res_o(bnd)
@@ -466,15 +467,15 @@ module spawn #(
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v5), .in_ready_o(unused_p6_rdy),
         .in_data_i(core5), .out_valid_o(unused_p6_vld), .out_ready_i(r7), .out_data_o(core6)
       );
-      // delta = 2 u B: u = 2^-M (rtz) or 2^-(M+1) (rne).
-      wire [W-1:0] delta = scale2(bnd, RNE != 0 ? -M : 1 - M);
+      // delta = 2 u B: u = 2^-M (rtz), 2^-(M+1) (rne) or 2^(1-M) (raycore, hls/hit.h).
+      wire [W-1:0] delta = scale2(bnd, RAYCORE != 0 ? 2 - M : (RNE != 0 ? -M : 1 - M));
 
       // L7: delta n_u, delta n_v (fp_mul); delta n_k = delta.
       wire [2*W-1:0] m7;
       wire           v7, r8, unused_p7_rdy, unused_p7_vld;
       localparam integer P7 = CW + W;
       wire [P7-1:0] p7;
-      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES), .OP(0), .N(2)) u_m7 (
+      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES), .OP(0), .N(2)) u_m7 (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v6), .in_ready_o(r7),
         .in_a_i({delta, delta}), .in_b_i({core6[4*W +: W], core6[3*W +: W]}),
         .in_c_i({2*W{1'b0}}), .in_sub_i(2'b0), .out_valid_o(v7), .out_ready_i(r8), .out_res_o(m7)
@@ -491,7 +492,7 @@ module spawn #(
       wire           unused_p8_rdy, unused_p8_vld;
       localparam integer P8 = TAG_BITS + 2;
       wire [P8-1:0] p8;
-      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES), .OP(1), .N(3)) u_a8 (
+      spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES), .OP(1), .N(3)) u_a8 (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v7), .in_ready_o(r8),
         .in_a_i(core7[3*W-1:0]), .in_b_i({m7, p7[CW +: W]}), .in_c_i({3*W{1'b0}}),
         .in_sub_i({3{neg7}}), .out_valid_o(out_valid_o), .out_ready_i(out_ready_i), .out_res_o(o8)

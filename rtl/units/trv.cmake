@@ -8,7 +8,8 @@ raycore_rtl_unit(trv VARIANTS
   "trv FP24 rtz 0"
   "trv FP24 rtz 2"
   "trv FP24 rne 1"
-  "trv FP32 rne 2")
+  "trv FP32 rne 2"
+  "trv FP24 raycore 2")
 
 # The --sc models need SystemC (pkg-config); without it the lockstep tests are left out.
 find_package(PkgConfig QUIET)

@@ -37,6 +37,7 @@ module trv #(
   parameter integer EXP_BITS = 7,
   parameter integer MAN_BITS = 16,
   parameter integer RNE      = 0,
+  parameter integer RAYCORE  = 0,   // rounding mode raycore (hls Rounding::raycore; RNE ignored)
   parameter integer STAGES   = 2,
   parameter integer TAG_BITS = 16
 ) (
@@ -132,7 +133,7 @@ module trv #(
   genvar gj;
   generate
     for (gj = 0; gj < 6; gj = gj + 1) begin : g_l1_sub
-      fp_op2_nt #(.OP("sub"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_sub (
+      fp_op2_nt #(.OP("sub"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_sub (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[gj]),
         .in_a_i(l1_a[gj*W +: W]), .in_b_i(l1_b[gj*W +: W]), .out_valid_o(l1_unused_v[gj]),
         .out_ready_i(r[2]), .out_res_o(l1_diff[gj*W +: W]));
@@ -165,7 +166,7 @@ module trv #(
   assign {l2_thz, l2_thy, l2_thx, l2_tlz, l2_tly, l2_tlx} = l2_prod;
   generate
     for (gj = 0; gj < 6; gj = gj + 1) begin : g_l2_mul
-      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_mul (
+      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_mul (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[gj]),
         .in_a_i(l1_diff[gj*W +: W]), .in_b_i(l2_b[gj*W +: W]), .out_valid_o(l2_unused_v[gj]),
         .out_ready_i(r[3]), .out_res_o(l2_prod[gj*W +: W]));

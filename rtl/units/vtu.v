@@ -35,6 +35,7 @@ module vtu #(
   parameter integer EXP_BITS = 7,
   parameter integer MAN_BITS = 16,
   parameter integer RNE      = 0,
+  parameter integer RAYCORE  = 0,   // rounding mode raycore (hls Rounding::raycore; RNE ignored)
   parameter integer STAGES   = 2,
   parameter integer TAG_BITS = 1
 ) (
@@ -123,7 +124,7 @@ module vtu #(
   genvar gi;
   generate
     for (gi = 0; gi < 6; gi = gi + 1) begin : g_mul
-      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_mul (
+      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_mul (
         .clk_i(clk_i), .rst_ni(rst_ni),
         .in_valid_i(in_valid_i), .in_ready_o(l1_in_ready[gi]),
         .in_a_i(l1_a[gi*W +: W]), .in_b_i(l1_b[gi*W +: W]),
@@ -152,7 +153,7 @@ module vtu #(
   wire           l2_valid, l3_ready;
   generate
     for (gi = 0; gi < 3; gi = gi + 1) begin : g_add3
-      fp_add3_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_add3 (
+      fp_add3_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_add3 (
         .clk_i(clk_i), .rst_ni(rst_ni),
         .in_valid_i(l1_valid), .in_ready_o(l2_in_ready[gi]),
         .in_a_i(l2_a[gi*W +: W]), .in_b_i(l1_prod[2*gi*W +: W]),
@@ -182,7 +183,7 @@ module vtu #(
   wire [W-1:0]  l3_diff;
   wire          unused_l3_side_valid;
   wire          l3_valid;
-  fp_op2_nt #(.OP("sub"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_sub (
+  fp_op2_nt #(.OP("sub"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_sub (
     .clk_i(clk_i), .rst_ni(rst_ni),
     .in_valid_i(l2_valid), .in_ready_o(l3_ready),
     .in_a_i(l3_a), .in_b_i(l3_b),

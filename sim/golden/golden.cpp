@@ -297,8 +297,11 @@ Frame trace_golden(const hls::Image& image, const scenes::Camera& cam, const sce
     throw std::invalid_argument("memory image format/rounding differ from the trace configuration");
   if (cfg.format == hls::FormatId::fp24) {
     if (cfg.rounding == R::rtz) return trace_t<hls::Arith<hls::FP24, R::rtz>>(image, cam, light, cfg, stats);
+    if (cfg.rounding == R::raycore)
+      return trace_t<hls::Arith<hls::FP24, R::raycore>>(image, cam, light, cfg, stats);
     return trace_t<hls::Arith<hls::FP24, R::rne>>(image, cam, light, cfg, stats);
   }
+  hls::check_format_rounding(cfg.format, cfg.rounding);  // fp32 + raycore: refused
   if (cfg.rounding == R::rtz) return trace_t<hls::Arith<hls::FP32, R::rtz>>(image, cam, light, cfg, stats);
   return trace_t<hls::Arith<hls::FP32, R::rne>>(image, cam, light, cfg, stats);
 }

@@ -12,7 +12,9 @@ namespace {
 bool matches(const char* fmt, const char* mode, unsigned stages, hls::FormatId f, hls::Rounding r,
              unsigned s) {
   const hls::FormatId mf = std::strcmp(fmt, "FP24") == 0 ? hls::FormatId::fp24 : hls::FormatId::fp32;
-  const hls::Rounding mr = std::strcmp(mode, "rne") == 0 ? hls::Rounding::rne : hls::Rounding::rtz;
+  const hls::Rounding mr = std::strcmp(mode, "rne") == 0       ? hls::Rounding::rne
+                           : std::strcmp(mode, "raycore") == 0 ? hls::Rounding::raycore
+                                                               : hls::Rounding::rtz;
   return mf == f && mr == r && stages == s;
 }
 

@@ -25,8 +25,12 @@ namespace raycore::fptest {
 
 using hls::Rounding;
 
-inline const char* mode_name(Rounding r) { return r == Rounding::rtz ? "rtz" : "rne"; }
-inline mpfr_rnd_t mpfr_mode(Rounding r) { return r == Rounding::rtz ? MPFR_RNDZ : MPFR_RNDN; }
+inline const char* mode_name(Rounding r) {
+  return r == Rounding::rtz ? "rtz" : (r == Rounding::rne ? "rne" : "raycore");
+}
+// raycore is not correctly rounded: the oracle rounds toward zero for it (its conversions and mul
+// are rtz exactly); tb/fp/test_fp_raycore.cpp checks its other operations against bounds.
+inline mpfr_rnd_t mpfr_mode(Rounding r) { return r == Rounding::rne ? MPFR_RNDN : MPFR_RNDZ; }
 
 // The format's facts from its field widths only (the header's constants are checked against
 // these in a test).

@@ -264,6 +264,28 @@ TEST(ImageFile, HeaderAndLayout) {
   EXPECT_NO_THROW(b32.check("built fp32 image"));
 }
 
+// Rounding mode raycore: header code 2, constants and splits truncated as rtz's (its conversions
+// are rtz's), so the image differs from the rtz one in byte 12 alone; fp32 + raycore is refused.
+TEST(ImageFile, RaycoreRounding) {
+  const auto tris = test::random_scene(10, 300);
+  const Image rc = build_image(tris, FormatId::fp24, Rounding::raycore);
+  EXPECT_EQ(rc.bytes[12], 2u);
+  EXPECT_EQ(rc.rounding(), Rounding::raycore);
+  EXPECT_NO_THROW(rc.check("raycore image"));
+  Image rz = build_image(tris, FormatId::fp24, Rounding::rtz);
+  ASSERT_EQ(rz.bytes.size(), rc.bytes.size());
+  rz.bytes[12] = 2;
+  EXPECT_EQ(rz.bytes, rc.bytes);
+  EXPECT_THROW(build_image(tris, FormatId::fp32, Rounding::raycore), std::invalid_argument);
+  EXPECT_EQ(std::string(rounding_name(Rounding::raycore)), "raycore");
+  EXPECT_EQ(rounding_from_string("raycore"), Rounding::raycore);
+  Image bad = build_image(tris, FormatId::fp32, Rounding::rtz);
+  bad.bytes[12] = 2;
+  EXPECT_ANY_THROW(bad.check("fp32 with code 2"));
+  bad.bytes[12] = 3;
+  EXPECT_ANY_THROW(bad.check("code 3"));
+}
+
 TEST(ImageFile, SaveLoadRoundTrip) {
   const auto tris = test::random_scene(8, 300);
   for (FormatId f : {FormatId::fp24, FormatId::fp32}) {

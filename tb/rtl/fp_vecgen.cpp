@@ -1,7 +1,7 @@
 // tb/rtl/fp_vecgen.cpp - writes fp_add test vectors for the Icarus Verilog testbench
 // (tb/rtl/tb_fp_add.v): operands and the result expected from hls/fp.h.
 //
-//   fp_vecgen <FP24|FP32> <rtz|rne> <count> <file>
+//   fp_vecgen <FP24|FP32> <rtz|rne|raycore> <count> <file>   (raycore: FP24 only)
 //
 // The vectors: all pairs of the C++ tests' small directed set (tb/fp/fp_check.h) with sub 0 and 1,
 // then random ones from the same generator (fptest::Gen) up to `count`, seeded from the format and
@@ -38,7 +38,7 @@ uint64_t write_vectors(uint64_t count, const std::string& path) {
       for (bool sub : {false, true})
         if (n < count) put(a, b, sub);
   fptest::Gen<F> gen(fptest::seed_for(std::string("icarus.") + fptest::fmt_name<F>() +
-                                      (R == Rounding::rtz ? ".rtz" : ".rne")));
+                                      "." + fptest::mode_name(R)));
   while (n < count) {
     uint32_t a, b;
     const bool sub = gen.coin();
@@ -53,7 +53,7 @@ uint64_t write_vectors(uint64_t count, const std::string& path) {
 
 int main(int argc, char** argv) {
   try {
-    if (argc != 5) throw std::runtime_error("usage: fp_vecgen <FP24|FP32> <rtz|rne> <count> <file>");
+    if (argc != 5) throw std::runtime_error("usage: fp_vecgen <FP24|FP32> <rtz|rne|raycore> <count> <file>");
     const std::string fmt = argv[1], mode = argv[2], path = argv[4];
     char* end = nullptr;
     const unsigned long long count = std::strtoull(argv[3], &end, 10);
@@ -61,6 +61,7 @@ int main(int argc, char** argv) {
     uint64_t n = 0;
     if (fmt == "FP24" && mode == "rtz") n = write_vectors<raycore::hls::FP24, Rounding::rtz>(count, path);
     else if (fmt == "FP24" && mode == "rne") n = write_vectors<raycore::hls::FP24, Rounding::rne>(count, path);
+    else if (fmt == "FP24" && mode == "raycore") n = write_vectors<raycore::hls::FP24, Rounding::raycore>(count, path);
     else if (fmt == "FP32" && mode == "rtz") n = write_vectors<raycore::hls::FP32, Rounding::rtz>(count, path);
     else if (fmt == "FP32" && mode == "rne") n = write_vectors<raycore::hls::FP32, Rounding::rne>(count, path);
     else throw std::runtime_error("unknown format/mode '" + fmt + " " + mode + "'");

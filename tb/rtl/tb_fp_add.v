@@ -5,12 +5,13 @@
 // handshake with random input gaps and random output back-pressure (seeded by +seed=<n>), checks
 // every result and its tag (the vector index) in order, prints the first 10 mismatches and a final
 //   RESULT vectors=<checked> mismatches=<k>
-// line. Parameters (iverilog -P): EXP_BITS, MAN_BITS, RNE, STAGES, N.
+// line. Parameters (iverilog -P): EXP_BITS, MAN_BITS, RNE, RAYCORE, STAGES, N.
 `timescale 1ns / 1ps
 module tb_fp_add;
   parameter integer EXP_BITS = 7;
   parameter integer MAN_BITS = 16;
   parameter integer RNE      = 0;
+  parameter integer RAYCORE  = 0;
   parameter integer STAGES   = 2;
   parameter integer N        = 1;
   localparam integer W = 1 + EXP_BITS + MAN_BITS;
@@ -26,7 +27,7 @@ module tb_fp_add;
   wire [15:0]      out_tag;
 
   fp_add #(
-    .EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .STAGES(STAGES), .TAG_BITS(16)
+    .EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES), .TAG_BITS(16)
   ) dut (
     .clk_i(clk), .rst_ni(rst_n),
     .in_valid_i(in_valid), .in_ready_o(in_ready),

@@ -1,7 +1,7 @@
 // tb/rtl/test_rtl_fp.cpp - co-simulation of the rtl/fp modules against hls/fp.h, bit for bit.
 //
-// One test per Verilated variant (module, format, rounding, STAGES), listed once in
-// rtl/CMakeLists.txt. Each test streams, through the module's handshake:
+// One test per Verilated variant (module, format, rounding: rtz, rne or raycore, STAGES), listed
+// once in rtl/CMakeLists.txt. Each test streams, through the module's handshake:
 //   1. fullrate: the first 4096 directed vectors with no stalls (one op per cycle, latency ==
 //      STAGES, checked),
 //   2. directed: the C++ tests' directed operand set (tb/fp/fp_check.h): all pairs (add: with
@@ -185,6 +185,40 @@ struct SqrtOp : OpBase<F> {
   }
 };
 
+// fp_rcp (rounding mode raycore only): one operand. Directed: the directed set, then every
+// mantissa at exponents 0, -1 (negative), 61 and 62 (the results next to the flush threshold)
+// and emin.
+template <class F, Rounding R>
+struct RcpOp : OpBase<F> {
+  using Res = Result<F>;
+  static constexpr int kExps[5] = {0, -1, 61, 62, F::emin};
+  static const char* name() { return "fp_rcp"; }
+  template <class V>
+  static void drive(V& m, const Operands& x) {
+    m.in_a_i = x.a;
+  }
+  static Res expect(const Operands& x) { return Res::one(hls::rcp<F, R>(x.a)); }
+  static std::string describe(const Operands& x) { return "1 / " + hex<F>(x.a); }
+  static uint64_t directed_count(size_t n) { return uint64_t(n) + 5 * (uint64_t(F::man_mask) + 1); }
+  static Operands directed(const std::vector<uint32_t>& d, uint64_t k) {
+    Operands x;
+    if (k < d.size()) {
+      x.a = d[k];
+    } else {
+      k -= d.size();
+      const int e = kExps[k >> F::man_bits];
+      x.a = (e == -1 ? F::sign_mask : 0u) | (uint32_t(e + F::bias) << F::man_bits) |
+            (uint32_t(k) & F::man_mask);
+    }
+    return x;
+  }
+  static Operands random(Gen<F>& g) {
+    Operands x;
+    x.a = g.below(4) == 0 ? g.uniform() : g.any();
+    return x;
+  }
+};
+
 template <class F, Rounding>
 struct CmpOp : OpBase<F> {
   using Fmt = F;
@@ -242,6 +276,7 @@ void run_variant(const char* variant, const char* mode, int stages) {
 #define RAYCORE_RTL_FP_OP_fp_div DivOp
 #define RAYCORE_RTL_FP_OP_fp_cmp CmpOp
 #define RAYCORE_RTL_FP_OP_fp_sqrt SqrtOp
+#define RAYCORE_RTL_FP_OP_fp_rcp RcpOp
 #define RAYCORE_RTL_FP_VARIANT(V, module, fmt, mode, stages)                                  \
   TEST(RtlCosim, V) {                                                                         \
     run_variant<::V, RAYCORE_RTL_FP_OP_##module<hls::fmt, Rounding::mode>>(#V, #mode, stages); \

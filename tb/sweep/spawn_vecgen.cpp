@@ -1,6 +1,6 @@
 // tb/sweep/spawn_vecgen.cpp - vectors for rtl/units/spawn.v's skip-slab / skip-back datapath from
 // hls/hit.h (hls::detail::slab_tmin, hls::detail::add_ulps), for tb/sweep/tb_spawn_slab.v.
-//   spawn_vecgen <FP24|FP32> <rtz|rne> <slab ulps> <back ulps> <count> <file>
+//   spawn_vecgen <FP24|FP32> <rtz|rne|raycore> <slab ulps> <back ulps> <count> <file>  (raycore: FP24)
 // One line per vector, ten hex words: h_x h_y h_z dens tmin scale t back | tmin' t_back; prints
 // the number of vectors written.
 #include <cmath>
@@ -48,12 +48,13 @@ int gen(int slab, int back, int count, FILE* out) {
 
 int main(int argc, char** argv) {
   if (argc != 7) {
-    std::fprintf(stderr, "usage: %s <FP24|FP32> <rtz|rne> <slab ulps> <back ulps> <count> <file>\n", argv[0]);
+    std::fprintf(stderr, "usage: %s <FP24|FP32> <rtz|rne|raycore> <slab ulps> <back ulps> <count> <file>\n", argv[0]);
     return 2;
   }
   const std::string fmt = argv[1], mode = argv[2];
   const int slab = std::atoi(argv[3]), back = std::atoi(argv[4]), count = std::atoi(argv[5]);
-  if ((fmt != "FP24" && fmt != "FP32") || (mode != "rtz" && mode != "rne") || slab < 1 || back < 0 || count < 1) {
+  if ((fmt != "FP24" && fmt != "FP32") || (mode != "rtz" && mode != "rne" && mode != "raycore") ||
+      (mode == "raycore" && fmt != "FP24") || slab < 1 || back < 0 || count < 1) {
     std::fprintf(stderr, "spawn_vecgen: bad arguments\n");
     return 2;
   }
@@ -64,7 +65,9 @@ int main(int argc, char** argv) {
   }
   using R = Rounding;
   int n = 0;
-  if (fmt == "FP24")
+  if (fmt == "FP24" && mode == "raycore")
+    n = gen<Arith<FP24, R::raycore>>(slab, back, count, out);
+  else if (fmt == "FP24")
     n = mode == "rtz" ? gen<Arith<FP24, R::rtz>>(slab, back, count, out) : gen<Arith<FP24, R::rne>>(slab, back, count, out);
   else
     n = mode == "rtz" ? gen<Arith<FP32, R::rtz>>(slab, back, count, out) : gen<Arith<FP32, R::rne>>(slab, back, count, out);

@@ -7,12 +7,13 @@
 // ray's t_min, the origin (= the hit point) and the tag; checks out_t_back_o (a side path without
 // latency) when a vector is accepted (STRATEGY 6; = t for 5). Prints the first 10 mismatches and
 //   RESULT vectors=<checked> mismatches=<k>
-// Parameters (iverilog -P): EXP_BITS, MAN_BITS, RNE, STAGES, STRATEGY, N.
+// Parameters (iverilog -P): EXP_BITS, MAN_BITS, RNE, RAYCORE, STAGES, STRATEGY, N.
 `timescale 1ns / 1ps
 module tb_spawn_slab;
   parameter integer EXP_BITS = 7;
   parameter integer MAN_BITS = 16;
   parameter integer RNE      = 0;
+  parameter integer RAYCORE  = 0;
   parameter integer STAGES   = 2;
   parameter integer STRATEGY = 6;
   parameter integer N        = 1;
@@ -31,7 +32,7 @@ module tb_spawn_slab;
   wire [W-1:0]     z = {W{1'b0}};
 
   spawn #(
-    .EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .STAGES(STAGES), .TAG_BITS(16),
+    .EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES), .TAG_BITS(16),
     .STRATEGY(STRATEGY)
   ) dut (
     .clk_i(clk), .rst_ni(rst_n), .in_valid_i(in_valid), .in_ready_o(in_ready),

@@ -103,6 +103,10 @@ TEST(PinsFrame, TwinsIstUnitsOneAndThree) {
   expect_same_frame(corridor(), config(FormatId::fp24, Rounding::rne, false, 32, 20), cfg,
                     UnitView::twin, UnitView::twin);
 }
+TEST(PinsFrame, TwinsFp24Raycore) {
+  expect_same_frame(corridor(), config(FormatId::fp24, Rounding::raycore, true, 32, 20), {},
+                    UnitView::twin, UnitView::twin);
+}
 TEST(PinsFrame, TwinsVtuOffBypassesTheUnit) {
   expect_same_frame(corridor(), config(FormatId::fp24, Rounding::rtz, false, 32, 20), {},
                     UnitView::twin, UnitView::twin);
@@ -136,6 +140,10 @@ TEST(PinsFrameRtl, IstUnitsOneAndThree) {
   cfg.l2.size_bytes = 0;
   expect_same_frame(corridor(), config(FormatId::fp24, Rounding::rne, false, 32, 20), cfg,
                     UnitView::model, UnitView::rtl);
+}
+TEST(PinsFrameRtl, VtuAndIstFp24Raycore) {
+  expect_same_frame(corridor(), config(FormatId::fp24, Rounding::raycore, true, 32, 20), {},
+                    UnitView::rtl, UnitView::rtl);
 }
 TEST(PinsFrameRtl, MissingVariantIsNamed) {
   sc::SimConfig cfg;
@@ -359,6 +367,13 @@ TEST(Lockstep, IstFp24Rtz) {
 }
 TEST(Lockstep, IstFp24Rne) {
   ist_lockstep<hls::Arith<hls::FP24, Rounding::rne>, Vist_fp24_rne_s2_sc>("ist_fp24_rne_s2");
+}
+TEST(Lockstep, VtuFp24Raycore) {
+  vtu_lockstep<hls::FP24, Rounding::raycore, Vvtu_fp24_raycore_s2_sc>("vtu_fp24_raycore_s2");
+}
+TEST(Lockstep, IstFp24Raycore) {
+  ist_lockstep<hls::Arith<hls::FP24, Rounding::raycore>, Vist_fp24_raycore_s2_sc>(
+      "ist_fp24_raycore_s2");
 }
 
 #endif  // RAYCORE_TEST_RTL

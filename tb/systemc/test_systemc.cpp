@@ -36,6 +36,13 @@ TEST(GoldenMatch, Fp24RtzCorridor) {
 TEST(GoldenMatch, Fp24RneCorridorVtu) {
   expect_match(corridor(), config(FormatId::fp24, Rounding::rne, true, 64, 40));
 }
+// Rounding mode raycore (RayCore's arithmetic: table rcp, guard-bit adders), with the VTU and the
+// error-bound spawn (which uses its unit roundoff).
+TEST(GoldenMatch, Fp24RaycoreCorridorVtu) {
+  auto tc = config(FormatId::fp24, Rounding::raycore, true, 64, 40);
+  tc.spawn.spawn = hls::Spawn::error_bound;
+  expect_match(corridor(), tc);
+}
 TEST(GoldenMatch, Fp32RneCorridor) {
   expect_match(corridor(), config(FormatId::fp32, Rounding::rne, false, 64, 40));
 }
