@@ -257,7 +257,8 @@ void register_sweep(CLI::App& app) {
   list_opt("--vtu", &a->o.vtu, "comma-separated: off, on (default both)");
   list_opt("--spawns", &a->o.spawns,
            "comma-separated strategies (" + sim::spawn_choices() + "), each optionally with :ULPS "
-           "(--spawn-ulps), e.g. skip-slab:2 (default none,skip-origin,ulp-offset,error-bound,"
+           "(--spawn-ulps) and the watertightness margins +mE (--bary-margin) and +wN (--trv-widen), "
+           "e.g. skip-slab:2, skip-back+m0.008+w2 (default none,skip-origin,ulp-offset,error-bound,"
            "skip-offset,skip-slab:2,skip-back)");
   list_opt("--map-scenes", &a->o.map_scenes,
            "error maps for these scenes (default sponza-paper,sibenik-paper when swept; none: no maps)");
