@@ -13,6 +13,7 @@
 //   trv (hls::trv_split, hls::trv_clip_box): widen_ulps N >= 0 widens the interval each comparison
 //     sees by N ulps on each side, on the bit pattern (hls::add_ulps: tnear N ulps down, tfar N
 //     ulps up); the interval values the unit keeps and pushes are not widened. N = 0 is today's.
+//     add_ulps never crosses zero: a widened interval end stops at +0.
 #pragma once
 
 #include <cmath>

@@ -12,7 +12,7 @@ namespace raycore::hls {
 
 // Slab test against the scene box: narrows [tnear, tfar] to the box and accepts when the narrowed
 // interval widened by `widen` ulps on each side is not empty: (t0 - widen ulps) <= (t1 + widen
-// ulps) on the bit patterns (hls::add_ulps, hls/margins.h). tnear and tfar are the narrowed values,
+// ulps) on the bit patterns (hls::add_ulps in hls/fp.h; hls/margins.h). tnear and tfar are the narrowed values,
 // not widened (widen = 0: today's tnear <= tfar).
 template <class A>
 inline bool trv_clip_box(const uint32_t lo[3], const uint32_t hi[3], const Ray& r, uint32_t& tnear,
