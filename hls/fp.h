@@ -576,6 +576,21 @@ constexpr uint32_t ulp(uint32_t a) {
   return biased < 1 ? 0u : uint32_t(biased) << F::man_bits;
 }
 
+// Move p by `ulps` units in the last place of p, on the bit pattern: the magnitude bits plus or
+// minus |ulps| as an integer (toward larger magnitude if ulps and p agree in sign, so a positive
+// ulps moves the value up), crossing binades; a result below the smallest normal is +0 (it never
+// crosses zero), one above the largest magnitude saturates. A zero stays zero (for |ulps| below
+// 2^M). Hardware: one M+E-bit adder and two clamps (hit's skip_back, trv's interval widening).
+template <class F>
+constexpr uint32_t add_ulps(uint32_t p, int32_t ulps) {
+  const bool neg = sign_of<F>(p);
+  const int64_t n = ulps < 0 ? -int64_t(ulps) : int64_t(ulps);
+  const int64_t m = int64_t(p & F::max_mag) + ((ulps < 0) != neg ? -n : n);
+  if (m < int64_t(F::min_mag)) return 0u;
+  if (m > int64_t(F::max_mag)) return signed_zero<F>(neg) | F::max_mag;
+  return signed_zero<F>(neg) | uint32_t(m);
+}
+
 // ---- a typed view for call sites that prefer it -------------------------------------------------
 
 // Arith<F, R> bundles the operations for one format and rounding policy, so a datapath can be

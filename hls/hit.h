@@ -75,18 +75,6 @@ inline void plane_normal(const HitTri& tri, uint32_t one, uint32_t n[3]) {
   n[axis_v(tri.k)] = tri.n_v;
 }
 
-// Move p by `ulps` units in the last place of p (toward larger magnitude if ulps and p agree in
-// sign), on the bit pattern; stays within the normal range.
-template <class F>
-inline uint32_t add_ulps(uint32_t p, int32_t ulps) {
-  const bool neg = sign_of<F>(p);
-  const int64_t m = int64_t(p & F::max_mag) + ((ulps < 0) != neg ? -int64_t(ulps < 0 ? -ulps : ulps)
-                                                                   : int64_t(ulps < 0 ? -ulps : ulps));
-  if (m < int64_t(F::min_mag)) return 0u;
-  if (m > int64_t(F::max_mag)) return signed_zero<F>(neg) | F::max_mag;
-  return signed_zero<F>(neg) | uint32_t(m);
-}
-
 // skip_slab's t_min: the shadow ray (direction d, dens = n . d) is at height t |dens| / |n| above
 // the plane, |n| = |(1, n_u, n_v)| in [1, sqrt 3]; so t_min' = 2 slab / max(|dens|, 1/16), slab =
 // ulps ulps of max_i |h_i|, clears a slab of at least that height (the neighbours and coplanar
@@ -127,7 +115,7 @@ inline ShadowSetup hit_shadow(const Ray& pr, uint32_t t, const HitTri& tri, cons
   using F = typename A::Fmt;
   ShadowSetup s{};
   // Hit point (skip_back: at t - ulps ulps of t, on the bit pattern).
-  const uint32_t th = sp.spawn == Spawn::skip_back ? detail::add_ulps<F>(t, -sp.ulps) : t;
+  const uint32_t th = sp.spawn == Spawn::skip_back ? add_ulps<F>(t, -sp.ulps) : t;
   for (int i = 0; i < 3; ++i) s.h[i] = A::add(pr.o[i], A::mul(th, pr.d[i]));
   // Direction to the light. unit (default): normalised, t in (tmin, distance to the light), so
   // t_min is in world units; segment: light - h unnormalised, t in (tmin, 1), so t_min is a
@@ -189,7 +177,7 @@ inline ShadowSetup hit_shadow(const Ray& pr, uint32_t t, const HitTri& tri, cons
         if (A::lt(A::abs(s.h[i]), origin))
           r.o[i] = A::add(s.h[i], A::mul(fixed, ni));
         else
-          r.o[i] = detail::add_ulps<F>(s.h[i], to_int_rtz<F>(A::mul(scale, ni)));
+          r.o[i] = add_ulps<F>(s.h[i], to_int_rtz<F>(A::mul(scale, ni)));
       }
       break;
     }

@@ -12,6 +12,7 @@
 #include <cstdint>
 
 #include "hls/fp.h"
+#include "hls/margins.h"
 #include "hls/ray.h"
 
 namespace raycore::hls {
@@ -27,10 +28,12 @@ struct IstOut {
   uint32_t den;  // n . d (unnormalised normal with n_k = 1): its sign says which side the ray hits
 };
 
-// A hit needs tmin < t < tmax; beta >= 0, gamma >= 0, beta + gamma <= 1.
+// A hit needs tmin < t < tmax; beta >= -eps, gamma >= -eps, beta + gamma <= one_eps (hls/margins.h:
+// a coordinate x fails iff sign(x) && |eps| < |x|, the sum iff one_eps < beta + gamma; with
+// margins_none(), eps = 0 and one_eps = 1: beta >= 0, gamma >= 0, beta + gamma <= 1).
 template <class A>
 inline IstOut ist_wald(uint32_t k, const uint32_t c[9], const uint32_t o[3], const uint32_t d[3],
-                       uint32_t tmin, uint32_t tmax) {
+                       uint32_t tmin, uint32_t tmax, const Margins& m) {
   const int u = axis_u(k), v = axis_v(k);
   // Phase 1: distance.
   const uint32_t den = A::add3(d[k], A::mul(c[kNU], d[u]), A::mul(c[kNV], d[v]));
@@ -42,12 +45,20 @@ inline IstOut ist_wald(uint32_t k, const uint32_t c[9], const uint32_t o[3], con
   const uint32_t hu = A::add(o[u], A::mul(t, d[u]));
   const uint32_t hv = A::add(o[v], A::mul(t, d[v]));
   const uint32_t beta = A::add3(A::mul(c[kBNU], hu), A::mul(c[kBNV], hv), c[kBD]);
-  if (A::sign(beta) && !A::is_zero(beta)) return {IstExit::beta, t, den};
+  const uint32_t eps = A::abs(m.eps);
+  if (A::sign(beta) && A::lt(eps, A::abs(beta))) return {IstExit::beta, t, den};
   // Phase 3: second coordinate and the sum.
   const uint32_t gamma = A::add3(A::mul(c[kCNU], hu), A::mul(c[kCNV], hv), c[kCD]);
-  if (A::sign(gamma) && !A::is_zero(gamma)) return {IstExit::gamma, t, den};
-  if (A::lt(A::one, A::add(beta, gamma))) return {IstExit::sum, t, den};
+  if (A::sign(gamma) && A::lt(eps, A::abs(gamma))) return {IstExit::gamma, t, den};
+  if (A::lt(m.one_eps, A::add(beta, gamma))) return {IstExit::sum, t, den};
   return {IstExit::hit, t, den};
+}
+
+// Without margins (today's test).
+template <class A>
+inline IstOut ist_wald(uint32_t k, const uint32_t c[9], const uint32_t o[3], const uint32_t d[3],
+                       uint32_t tmin, uint32_t tmax) {
+  return ist_wald<A>(k, c, o, d, tmin, tmax, margins_none<A>());
 }
 
 }  // namespace raycore::hls

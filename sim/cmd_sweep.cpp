@@ -269,7 +269,8 @@ void register_sweep(CLI::App& app) {
   list_opt("--vtu", &a->o.vtu, "comma-separated: off, on (default both)");
   list_opt("--spawns", &a->o.spawns,
            "comma-separated strategies (" + sim::spawn_choices() + "), each optionally with :ULPS "
-           "(--spawn-ulps), e.g. skip-slab:2 (default none,skip-origin,ulp-offset,error-bound,"
+           "(--spawn-ulps) and the watertightness margins +mE (--bary-margin) and +wN (--trv-widen), "
+           "e.g. skip-slab:2, skip-back+m0.008+w2 (default none,skip-origin,ulp-offset,error-bound,"
            "skip-offset,skip-slab:2,skip-back)");
   list_opt("--stores", &a->o.stores,
            "comma-separated: world, anchored (--store of every job; default world, and also anchored for "

@@ -63,6 +63,13 @@ void add_run_options(CLI::App& c, RunOptions& o) {
       ->capture_default_str();
   c.add_option("--tmin", o.tmin, "ray t_min (default 2^-12, RayCore's)")
       ->check(CLI::Range(0.0, 1e6));
+  c.add_option("--bary-margin", o.bary_margin,
+               "watertightness margin of the ist (hls/margins.h): a hit needs beta, gamma >= -E and "
+               "beta + gamma <= 1 + E (E a number >= 0 and <= 1, rounded to the format; RayCore's "
+               "emulator uses 0.008; default 0: none)");
+  c.add_option("--trv-widen", o.trv_widen,
+               "watertightness margin of the trv: its interval comparisons see [tnear, tfar] widened "
+               "by N ulps on each side (0..64; default 0: none)");
   c.add_option("--width", o.width, "image width")->check(CLI::Range(1, 16384))->capture_default_str();
   c.add_option("--height", o.height, "image height")->check(CLI::Range(1, 16384))->capture_default_str();
   c.add_option("--threads", o.threads, "host threads (0: all cores)")->check(CLI::Range(0, 1024));
@@ -118,6 +125,14 @@ TraceConfig trace_config(const RunOptions& o) {
                          "--image or --dump-image (a dumped image does not record its anchor)");
   if (!std::isfinite(o.tmin) || o.tmin < 0) throw cli::UserError("--tmin must be a finite number >= 0");
   c.tmin = o.tmin;
+  if (!std::isfinite(o.bary_margin) || o.bary_margin < 0 || o.bary_margin > 1)
+    throw cli::UserError("--bary-margin must be a finite number in [0, 1] (e.g. 0.008), not " +
+                         std::to_string(o.bary_margin));
+  if (o.trv_widen < 0 || o.trv_widen > hls::kMaxWidenUlps)
+    throw cli::UserError("--trv-widen must be 0.." + std::to_string(hls::kMaxWidenUlps) +
+                         " ulps, not " + std::to_string(o.trv_widen));
+  c.bary_margin = o.bary_margin;
+  c.trv_widen = o.trv_widen;
   c.width = o.width;
   c.height = o.height;
   c.threads = o.threads;
@@ -183,7 +198,18 @@ Prepared prepare(const RunOptions& o, TraceConfig& cfg) {
 std::string config_tag(const TraceConfig& c) {
   return std::string(hls::format_name(c.format)) + "-" + hls::rounding_name(c.rounding) +
          (c.vtu ? "-vtu-" : "-novtu-") + to_string(c.spawn.spawn) + (c.spawn.spawn_all ? "-all" : "") +
-         (c.anchored ? "-anchored" : "");
+         (c.anchored ? "-anchored" : "") + margins_tag(c);
+}
+
+std::string margins_tag(const TraceConfig& c) {
+  std::string s;
+  if (c.bary_margin != 0) {
+    char b[32];
+    std::snprintf(b, sizeof b, "-m%g", c.bary_margin);
+    s += b;
+  }
+  if (c.trv_widen != 0) s += "-w" + std::to_string(c.trv_widen);
+  return s;
 }
 
 static nlohmann::json vec(const hls::Vec3& v) { return {v.x, v.y, v.z}; }
@@ -214,6 +240,8 @@ nlohmann::json config_json(const TraceConfig& c) {
                       {"shadow_spawn", c.spawn.spawn_all ? "all" : "front"},
                       {"store", c.anchored ? "anchored" : "world"},
                       {"anchor", vec(c.anchor)},
+                      {"bary_margin", c.bary_margin},
+                      {"trv_widen", c.trv_widen},
                       {"width", c.width},
                       {"height", c.height}};
   if (spawn_uses_ulps(c.spawn.spawn)) j["spawn_ulps"] = c.spawn.ulps;

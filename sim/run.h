@@ -25,6 +25,8 @@ struct RunOptions {
   int spawn_ulps = 0;  // 0: default_spawn_ulps(format)
   std::string shadow_ray = "unit";  // unit: normalised direction, t_min in world units; segment
   double tmin = 1.0 / 4096;
+  double bary_margin = 0;  // --bary-margin: the ist's barycentric margin eps (hls/margins.h)
+  int trv_widen = 0;       // --trv-widen: the trv's interval widening in ulps
   int width = 800, height = 480, threads = 0;
   int leaf_size = 8;
   std::string kd = "ours";  // kd-tree cost preset: ours (hls::BuildOptions) or raycore
@@ -69,6 +71,9 @@ Prepared prepare(const RunOptions& o, TraceConfig& cfg);
 
 // A short name of the configuration, e.g. "fp24-rtz-vtu-none".
 std::string config_tag(const TraceConfig& cfg);
+// The margins' part of config_tag: "-m<E>" and "-w<N>" for a nonzero --bary-margin / --trv-widen
+// (e.g. "-m0.008-w2"), "" without margins.
+std::string margins_tag(const TraceConfig& cfg);
 
 nlohmann::json scene_json(const scenes::Scene& s);
 nlohmann::json config_json(const TraceConfig& cfg);

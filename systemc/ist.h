@@ -39,6 +39,7 @@ class Ist : public sc_core::sc_module {
   void bind(const std::vector<pins::IstPort*>& ports) {
     if (ports.size() != units_) throw std::logic_error("ist: one pin-level unit per ist unit");
     ports_ = ports;
+    for (pins::IstPort* p : ports_) p->config(fc_.margins);  // the per-frame margin registers
   }
   bool wants_edge() const { return edge_; }
 
@@ -129,7 +130,7 @@ class Ist : public sc_core::sc_module {
     o.pos = q.pos;
     if (w.id != r.skip_id) {
       ++st_.tri_tests;
-      const hls::IstOut x = hls::ist_wald<A>(w.k, w.c, r.ray.o, r.ray.d, r.ray.tmin, r.tmax);
+      const hls::IstOut x = hls::ist_wald<A>(w.k, w.c, r.ray.o, r.ray.d, r.ray.tmin, r.tmax, fc_.margins);
       if (x.exit == hls::IstExit::hit) {
         o.hit = true;
         o.t = x.t;

@@ -60,6 +60,7 @@ SimResult run(const hls::Image& image, const scenes::Camera& cam, const scenes::
                                   tc.height);
   fc.tmin = A::from_double(tc.tmin);
   fc.spawn = sim::resolved_spawn(tc);
+  fc.margins = sim::frame_margins<A>(tc);
   if (cfg.stack_depth < 1 || cfg.stack_depth > uint32_t(kStackDepth))
     throw std::invalid_argument("stack depth must be 1..64");
   fc.stack_depth = cfg.stack_depth;

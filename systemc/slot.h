@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "hls/hit.h"
+#include "hls/margins.h"
 #include "hls/ray.h"
 #include "hls/rgu.h"
 #include "scenes/scene.h"
@@ -80,6 +81,7 @@ struct FrameCtx {
   uint32_t stack_depth = kStackDepth;  // entries per ray the trv's stack SRAM holds
   uint32_t mailbox = 0;                // triangle indices per ray remembered (0: no mailbox)
   hls::SpawnParams spawn;
+  hls::Margins margins;  // the ist's eps / one_eps and the trv's widening (set by simulate)
   bool empty_tree = false;
   hls::ImageHeader header;
   uint32_t tri_line_records = 1;

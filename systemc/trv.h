@@ -49,7 +49,8 @@ class Trv : public SlotUnit {
         r.mbox_n = r.mbox_head = 0;
         r.tmax = r.ray.tmax;
         ++st_.trv_busy;
-        if (fc_.empty_tree || !hls::trv_clip_box<A>(fc_.box_lo, fc_.box_hi, r.ray, r.tnear, r.tfar))
+        if (fc_.empty_tree || !hls::trv_clip_box<A>(fc_.box_lo, fc_.box_hi, r.ray, r.tnear, r.tfar,
+                                                             fc_.margins.widen_ulps))
           return finish(s, r, now);
         r.node = 0;
         r.state = SlotState::node;
@@ -113,7 +114,8 @@ class Trv : public SlotUnit {
     const Cycle next = again + hit_lat(*ch_.node);
     if (!nd.leaf()) {
       ++st_.inner_steps;
-      const hls::SplitStep sp = hls::trv_split<A>(nd.split_or_count, nd.axis, r.ray, r.tnear, r.tfar);
+      const hls::SplitStep sp = hls::trv_split<A>(nd.split_or_count, nd.axis, r.ray, r.tnear, r.tfar,
+                                                        fc_.margins.widen_ulps);
       const uint32_t first = sp.below_first ? r.node + 1 : nd.index;
       const uint32_t second = sp.below_first ? nd.index : r.node + 1;
       if (sp.visit == hls::Visit::first) {

@@ -5,7 +5,13 @@
 // once by the rtl/fp operators, so {exit, t, den} equal the C++ reference's for every input.
 // In hardware every phase is computed for every test; the early exits of the reference only
 // decide the reported exit code (the first failing phase):
-//   0 hit, 1 distance (not tmin < t < tmax), 2 beta (< 0), 3 gamma (< 0), 4 sum (1 < beta+gamma).
+//   0 hit, 1 distance (not tmin < t < tmax), 2 beta (< -eps), 3 gamma (< -eps),
+//   4 sum (one_eps < beta+gamma).
+// Watertightness margins (hls/margins.h): eps_i and one_eps_i are per-frame registers, static
+// while tests are in flight (they are read at levels 9 and 10, not carried with a test). A
+// coordinate fails iff its sign is set and its magnitude bits, as an integer, exceed eps_i's (a
+// zero exponent field meaning zero; eps_i's sign bit is ignored); the sum fails iff one_eps_i <
+// beta + gamma. eps_i = 0, one_eps_i = 1.0 is the test without margins.
 // k (the projection axis) selects u = (k+1)%3, v = (k+2)%3 with operand muxes; k = 3 is not a
 // valid record and is treated as k = 0.
 //
@@ -21,7 +27,7 @@
 //    7  b_nu*hu, b_nv*hv, c_nu*hu, c_nv*hv
 //    8  beta = add3(b_nu*hu, b_nv*hv, b_d), gamma = add3(c_nu*hu, c_nv*hv, c_d)
 //    9  sum = beta + gamma
-//   10  lt(1, sum) (fp_cmp); the exit code is decoded combinationally at the output.
+//   10  lt(one_eps, sum) (fp_cmp); the exit code is decoded combinationally at the output.
 // Latency = 10 * STAGES cycles (STAGES = 0: combinational), throughput one test per cycle.
 //
 // Handshake: valid/ready as every rtl/fp operator. The operators of a level receive the same
@@ -40,6 +46,8 @@ module ist #(
 ) (
   input  wire                       clk_i,
   input  wire                       rst_ni,
+  input  wire [EXP_BITS+MAN_BITS:0] eps_i,      // margin eps >= 0 (static)
+  input  wire [EXP_BITS+MAN_BITS:0] one_eps_i,  // 1 + eps rounded once (static)
   input  wire                       in_valid_i,
   output wire                       in_ready_o,
   input  wire [1:0]                 in_k_i,     // projection axis 0..2
@@ -306,9 +314,13 @@ module ist #(
   endgenerate
 
   // ---- level 9 ----------------------------------------------------------------------------------
-  // A coordinate fails if it is negative and nonzero (hls: sign(x) && !is_zero(x)).
-  wire l8_bfail = l8_beta[W-1] & (|l8_beta[W-2:M]);
-  wire l8_gfail = l8_gamma[W-1] & (|l8_gamma[W-2:M]);
+  // A coordinate fails if it is negative and its magnitude exceeds eps (hls: sign(x) &&
+  // lt(|eps|, |x|)): the magnitude bits compare as integers, a zero exponent field meaning zero.
+  wire [W-2:0] eps_key   = (|eps_i[W-2:M]) ? eps_i[W-2:0] : {(W-1){1'b0}};
+  wire [W-2:0] beta_key  = (|l8_beta[W-2:M]) ? l8_beta[W-2:0] : {(W-1){1'b0}};
+  wire [W-2:0] gamma_key = (|l8_gamma[W-2:M]) ? l8_gamma[W-2:0] : {(W-1){1'b0}};
+  wire l8_bfail = l8_beta[W-1] & (beta_key > eps_key);
+  wire l8_gfail = l8_gamma[W-1] & (gamma_key > eps_key);
   wire [W-1:0] l9_sum;
   wire         l9_unused_v, l9_unused_r;
   localparam integer C9_W = TAG_BITS + 2 * W + 3;
@@ -327,7 +339,7 @@ module ist #(
     .out_res_o(l9_sum));
 
   // ---- level 10 ---------------------------------------------------------------------------------
-  wire         l10_sfail;  // 1 < beta + gamma
+  wire         l10_sfail;  // one_eps < beta + gamma
   wire         l10_unused_v, l10_unused_r;
   localparam integer C10_W = TAG_BITS + 2 * W + 3;
   wire         c10_p1, c10_bfail, c10_gfail;
@@ -341,7 +353,7 @@ module ist #(
   wire [W-1:0] l10_unused_min, l10_unused_max;
   fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(STAGES)) u_l10_sum (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[9]), .in_ready_o(l10_unused_r),
-    .in_a_i(ONE), .in_b_i(l9_sum), .out_valid_o(l10_unused_v), .out_ready_i(r[11]),
+    .in_a_i(one_eps_i), .in_b_i(l9_sum), .out_valid_o(l10_unused_v), .out_ready_i(r[11]),
     .out_lt_o(l10_sfail), .out_eq_o(l10_unused_eq), .out_min_o(l10_unused_min),
     .out_max_o(l10_unused_max));
 
@@ -359,6 +371,7 @@ module ist #(
                        l3_unused_r, l4_unused_v, l4_unused_r, l5_unused_v, l5_unused_r,
                        l6_unused_v, l6_unused_r, l7_unused_v, l7_unused_r, l8_unused_v,
                        l8_unused_r, l9_unused_v, l9_unused_r, l10_unused_v, l10_unused_r,
-                       l5_unused_eq, l5_unused_mm, l10_unused_eq, l10_unused_min, l10_unused_max};
+                       l5_unused_eq, l5_unused_mm, l10_unused_eq, l10_unused_min, l10_unused_max,
+                       eps_i[W-1]};  // eps_i's sign bit is ignored
 
 endmodule

@@ -15,6 +15,10 @@
 //     (tnear <= tfar). out_visit_o, out_below_o, out_tsplit_o, out_node_o, out_far_node_o and
 //     out_far_tfar_o are don't-care.
 // in_axis_i = 3 is not a valid node axis and is treated as 0.
+// Interval widening (hls/margins.h): widen_i = N ulps, a per-frame register (static while steps
+// are in flight). The split's comparisons see tfar moved N ulps up and tnear N ulps down, the
+// clip's hit is !(t1 + N ulps < t0 - N ulps), on the bit patterns (add_ulps below = hls::add_ulps);
+// the interval values put out are not widened. N = 0 is the unit without margins.
 //
 // Levels (the lanes are shared by both operations; every FP operator has STAGES registers and a
 // per-level fp_pipe of the same depth carries the values needed later and the tag):
@@ -43,6 +47,7 @@ module trv #(
 ) (
   input  wire                       clk_i,
   input  wire                       rst_ni,
+  input  wire [6:0]                 widen_i,     // interval widening in ulps (static)
   input  wire                       in_valid_i,
   output wire                       in_ready_o,
   input  wire                       in_op_i,     // 0 split (inner node), 1 clip (scene box)
@@ -87,6 +92,23 @@ module trv #(
   localparam integer M = MAN_BITS;
   localparam integer W = 1 + E + M;
   localparam [W-1:0] ZERO = {W{1'b0}};
+
+  // x moved by n ulps on its bit pattern, up (toward +) or down: hls::add_ulps (the magnitude bits
+  // plus or minus n; below the smallest normal +0, above the largest magnitude saturated).
+  function automatic [W-1:0] add_ulps(input [W-1:0] x, input [6:0] n, input up);
+    reg          grow;
+    reg [W-1:0]  s;
+    begin
+      grow = up ^ x[W-1];
+      s = grow ? {1'b0, x[W-2:0]} + {{(W-7){1'b0}}, n} : {1'b0, x[W-2:0]} - {{(W-7){1'b0}}, n};
+      if (grow && s[W-1])
+        add_ulps = {x[W-1], {(W-1){1'b1}}};
+      else if (s[W-1] || ~|s[W-2:M])
+        add_ulps = ZERO;
+      else
+        add_ulps = {x[W-1], s[W-2:0]};
+    end
+  endfunction
 
   // Level handshakes: v[L] / r[L] = valid / ready at the output of level L (index 0 = the input).
   wire [4:0] v;
@@ -178,8 +200,11 @@ module trv #(
   wire         c2_ax2 = (c2_axis == 2'd2);
   wire [W-1:0] l2_ts  = c2_ax1 ? l2_tly : c2_ax2 ? l2_tlz : l2_tlx;
   // Comparator j = 0..2: clip: th[j] < tl[j]; split: tfar < tsplit, 0 < tsplit, tsplit < tnear.
-  wire [3*W-1:0] k_a = c2_op ? l2_prod[3*W +: 3*W] : {l2_ts, ZERO, c2_tfar};
-  wire [3*W-1:0] k_b = c2_op ? l2_prod[0 +: 3*W] : {c2_tnear, l2_ts, l2_ts};
+  // (tfar and tnear widened by widen_i ulps for the comparisons only.)
+  wire [W-1:0] c2_tfar_w  = add_ulps(c2_tfar, widen_i, 1'b1);
+  wire [W-1:0] c2_tnear_w = add_ulps(c2_tnear, widen_i, 1'b0);
+  wire [3*W-1:0] k_a = c2_op ? l2_prod[3*W +: 3*W] : {l2_ts, ZERO, c2_tfar_w};
+  wire [3*W-1:0] k_b = c2_op ? l2_prod[0 +: 3*W] : {c2_tnear_w, l2_ts, l2_ts};
   wire [2:0]   l3_lt;
   wire [2:0]   l3_unused_eq;
   wire [6*W-1:0] l3_unused_mm;  // min/max not needed here
@@ -256,7 +281,8 @@ module trv #(
     .out_max_o(l4_unused_mm[5*W +: W]));
   fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(0)) u_l4_hit (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(1'b1), .in_ready_o(l4_unused_r[6]),
-    .in_a_i(t1), .in_b_i(t0), .out_valid_o(l4_unused_v[6]), .out_ready_i(1'b1),
+    .in_a_i(add_ulps(t1, widen_i, 1'b1)), .in_b_i(add_ulps(t0, widen_i, 1'b0)),
+    .out_valid_o(l4_unused_v[6]), .out_ready_i(1'b1),
     .out_lt_o(t1_lt_t0), .out_eq_o(l4_unused_eq[6]), .out_min_o(t1_unused_min),
     .out_max_o(l4_unused_mm[6*W +: W]));
 

@@ -28,7 +28,7 @@ class Tracer {
   using F = typename A::Fmt;
 
  public:
-  Tracer(const hls::Image& img) {
+  Tracer(const hls::Image& img, const hls::Margins& m) : m_(m) {
     const auto h = img.header();
     nodes_.resize(h.node_count);
     for (uint32_t i = 0; i < h.node_count; ++i) {
@@ -57,7 +57,7 @@ class Tracer {
   Hit trace(const hls::Ray& r, uint32_t skip_id, TraceStats& st, bool any_hit = false) const {
     Hit best;
     uint32_t tnear, tfar;
-    if (nodes_.empty() || !hls::trv_clip_box<A>(lo_, hi_, r, tnear, tfar)) return best;
+    if (nodes_.empty() || !hls::trv_clip_box<A>(lo_, hi_, r, tnear, tfar, m_.widen_ulps)) return best;
     struct Entry {
       uint32_t node, tnear, tfar;
     };
@@ -69,7 +69,8 @@ class Tracer {
       const NodeD& nd = nodes_[node];
       if (nd.axis != 3) {
         ++st.inner_steps;
-        const hls::SplitStep s = hls::trv_split<A>(nd.split_or_count, nd.axis, r, tnear, tfar);
+        const hls::SplitStep s = hls::trv_split<A>(nd.split_or_count, nd.axis, r, tnear, tfar,
+                                                           m_.widen_ulps);
         const uint32_t first = s.below_first ? node + 1 : nd.index;
         const uint32_t second = s.below_first ? nd.index : node + 1;
         if (s.visit == hls::Visit::first) {
@@ -89,7 +90,7 @@ class Tracer {
         const auto& tri = tris_[ti];
         if (tri.id == skip_id) continue;
         ++st.tri_tests;
-        const hls::IstOut o = hls::ist_wald<A>(tri.k, tri.c, r.o, r.d, r.tmin, tmax);
+        const hls::IstOut o = hls::ist_wald<A>(tri.k, tri.c, r.o, r.d, r.tmin, tmax, m_);
         if (o.exit == hls::IstExit::hit) {
           best = {true, o.t, ti, o.den};
           tmax = o.t;
@@ -128,6 +129,7 @@ class Tracer {
     return maxd;
   }
 
+  hls::Margins m_;
   std::vector<NodeD> nodes_;
   std::vector<uint32_t> lists_;
   std::vector<hls::WaldTri<F>> tris_;
@@ -150,7 +152,7 @@ Frame trace_t(const hls::Image& image_in, const scenes::Camera& cam, const scene
     moved = hls::transform_image(image_in, setup.vtu);
     img = &moved;
   }
-  const Tracer<A> tracer(*img);
+  const Tracer<A> tracer(*img, frame_margins<A>(cfg));
   const uint32_t tmin = A::from_double(cfg.tmin);
   const hls::SpawnParams sp = resolved_spawn(cfg);
   const hls::RguCamera rgu_cam =

@@ -10,6 +10,7 @@
 #include "hls/fp.h"
 #include "hls/hit.h"
 #include "hls/image.h"
+#include "hls/margins.h"
 #include "scenes/scene.h"
 #include "sim/frame.h"
 
@@ -25,6 +26,11 @@ struct TraceConfig {
   hls::Vec3 anchor;
   hls::SpawnParams spawn;     // strategy and (ulp_offset) its ulps
   double tmin = 1.0 / 4096;   // 2^-12, RayCore's
+  // Watertightness margins (hls/margins.h; --bary-margin, --trv-widen): the ist accepts beta,
+  // gamma >= -bary_margin and beta + gamma <= 1 + bary_margin; the trv widens its intervals by
+  // trv_widen ulps. 0 and 0: none (today's frames bit for bit).
+  double bary_margin = 0;
+  int32_t trv_widen = 0;
   int width = 800, height = 480;
   int threads = 0;            // 0: all hardware threads
 };
@@ -50,6 +56,13 @@ int32_t default_spawn_ulps(hls::FormatId f, hls::Spawn s);
 
 // Whether a strategy reads SpawnParams::ulps (ulp_offset, skip_offset, skip_slab, skip_back).
 bool spawn_uses_ulps(hls::Spawn s);
+
+// The ist / trv margin registers of cfg for the arithmetic A (hls::make_margins; throws
+// std::invalid_argument on a negative or non-finite margin or a widening outside 0..64).
+template <class A>
+hls::Margins frame_margins(const TraceConfig& cfg) {
+  return hls::make_margins<A>(cfg.bary_margin, cfg.trv_widen);
+}
 
 // cfg.spawn with the default ulps filled in (the spawn parameters every model uses).
 hls::SpawnParams resolved_spawn(const TraceConfig& cfg);

@@ -40,8 +40,36 @@ std::vector<std::string> default_stores(const std::string& scene) {
   return {"world"};
 }
 
-SpawnSpec spawn_spec(const std::string& s) {
+SpawnSpec spawn_spec(const std::string& spec) {
   SpawnSpec sp;
+  // The margins: "+m<E>", "+w<N>" after the strategy.
+  const size_t plus = spec.find('+');
+  const std::string s = spec.substr(0, plus);
+  for (size_t p = plus; p != std::string::npos;) {
+    const size_t q = spec.find('+', p + 1);
+    const std::string t = spec.substr(p + 1, q == std::string::npos ? std::string::npos : q - p - 1);
+    p = q;
+    const std::string v = t.size() > 1 ? t.substr(1) : std::string();
+    size_t used = 0;
+    try {
+      if (!t.empty() && t[0] == 'm') {
+        const double e = std::stod(v, &used);
+        if (used == v.size() && std::isfinite(e) && e >= 0 && e <= 1) {
+          sp.margin = e == 0 ? std::string() : v;
+          continue;
+        }
+      } else if (!t.empty() && t[0] == 'w') {
+        const long n = std::stol(v, &used);
+        if (used == v.size() && n >= 0 && n <= 64) {
+          sp.widen = int(n);
+          continue;
+        }
+      }
+    } catch (const std::exception&) {
+    }
+    throw std::invalid_argument("spawn '" + spec + "': '+" + t +
+                                "' is not a margin (+m<E>, E in [0, 1]; +w<N>, N in 0..64)");
+  }
   const size_t c = s.find(':');
   sp.strategy = s.substr(0, c);
   if (!sim::spawn_uses_ulps(sim::spawn_from_string(sp.strategy)) && c != std::string::npos)
@@ -153,6 +181,7 @@ std::vector<Job> make_jobs(const Options& in) {
     j.height = paper ? o.height : o.hard_height;
     // World ids are those of the sweeps before --store; anchored adds a suffix.
     j.id = scene + "-" + f.name + "-vtu" + vtu + "-" + sp.strategy + (sp.ulps ? std::to_string(sp.ulps) : "") +
+           (sp.margin.empty() ? "" : "-m" + sp.margin) + (sp.widen ? "-w" + std::to_string(sp.widen) : "") +
            (store == "world" ? "" : "-" + store);
     j.argv = {exe, j.kind, j.scene_arg, "--format", f.format, "--rounding", f.rounding, "--vtu", vtu,
               "--spawn", sp.strategy, "--width", std::to_string(j.width), "--height", std::to_string(j.height),
@@ -160,6 +189,8 @@ std::vector<Job> make_jobs(const Options& in) {
               // the error study counts self-intersections: the nearest occluder is needed
               "--shadow-hit", "closest", "--shadow-spawn", o.shadow_spawn, "--store", store};
     if (sp.ulps) j.argv.insert(j.argv.end(), {"--spawn-ulps", std::to_string(sp.ulps)});
+    if (!sp.margin.empty()) j.argv.insert(j.argv.end(), {"--bary-margin", sp.margin});
+    if (sp.widen) j.argv.insert(j.argv.end(), {"--trv-widen", std::to_string(sp.widen)});
   };
 
   std::vector<Job> jobs;

@@ -29,10 +29,14 @@ FormatSpec format_spec(const std::string& name);  // throws std::invalid_argumen
 // skip-slab with a 2-ulp slab (its best in FP24 rtz, docs/robustness.md).
 const std::vector<std::string>& spawn_names();
 // A spawn of the sweep: "<strategy>" or "<strategy>:<ulps>" (--spawn-ulps; only for the strategies
-// that read it: ulp-offset, skip-offset, skip-slab, skip-back).
+// that read it: ulp-offset, skip-offset, skip-slab, skip-back), optionally followed by the
+// watertightness margins "+m<E>" (--bary-margin) and "+w<N>" (--trv-widen), e.g.
+// "skip-back+m0.008+w2" or "none+w4".
 struct SpawnSpec {
   std::string strategy;  // a --spawn value
   int ulps = 0;          // 0: the strategy's default
+  std::string margin;    // --bary-margin as written ("" = 0)
+  int widen = 0;         // --trv-widen
 };
 SpawnSpec spawn_spec(const std::string& s);  // throws std::invalid_argument naming the spec
 

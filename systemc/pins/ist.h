@@ -13,6 +13,7 @@
 #include <cstdint>
 
 #include "hls/ist.h"
+#include "hls/margins.h"
 #include "systemc/pins/port.h"
 
 namespace raycore::sc::pins {
@@ -26,8 +27,10 @@ struct IstOutRec {
   uint32_t exit = 0, t = 0, den = 0, tag = 0;
 };
 
-// The data pins of rtl/units/ist.v (list format: port.h).
+// The data pins of rtl/units/ist.v (list format: port.h); eps_i and one_eps_i are the per-frame
+// margin registers (hls::Margins: static while tests are in flight).
 #define RAYCORE_IST_PINS(CFG, IN, OUT, E)                                                    \
+  CFG(E, uint32_t, eps, one) CFG(E, uint32_t, one_eps, one)                                 \
   IN(E, uint32_t, k, one) IN(E, uint32_t, c, c9) IN(E, uint32_t, o, xyz)                    \
   IN(E, uint32_t, d, xyz) IN(E, uint32_t, tmin, one) IN(E, uint32_t, tmax, one)             \
   IN(E, uint32_t, tag, one)                                                                 \
@@ -35,7 +38,14 @@ struct IstOutRec {
   OUT(E, uint32_t, tag, one)
 RAYCORE_PINS_UNIT(IstPins, RAYCORE_IST_PINS, IstIn, IstOutRec);
 
-using IstPort = Port<IstPins>;
+// The cycle-level view of a pin-level ist (port.h's Port) and its configuration pins.
+class IstPort : public Port<IstPins> {
+ public:
+  void config(const hls::Margins& m) {
+    s.eps.write(m.eps);
+    s.one_eps.write(m.one_eps);
+  }
+};
 template <class M>
 using IstPortT = BoundPort<IstPort, M>;
 
@@ -45,15 +55,20 @@ class IstTwin : public PinTwin<IstPins> {
  public:
   IstTwin(sc_core::sc_module_name name, unsigned stages) : PinTwin<IstPins>(name, 10 * stages) {}
 
-  // One test as the RTL computes it (k = 3 is treated as k = 0).
-  static IstOutRec compute(const IstIn& in) {
+  // One test as the RTL computes it (k = 3 is treated as k = 0) with the margin registers m.
+  static IstOutRec compute(const IstIn& in, const hls::Margins& m) {
     const hls::IstOut x =
-        hls::ist_wald<A>(in.k == 3 ? 0 : in.k, in.c, in.o, in.d, in.tmin, in.tmax);
+        hls::ist_wald<A>(in.k == 3 ? 0 : in.k, in.c, in.o, in.d, in.tmin, in.tmax, m);
     return IstOutRec{uint32_t(x.exit), x.t, x.den, in.tag};
   }
 
  private:
-  IstOutRec step(const IstIn& in) override { return compute(in); }
+  IstOutRec step(const IstIn& in) override {
+    hls::Margins m;
+    m.eps = eps_i.read();
+    m.one_eps = one_eps_i.read();
+    return compute(in, m);
+  }
 };
 
 }  // namespace raycore::sc::pins

@@ -17,8 +17,10 @@
 
 namespace raycore::sc::pins {
 
-// The data pins of rtl/units/trv.v (list format: port.h).
+// The data pins of rtl/units/trv.v (list format: port.h); widen_i is the per-frame interval
+// widening register (hls::Margins::widen_ulps, 7 bits: static while steps are in flight).
 #define RAYCORE_TRV_PINS(CFG, IN, OUT, E)                                                    \
+  CFG(E, uint32_t, widen, one)                                                              \
   IN(E, bool, op, one) IN(E, uint32_t, axis, one) IN(E, uint32_t, split, one)               \
   IN(E, uint32_t, node, one) IN(E, uint32_t, child, one) IN(E, uint32_t, o, xyz)            \
   IN(E, uint32_t, d, xyz) IN(E, uint32_t, inv, xyz) IN(E, uint32_t, tnear, one)             \
@@ -30,7 +32,11 @@ namespace raycore::sc::pins {
   OUT(E, uint32_t, far_tfar, one) OUT(E, uint32_t, tag, one)
 RAYCORE_PINS_UNIT(TrvPins, RAYCORE_TRV_PINS, TrvStepIn, TrvStepOut);
 
-using TrvPort = Port<TrvPins>;
+// The cycle-level view of a pin-level trv (port.h's Port) and its configuration pin.
+class TrvPort : public Port<TrvPins> {
+ public:
+  void config(uint32_t widen) { s.widen.write(widen); }
+};
 template <class M>
 using TrvPortT = BoundPort<TrvPort, M>;
 
@@ -44,12 +50,12 @@ class TrvTwin : public PinTwin<TrvPins> {
         tag_mask_(tag_bits >= 32 ? ~0u : (1u << tag_bits) - 1u) {}
 
  private:
-  // The RTL sees two bits of in_axis_i and TAG_BITS of in_tag_i.
+  // The RTL sees two bits of in_axis_i, TAG_BITS of in_tag_i and 7 of widen_i (trv_step).
   TrvStepOut step(const TrvStepIn& in) override {
     TrvStepIn x = in;
     x.axis &= 3u;
     x.tag &= tag_mask_;
-    return trv_step<A>(x);
+    return trv_step<A>(x, widen_i.read());
   }
 
   uint32_t tag_mask_;

@@ -6,6 +6,8 @@
 // op 0 = split at an inner node (hls::trv_split plus systemc/trv.h's child order and interval
 // update), 1 = clip to the scene box (hls::trv_clip_box). Outputs the RTL leaves don't-care for a
 // clip (visit, below, tsplit, node, far_node, far_tfar) are 0 here; compare them only for splits.
+// The widening N (hls::Margins::widen_ulps) is a per-frame register of the unit (widen_i), not part
+// of an item.
 #pragma once
 
 #include <cstdint>
@@ -29,9 +31,14 @@ struct TrvStepOut {
            far_node = 0, far_tfar = 0, tag = 0;
 };
 
-// One step as the RTL computes it (axis 3 is treated as axis 0), for the arithmetic A.
+// The widening register's width in rtl/units/trv.v (widen_i: 0..kMaxWidenUlps = 64).
+constexpr uint32_t kTrvWidenBits = 7;
+
+// One step as the RTL computes it (axis 3 is treated as axis 0), for the arithmetic A, with the
+// interval widening register widen (hls/margins.h: ulps on each side of the compared interval).
 template <class A>
-TrvStepOut trv_step(const TrvStepIn& x) {
+TrvStepOut trv_step(const TrvStepIn& x, uint32_t widen = 0) {
+  const int32_t w = int32_t(widen & ((1u << kTrvWidenBits) - 1u));
   hls::Ray r;
   for (int i = 0; i < 3; ++i) {
     r.o[i] = x.o[i];
@@ -44,11 +51,11 @@ TrvStepOut trv_step(const TrvStepIn& x) {
   if (x.op != 0) {
     r.tmin = x.tnear;
     r.tmax = x.tfar;
-    e.hit = hls::trv_clip_box<A>(x.lo, x.hi, r, e.tnear, e.tfar) ? 1u : 0u;
+    e.hit = hls::trv_clip_box<A>(x.lo, x.hi, r, e.tnear, e.tfar, w) ? 1u : 0u;
     return e;
   }
   const hls::SplitStep s = hls::trv_split<A>(x.split, x.axis == 3 ? 0u : x.axis, r, x.tnear,
-                                             x.tfar);
+                                             x.tfar, w);
   const uint32_t first = s.below_first ? x.node + 1 : x.child;
   const uint32_t second = s.below_first ? x.child : x.node + 1;
   e.visit = uint32_t(s.visit);

@@ -10,10 +10,13 @@
 // and out_valid_o equal; every output transaction (out_valid_o && out_ready_i) equal in every
 // defined field and the tag, leaving in the same cycle, and equal to hls/ (trv_expect). The first
 // differing transaction is printed with its inputs and the run stops. Prints LOCKSTEP lines with
-// the simulated cycles per second.
+// the simulated cycles per second. The interval widening register widen_i (hls/margins.h, the same
+// value into both) is 0 for the directed items, then a new random N in 0..8 every count/8 items,
+// changed only when the pipeline has drained (it is a per-frame register).
 #include <gtest/gtest.h>
 #include <systemc>
 
+#include <algorithm>
 #include <chrono>
 #include <cinttypes>
 #include <cstdint>
@@ -107,6 +110,11 @@ class Lockstep : public sc_core::sc_module {
     bool holding = false;
     Pending cur;
     uint32_t p_gap = 0, p_stall = 0;
+    uint32_t widen = 0;
+    uint64_t next_change = nd;  // the directed items run without widening
+    const uint64_t chunk = std::max<uint64_t>(1, count_ / 8);
+    twin_.config(widen);
+    rtl_.config(widen);
     while ((issued < count_ || !inflight.empty()) && mismatches == 0) {
       if ((cycles & 255u) == 0) {
         static constexpr uint32_t kRates[] = {0, 1, 4, 7};  // in 1/8
@@ -114,11 +122,17 @@ class Lockstep : public sc_core::sc_module {
         p_stall = kRates[(rng_() >> 2) & 3u];
       }
       // Inputs (after the falling edge): a new item, the held one, or a bubble with junk.
+      if (!holding && issued >= next_change && inflight.empty()) {  // drained: a new N
+        widen = uint32_t(rng_() % 9);
+        twin_.config(widen);
+        rtl_.config(widen);
+        next_change += chunk;
+      }
       if (!holding) {
-        if (issued < count_ && (rng_() & 7u) >= p_gap) {
+        if (issued < count_ && issued < next_change && (rng_() & 7u) >= p_gap) {
           cur.x = issued < nd ? stim_.directed(issued) : stim_.random();
           cur.tag = uint32_t(issued & 0xffffu);
-          cur.expected = trv_expect<A>(cur.x);
+          cur.expected = trv_expect<A>(cur.x, widen);
           holding = true;
           both(cur.x, cur.tag, true);
         } else {

@@ -5,7 +5,9 @@
 // (RAYCORE_RTL_IST_VARIANTS). Each test streams, through the unit's valid/ready handshake:
 //   1. fullrate: 4096 tests with no stalls (checks one test per cycle and latency == 10*STAGES),
 //   2. random: RAYCORE_RTL_IST_N tests (default 5*10^5) with random input gaps and random output
-//      back-pressure (bursty rates, new ones every 256 cycles).
+//      back-pressure (bursty rates, new ones every 256 cycles), in 8 runs with different margin
+//      registers eps_i / one_eps_i (hls/margins.h; static within a run, the pipeline empty between
+//      runs): none, 0.008-ish, 2^-12-ish, random values in [0, 0.05], and random bit patterns.
 // Stimulus: triangles from random vertices (hls::make_wald, including near-degenerate and
 // degenerate ones) with rays aimed at random barycentric points inside, outside and on the edges,
 // and random tmin/tmax around the hit distance (every exit code occurs often; each must reach 2 %
@@ -27,6 +29,7 @@
 #include "hls/fp.h"
 #include "hls/geom.h"
 #include "hls/ist.h"
+#include "hls/margins.h"
 #include "hls/wald.h"
 #include "tb/fp/fp_check.h"
 #include "tb/rtl/rtl_cosim.h"
@@ -96,8 +99,9 @@ class IstCosim {
       : name_(std::move(name)), stages_(stages), stim_(seed), rng_(seed ^ 0x9e3779b97f4a7c15ull),
         dut_(seed) {}
 
-  // Streams `count` tests; returns the number checked. full: no gaps, no back-pressure.
-  uint64_t run(const char* set, uint64_t count, bool full) {
+  // Streams `count` tests with the margin registers mg; returns the number checked. full: no gaps,
+  // no back-pressure.
+  uint64_t run(const char* set, uint64_t count, bool full, const hls::Margins& mg) {
     using A = hls::Arith<F, R>;
     struct Item {
       IstIn x;
@@ -108,12 +112,14 @@ class IstCosim {
     std::array<uint64_t, 5> by_exit{};
     uint64_t mismatches = 0;
     V& m = *dut_;
+    m.eps_i = mg.eps;  // per-frame registers: static while the run streams
+    m.one_eps_i = mg.one_eps;
     const StreamStats st = stream(
         dut_, spec, [&] { return stim_.raw(); }, rng_,
         [&](uint64_t) {
           Item it;
           it.x = stim_.next();
-          const hls::IstOut e = hls::ist_wald<A>(it.x.k, it.x.c, it.x.o, it.x.d, it.x.tmin, it.x.tmax);
+          const hls::IstOut e = hls::ist_wald<A>(it.x.k, it.x.c, it.x.o, it.x.d, it.x.tmin, it.x.tmax, mg);
           it.expected = IstRes{uint32_t(e.exit), e.t, e.den};
           drive<V, F>(m, it.x);
           return it;
@@ -135,10 +141,10 @@ class IstCosim {
           }
         },
         [&] { return mismatches >= 5; });
-    std::printf("ISTSUM %s %s vectors=%" PRIu64 " mismatches=%" PRIu64 " hit=%" PRIu64
+    std::printf("ISTSUM %s %s eps=%g vectors=%" PRIu64 " mismatches=%" PRIu64 " hit=%" PRIu64
                 " distance=%" PRIu64 " beta=%" PRIu64 " gamma=%" PRIu64 " sum=%" PRIu64
                 " cycles=%" PRIu64 " latency=%" PRIu64 "..%" PRIu64 "\n",
-                name_.c_str(), set, st.checked, mismatches, by_exit[0], by_exit[1], by_exit[2],
+                name_.c_str(), set, A::to_double(mg.eps), st.checked, mismatches, by_exit[0], by_exit[1], by_exit[2],
                 by_exit[3], by_exit[4], st.cycles, st.min_lat, st.max_lat);
     EXPECT_GT(st.checked, 0u) << name_ << " " << set << ": no vectors checked";
     EXPECT_EQ(st.checked, count) << name_ << " " << set << ": not every test came back";
@@ -159,14 +165,31 @@ class IstCosim {
 
 template <class V, class F, Rounding R>
 void run_variant(const std::string& name, int stages) {
+  using A = hls::Arith<F, R>;
   IstCosim<V, F, R> sim(name, stages, fptest::seed_for("rtl.ist." + name));
-  sim.run("fullrate", 4096, true);
+  sim.run("fullrate", 4096, true, hls::margins_none<A>());
+  sim.run("fullrate-margin", 4096, true, hls::make_margins<A>(0.008, 0));
+  // The random tests in 8 runs, each with its own margin registers.
+  std::mt19937_64 rng(fptest::seed_for("rtl.ist.margins." + name));
   const uint64_t n = ist_count();
-  const uint64_t checked = sim.run("random", n, false);
+  uint64_t checked = 0;
+  std::array<uint64_t, 5> by_exit{};
+  for (int k = 0; k < 8; ++k) {
+    double eps = 0;
+    if (k == 1) eps = 0.008;
+    if (k == 2) eps = std::ldexp(1.0, -12);
+    if (k == 3) eps = 0.008 * (0.9 + 0.2 * double(rng() % 1000) / 1000);
+    if (k >= 4) eps = 0.05 * double(rng() % 100000) / 100000;
+    const uint64_t part = n / 8 + (k == 7 ? n % 8 : 0);
+    hls::Margins mg = hls::make_margins<A>(eps, 0);
+    if (k == 7) mg = hls::Margins{uint32_t(rng()) & F::mask, uint32_t(rng()) & F::mask, 0};  // any bits
+    checked += sim.run("random", part, false, mg);
+    for (int e = 0; e < 5; ++e) by_exit[size_t(e)] += sim.by_exit()[size_t(e)];
+  }
   ASSERT_EQ(checked, n);
   static const char* kNames[] = {"hit", "distance", "beta", "gamma", "sum"};
   for (int e = 0; e < 5; ++e)
-    EXPECT_GE(sim.by_exit()[size_t(e)], n / 50)
+    EXPECT_GE(by_exit[size_t(e)], n / 50)
         << name << ": exit code " << e << " (" << kNames[e] << ") exercised too rarely";
 }
 

@@ -10,6 +10,9 @@
 //      tfar exactly, -0 interval ends, point intervals, inverted and empty boxes), random stalls,
 //   3. random: RAYCORE_RTL_TRV_N items (default 2*10^5; split and clip, 10 % random bit patterns)
 //      with random input gaps and bursty random output back-pressure.
+// The interval widening register widen_i (hls/margins.h) is static within a run: fullrate and
+// directed run with 0 and again with a random N in 1..8, the random items in 8 runs with N = 0, 1,
+// 2 and random values 0..8 (the unit's 7 bits: one run with 64).
 // A 16-bit sequence number rides in the tag. The first mismatches print the inputs, the expected
 // and the received outputs. TRVSUM lines count items per op and per split visit.
 #include <gtest/gtest.h>
@@ -89,8 +92,8 @@ class TrvCosim {
       : name_(std::move(name)), stages_(stages), stim_(seed), rng_(seed ^ 0x9e3779b97f4a7c15ull),
         dut_(seed) {}
 
-  // Streams `count` items of the set; returns the number checked.
-  uint64_t run(Set set, uint64_t count) {
+  // Streams `count` items of the set with the widening register N; returns the number checked.
+  uint64_t run(Set set, uint64_t count, uint32_t widen) {
     const char* set_name = set == Set::fullrate ? "fullrate" : set == Set::directed ? "directed"
                                                                                       : "random";
     struct Item {
@@ -102,12 +105,13 @@ class TrvCosim {
     std::array<uint64_t, 6> by_kind{};  // split first/second/both, clip miss/hit, other
     uint64_t mismatches = 0;
     V& m = *dut_;
+    m.widen_i = uint8_t(widen);  // a per-frame register: static while the run streams
     const StreamStats st = stream(
         dut_, spec, rng_, rng_,
         [&](uint64_t k) {
           Item it;
           it.x = set == Set::directed ? stim_.directed(k) : stim_.random();
-          it.expected = trv_expect<A>(it.x);
+          it.expected = trv_expect<A>(it.x, widen);
           drive(m, it.x);
           return it;
         },
@@ -123,10 +127,10 @@ class TrvCosim {
           }
         },
         [&] { return mismatches >= 5; });
-    std::printf("TRVSUM %s %s vectors=%" PRIu64 " mismatches=%" PRIu64 " split_first=%" PRIu64
+    std::printf("TRVSUM %s %s widen=%u vectors=%" PRIu64 " mismatches=%" PRIu64 " split_first=%" PRIu64
                 " split_second=%" PRIu64 " split_both=%" PRIu64 " clip_miss=%" PRIu64
                 " clip_hit=%" PRIu64 " cycles=%" PRIu64 " latency=%" PRIu64 "..%" PRIu64 "\n",
-                name_.c_str(), set_name, st.checked, mismatches, by_kind[0], by_kind[1], by_kind[2],
+                name_.c_str(), set_name, widen, st.checked, mismatches, by_kind[0], by_kind[1], by_kind[2],
                 by_kind[3], by_kind[4], st.cycles, st.min_lat, st.max_lat);
     EXPECT_EQ(mismatches, 0u);
     EXPECT_EQ(st.checked, count) << name_ << " " << set_name << ": not every item came back";
@@ -147,16 +151,27 @@ class TrvCosim {
 template <class V, class F, Rounding R>
 void run_variant(const std::string& name, int stages) {
   TrvCosim<V, F, R> sim(name, stages, fptest::seed_for("rtl.trv." + name));
-  sim.run(Set::fullrate, 4096);
+  std::mt19937_64 rng(fptest::seed_for("rtl.trv.widen." + name));
+  const uint32_t nw = uint32_t(1 + rng() % 8);
+  sim.run(Set::fullrate, 4096, 0);
+  sim.run(Set::fullrate, 4096, nw);
   const uint64_t nd = TrvStim<F, R>::directed_count();
-  ASSERT_EQ(sim.run(Set::directed, nd), nd);
+  ASSERT_EQ(sim.run(Set::directed, nd, 0), nd);
+  ASSERT_EQ(sim.run(Set::directed, nd, nw), nd);
   const uint64_t n = trv_count();
-  ASSERT_EQ(sim.run(Set::random, n), n);
+  uint64_t checked = 0;
+  std::array<uint64_t, 6> by_kind{};
+  for (uint32_t k = 0; k < 8; ++k) {
+    const uint32_t w = k < 3 ? k : k == 7 ? 64u : uint32_t(rng() % 9);
+    checked += sim.run(Set::random, n / 8 + (k == 7 ? n % 8 : 0), w);
+    for (size_t j = 0; j < by_kind.size(); ++j) by_kind[j] += sim.by_kind()[j];
+  }
+  ASSERT_EQ(checked, n);
   // Every outcome must be exercised: each split visit and both clip results.
   static const char* kNames[] = {"split first", "split second", "split both", "clip miss",
                                  "clip hit"};
   for (int k = 0; k < 5; ++k)
-    EXPECT_GE(sim.by_kind()[size_t(k)], n / 50) << name << ": " << kNames[k] << " too rare";
+    EXPECT_GE(by_kind[size_t(k)], n / 50) << name << ": " << kNames[k] << " too rare";
 }
 
 #define RAYCORE_RTL_TRV_VARIANT(prefix, module, fmt, mode, stages)                  \

@@ -38,8 +38,8 @@ inline bool same(const TrvOut& a, const TrvOut& b) {
 
 // What the unit puts out for x: trv_step, the one definition (hls/ plus systemc/trv.h's rules).
 template <class A>
-TrvOut trv_expect(const TrvIn& x) {
-  return sc::pins::trv_step<A>(x);
+TrvOut trv_expect(const TrvIn& x, uint32_t widen) {
+  return sc::pins::trv_step<A>(x, widen);
 }
 
 template <class F>

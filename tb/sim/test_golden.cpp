@@ -4,7 +4,9 @@
 
 #include <cfenv>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
+#include <utility>
 
 #include "hls/fp.h"
 #include "hls/image.h"
@@ -227,6 +229,55 @@ TEST(Golden, ShadowSpawnAllSameImage) {
     EXPECT_EQ(ma.shadow_errors, mf.shadow_errors);
     EXPECT_EQ(ma.primary_errors, mf.primary_errors);
   }
+}
+
+// Watertightness margins (--bary-margin, --trv-widen; hls/margins.h): margins set to zero give the
+// frame traced with the defaults bit for bit; margins keep every primary hit of the frame without
+// them (a margin only adds hits of a triangle test, a widening only adds cells) and add some.
+TEST(Golden, MarginsZeroIsDefaultAndOnlyAddHits) {
+  const scenes::Scene s = scenes::generate("corridor");
+  struct Case {
+    Rounding r;
+    bool vtu;
+    hls::Spawn sp;
+  };
+  uint64_t added = 0;
+  for (const Case& k : {Case{Rounding::rtz, false, hls::Spawn::none},
+                        Case{Rounding::rne, true, hls::Spawn::skip_back}}) {
+    auto cfg = config(FormatId::fp24, k.r, k.vtu, 96, 60);
+    cfg.spawn.spawn = k.sp;
+    cfg.spawn.ulps = sim::default_spawn_ulps(cfg.format, k.sp);
+    const hls::Image img = hls::build_image(s.tris, cfg.format, cfg.rounding);
+    const sim::Frame def = sim::trace_golden(img, s.camera, s.light, cfg);
+    auto zero = cfg;
+    zero.bary_margin = 0.0;
+    zero.trv_widen = 0;
+    const sim::Frame z = sim::trace_golden(img, s.camera, s.light, zero);
+    for (size_t i = 0; i < def.px.size(); ++i) {
+      ASSERT_EQ(def.px[i].tri, z.px[i].tri) << i;
+      ASSERT_EQ(def.px[i].t_bits, z.px[i].t_bits) << i;
+      ASSERT_EQ(def.px[i].lit, z.px[i].lit) << i;
+      ASSERT_EQ(def.px[i].shadow_tri, z.px[i].shadow_tri) << i;
+      ASSERT_EQ(def.px[i].shade, z.px[i].shade) << i;
+    }
+    for (const auto& [eps, widen] : {std::pair{0.008, 0}, std::pair{0.0, 4}, std::pair{0.008, 2}}) {
+      auto m = cfg;
+      m.bary_margin = eps;
+      m.trv_widen = widen;
+      const sim::Frame f = sim::trace_golden(img, s.camera, s.light, m);
+      for (size_t i = 0; i < def.px.size(); ++i) {
+        if (def.px[i].tri >= 0) {
+          ASSERT_GE(f.px[i].tri, 0) << i << ": margins lost a primary hit";
+        }
+        if (def.px[i].tri < 0 && f.px[i].tri >= 0) ++added;
+        const bool same_hit = def.px[i].tri == f.px[i].tri && def.px[i].t_bits == f.px[i].t_bits;
+        if (same_hit && def.px[i].shadow_ray && def.px[i].shadow_tri >= 0) {
+          ASSERT_GE(f.px[i].shadow_tri, 0) << i << ": margins lost an occluder";
+        }
+      }
+    }
+  }
+  std::printf("MARGINS golden corridor: primary hits added by margins %llu\n", (unsigned long long)added);
 }
 
 // The stored scene: vertices recovered from the records' Wald constants. Exact where the

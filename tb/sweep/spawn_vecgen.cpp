@@ -1,5 +1,5 @@
 // tb/sweep/spawn_vecgen.cpp - vectors for rtl/units/spawn.v's skip-slab / skip-back datapath from
-// hls/hit.h (hls::detail::slab_tmin, hls::detail::add_ulps), for tb/sweep/tb_spawn_slab.v.
+// hls/hit.h (hls::detail::slab_tmin, hls::add_ulps), for tb/sweep/tb_spawn_slab.v.
 //   spawn_vecgen <FP24|FP32> <rtz|rne|raycore> <slab ulps> <back ulps> <count> <file>  (raycore: FP24)
 // One line per vector, ten hex words: h_x h_y h_z dens tmin scale t back | tmin' t_back; prints
 // the number of vectors written.
@@ -37,7 +37,7 @@ int gen(int slab, int back, int count, FILE* out) {
     // t: ordinary, or a few ulps above the smallest normal (the back-off saturates to zero).
     const uint32_t t = u01(rng) < 0.05 ? F::min_mag + uint32_t(rng() % 4) : any(-20, 20, false);
     const uint32_t tmin2 = detail::slab_tmin<A>(h, dens, slab, tmin);
-    const uint32_t tback = detail::add_ulps<F>(t, -back);
+    const uint32_t tback = add_ulps<F>(t, -back);
     std::fprintf(out, "%08x%08x%08x%08x%08x%08x%08x%08x%08x%08x\n", h[0], h[1], h[2], dens, tmin, scale, t,
                  uint32_t(back), tmin2, tback);
   }

@@ -285,6 +285,23 @@ TEST(Jobs, ListValidatesAndCounts) {
       << raycore::sweep::command_line(slab[0]);
   EXPECT_EQ(raycore::sweep::command_line(slab[1]).find("--spawn-ulps"), std::string::npos)
       << "the default ulps: no option";
+  // Watertightness margins as a suffix of the spawn: own job ids and the options.
+  o.spawns = {"skip-back", "skip-back+m0.008+w2", "none+w4"};
+  const auto marg = raycore::sweep::make_jobs(o);
+  ASSERT_EQ(marg.size(), 3u);
+  EXPECT_NE(marg[0].id, marg[1].id);
+  EXPECT_NE(marg[1].id.find("-m0.008-w2"), std::string::npos) << marg[1].id;
+  EXPECT_NE(raycore::sweep::command_line(marg[1]).find("--spawn skip-back "), std::string::npos);
+  EXPECT_NE(raycore::sweep::command_line(marg[1]).find("--bary-margin 0.008 --trv-widen 2"),
+            std::string::npos)
+      << raycore::sweep::command_line(marg[1]);
+  EXPECT_EQ(raycore::sweep::command_line(marg[2]).find("--bary-margin"), std::string::npos);
+  EXPECT_NE(raycore::sweep::command_line(marg[2]).find("--trv-widen 4"), std::string::npos);
+  EXPECT_EQ(raycore::sweep::command_line(marg[0]).find("--trv-widen"), std::string::npos);
+  for (const char* bad : {"none+", "none+m", "none+m-1", "none+m2", "none+w65", "none+wx", "none+q1"}) {
+    o.spawns = {bad};
+    EXPECT_THROW(raycore::sweep::make_jobs(o), std::invalid_argument) << bad;
+  }
   o.spawns = {"none"};
   o.scenes = {"sponza-paper"};
   o.scenes_dir = "/nonexistent-scenes";

@@ -16,6 +16,7 @@
 
 #include <systemc>
 
+#include <cmath>
 #include <cstdlib>
 #include <functional>
 #include <random>
@@ -72,8 +73,21 @@ void expect_views_fp24_rne(uint64_t seed,
   for (const auto& [vtu, ist] : views) expect_same_frame(corridor(), tc, cfg, vtu, ist);
 }
 
+// The watertightness margins (--bary-margin 0.008 --trv-widen 2): the pin-level ist's eps_i /
+// one_eps_i registers give the transaction model's frame and cycles.
+sim::TraceConfig margins_config(Rounding r, bool vtu) {
+  auto tc = config(FormatId::fp24, r, vtu, 48, 30);
+  tc.bary_margin = 0.008;
+  tc.trv_widen = 2;
+  return tc;
+}
+
 #ifndef RAYCORE_TEST_RTL
 
+TEST(PinsFrame, TwinsWithMargins) {
+  expect_same_frame(corridor(), margins_config(Rounding::rtz, true), {}, UnitView::twin,
+                    UnitView::twin);
+}
 TEST(PinsFrame, TwinsFp24RtzVtuOn) { expect_both_units(UnitView::twin); }
 TEST(PinsFrame, TwinsEachUnitFp24RneRandomLatency) {
   expect_views_fp24_rne(5, {{UnitView::twin, UnitView::model}, {UnitView::model, UnitView::twin}});
@@ -126,6 +140,12 @@ TEST(PinsFrame, LatencyNotAMultipleOfTheLevelsIsRefused) {
 #else  // RAYCORE_TEST_RTL
 
 TEST(PinsFrameRtl, VtuAndIstFp24RtzVtuOn) { expect_both_units(UnitView::rtl); }
+TEST(PinsFrameRtl, WithMargins) {
+  expect_same_frame(corridor(), margins_config(Rounding::rtz, true), {}, UnitView::rtl,
+                    UnitView::rtl);
+  expect_same_frame(corridor(), margins_config(Rounding::rne, false), {}, UnitView::model,
+                    UnitView::rtl);
+}
 TEST(PinsFrameRtl, EachSubsetFp24RneRandomLatency) {
   expect_views_fp24_rne(7, {{UnitView::rtl, UnitView::model},
                             {UnitView::model, UnitView::rtl},
@@ -348,7 +368,23 @@ void ist_lockstep(const char* name) {
       return "tag " + std::to_string(x.tag) + " exit " + std::to_string(x.exit) + " t " +
              hex(x.t) + " den " + hex(x.den);
     };
-    res = lockstep<pins::IstPort, pins::IstIn>(clk, twin, rtl, n, rng, next, drive, same, show);
+    // Four runs, each with its own margin registers (static within a run: hls/margins.h).
+    const double eps[4] = {0.0, 0.008, std::ldexp(1.0, -12), 0.05 * double(rng() % 1000) / 1000};
+    for (int k = 0; k < 4 && res.failure.empty(); ++k) {
+      const hls::Margins mg = hls::make_margins<A>(eps[k], 0);
+      twin.config(mg);
+      rtl.config(mg);
+      const uint64_t part = n / 4 + (k == 3 ? n % 4 : 0);
+      const LockResult r =
+          lockstep<pins::IstPort, pins::IstIn>(clk, twin, rtl, part, rng, next, drive, same, show);
+      res.sent += r.sent;
+      res.received += r.received;
+      res.cycles += r.cycles;
+      res.stalled_out += r.stalled_out;
+      res.stalled_in += r.stalled_in;
+      res.seconds += r.seconds;
+      if (!r.failure.empty()) res.failure = "eps " + std::to_string(eps[k]) + ": " + r.failure;
+    }
     sc_core::sc_stop();
   });
   sc_core::sc_start();

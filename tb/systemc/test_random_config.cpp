@@ -19,6 +19,7 @@
 
 #include <systemc>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <random>
@@ -110,12 +111,17 @@ Drawn draw(uint64_t seed, uint64_t index) {
   d.tc.spawn.spawn_all = pick(0, 2) == 0;
   d.tc.anchored = pick(0, 3) == 0;
   d.tc.anchor = d.tc.anchored ? hls::store_anchor(scene_by_index(d.scene).tris) : hls::Vec3{};
+  // The watertightness margins, drawn after every earlier pick (hls/margins.h).
+  const double margins[] = {0.0, 0.008, std::ldexp(1.0, -12), 0.03};
+  d.tc.bary_margin = pick(0, 1) == 0 ? 0.0 : margins[pick(0, 3)];
+  d.tc.trv_widen = pick(0, 1) == 0 ? 0 : int32_t(pick(0, 8));
   std::ostringstream os;
   os << "scene " << scene_by_index(d.scene).name << " " << d.tc.width << "x" << d.tc.height << " "
      << hls::format_name(f) << "-" << hls::rounding_name(r) << (d.tc.vtu ? " vtu" : " novtu") << " spawn "
      << sim::to_string(d.tc.spawn.spawn) << (d.tc.spawn.segment ? " segment" : " unit")
      << (d.tc.spawn.any_hit ? " any-hit" : " closest-hit") << (d.tc.spawn.spawn_all ? " spawn-all" : "")
-     << (d.tc.anchored ? " anchored" : "") << " | rtus " << c.rtus << " mem " << c.mem_latency
+     << (d.tc.anchored ? " anchored" : "") << " margin " << d.tc.bary_margin << " widen "
+     << d.tc.trv_widen << " | rtus " << c.rtus << " mem " << c.mem_latency
      << "/" << c.mem_bandwidth << "B/q" << c.mem_queue_depth << " seed " << c.seed << " caches "
      << c.node_cache.size_bytes << "/" << c.node_cache.ways << "w/" << c.node_cache.line_bytes << "B/"
      << c.node_cache.mshrs << "m/" << c.node_cache.hit_latency << " " << c.list_cache.size_bytes << "/"

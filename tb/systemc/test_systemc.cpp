@@ -59,6 +59,29 @@ TEST(GoldenMatch, SpawnStrategies) {
       expect_match(corridor(), tc);
     }
 }
+// Watertightness margins (--bary-margin, --trv-widen): the cycle model's ist and trv use the same
+// registers as the golden tracer.
+TEST(GoldenMatch, Margins) {
+  struct Case {
+    FormatId f;
+    Rounding r;
+    bool vtu;
+    hls::Spawn sp;
+    double eps;
+    int32_t widen;
+  };
+  for (const Case& k : {Case{FormatId::fp24, Rounding::rtz, true, hls::Spawn::none, 0.008, 2},
+                        Case{FormatId::fp24, Rounding::rne, false, hls::Spawn::skip_back, 0.008, 4},
+                        Case{FormatId::fp24, Rounding::rtz, false, hls::Spawn::skip_origin, 0.03, 0},
+                        Case{FormatId::fp32, Rounding::rne, true, hls::Spawn::none, 0.0, 8}}) {
+    auto tc = config(k.f, k.r, k.vtu, 48, 30);
+    tc.spawn.spawn = k.sp;
+    tc.spawn.ulps = sim::default_spawn_ulps(tc.format, k.sp);
+    tc.bary_margin = k.eps;
+    tc.trv_widen = k.widen;
+    expect_match(corridor(), tc);
+  }
+}
 // Any-hit shadow rays: the same lit/shadowed decisions as closest-hit (so the same image), fewer
 // triangle tests; the golden tracer and the cycle model end the walk at the same leaf.
 TEST(GoldenMatch, AnyHitShadowRays) {
