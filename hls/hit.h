@@ -97,8 +97,8 @@ inline uint32_t slab_tmin(const uint32_t h[3], uint32_t dens, int32_t ulps, uint
 constexpr int32_t kBackSlabUlps = 4;
 
 // The unit roundoff of the rounding policy as a number of the format: 2^-M (rtz), 2^-(M+1) (rne),
-// 2^(1-M) (raycore: not correctly rounded; each of its operations errs by less than 2^-M times
-// the magnitudes the bound below charges, add3 by 1.5 * 2^-M, rcp by 1.19 * 2^-M: hls/fp.h).
+// 2^(1-M) (raycore: not correctly rounded; the operations the bound below counts err by at most
+// 1.5 * 2^-M times the magnitudes it charges: add3 1.5, rcp 1.19, add, mul below 1; hls/fp.h).
 template <class A>
 constexpr uint32_t unit_roundoff() {
   using F = typename A::Fmt;
