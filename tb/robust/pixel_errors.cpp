@@ -1,7 +1,11 @@
 // tb/robust/pixel_errors.cpp - `robust_pixels`: every shadow error of one golden frame against the
 // reference, pixel by pixel, with what explains it (docs/robustness.md, "Beating the paper").
 //
-//   robust_pixels SCENE [raycore render options] [--literal]
+//   robust_pixels SCENE [raycore render options] [--literal] [--stored]
+//
+// --stored: against the reference of the stored scene (sim::stored_scene: the arithmetic error)
+// instead of the scene's; occluders are still described with the scene's vertices (which ones
+// it shares with the hit triangle).
 //
 // Per error pixel (classes as in sim/reference/metrics.h):
 //   no_ray   the hit unit found the light behind (false_shadow_no_ray): same triangle as the
@@ -31,6 +35,7 @@
 #include "hls/vtu.h"
 #include "hls/wald.h"
 #include "sim/cli.h"
+#include "sim/errors.h"
 #include "sim/golden/golden.h"
 #include "sim/reference/bvh.h"
 #include "sim/reference/metrics.h"
@@ -80,14 +85,14 @@ const char* exit_name(hls::IstExit e) {
 }
 
 template <class A>
-void analyse(const sim::RunOptions& o, bool literal, const std::vector<int>& pick_in) {
+void analyse(const sim::RunOptions& o, bool literal, bool stored, const std::vector<int>& pick_in) {
   const int pick[2] = {pick_in.size() == 2 ? pick_in[0] : -1, pick_in.size() == 2 ? pick_in[1] : -1};
   using F = typename A::Fmt;
   sim::TraceConfig cfg = sim::trace_config(o);
   const sim::Prepared p = sim::prepare(o, cfg);
   const auto& sc = p.scene;
   const sim::Frame g = sim::trace_golden(p.image, sc.camera, sc.light, cfg);
-  const ref::Reference reference(sc);
+  const ref::Reference reference(stored ? sim::stored_scene(sc, p.image, cfg.anchor) : sc);
   const sim::Frame r = reference.render(cfg.width, cfg.height, cfg.threads);
   const ref::ErrorMetrics m = ref::compute_errors(g, r, sc.tris);
   std::printf("# %s %s: self %llu shadow %llu (false %llu: self %llu no_ray %llu; leak %llu) primary %llu\n",
@@ -283,13 +288,15 @@ int main(int argc, char** argv) {
   sim::add_run_options(app, o);
   bool literal = false;
   app.add_flag("--literal", literal, "also print each error pixel's bit patterns (VTU on: origin 0)");
+  bool stored = false;
+  app.add_flag("--stored", stored, "against the stored scene's reference (arithmetic error)");
   std::vector<int> pick;
   app.add_option("--pixel", pick, "only this pixel (x y), with its bit patterns, error or not")->expected(2);
   try {
     app.parse(argc, argv);
     const sim::TraceConfig cfg = sim::trace_config(o);
     hls::visit_format(cfg.format, cfg.rounding, [&](auto f, auto rr) {
-      analyse<hls::Arith<decltype(f), decltype(rr)::value>>(o, literal, pick);
+      analyse<hls::Arith<decltype(f), decltype(rr)::value>>(o, literal, stored, pick);
     });
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
