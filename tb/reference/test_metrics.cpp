@@ -10,8 +10,10 @@ namespace {
 
 sim::PixelResult miss() { return {}; }
 
-sim::PixelResult hit(int32_t tri, double t, bool shadow_ray, bool lit, int32_t shadow_tri = -1) {
+// front (the light on the ray's side) defaults to shadow_ray: --shadow-spawn front, and the reference.
+sim::PixelResult hit(int32_t tri, double t, bool shadow_ray, bool lit, int32_t shadow_tri = -1, int front = -1) {
   sim::PixelResult p;
+  p.front = front < 0 ? shadow_ray : front != 0;
   p.tri = tri;
   p.t = t;
   p.shadow_ray = shadow_ray;
@@ -40,6 +42,9 @@ std::vector<Pair> cases() {
       /* 10 leak: ref spawned no ray      */ {hit(2, 10, true, true), hit(2, 10, false, false)},
       /* 11 exactly 1% off: not an error  */ {hit(3, 101, true, true), hit(3, 100, true, true)},
       /* 12 'lit' without a shadow ray is shadowed (both) */ {hit(2, 5, false, true), hit(2, 5, false, false)},
+      /* 13 --shadow-spawn all: a ray toward a light behind self-intersects, the pixel is shadowed
+            as the reference's (no error; a self-intersection, not on the lit side) */
+      {hit(2, 10, true, false, 2, 0), hit(2, 10, false, false)},
   };
 }
 
@@ -60,17 +65,18 @@ TEST(ReferenceMetrics, HandMadeFrameCounts) {
   sim::Frame test, ref;
   frames(cases(), &test, &ref);
   const ErrorMetrics m = compute_errors(test, ref, kTris);
-  EXPECT_EQ(m.pixels, 13u);
-  EXPECT_EQ(m.primary_rays, 13u);
-  EXPECT_EQ(m.shadow_rays, 9u);  // 1, 3, 4, 5, 6, 8, 9, 10, 11
-  EXPECT_EQ(m.self_intersections, 2u);  // 5, 9
-  EXPECT_DOUBLE_EQ(m.self_intersection_pct, 100.0 * 2 / 13);
+  EXPECT_EQ(m.pixels, 14u);
+  EXPECT_EQ(m.primary_rays, 14u);
+  EXPECT_EQ(m.shadow_rays, 10u);  // 1, 3, 4, 5, 6, 8, 9, 10, 11, 13
+  EXPECT_EQ(m.self_intersections, 3u);  // 5, 9, 13
+  EXPECT_EQ(m.self_intersections_front, 2u);  // 5, 9
+  EXPECT_DOUBLE_EQ(m.self_intersection_pct, 100.0 * 3 / 14);
   EXPECT_EQ(m.primary_hit_vs_miss, 1u);  // 1
   EXPECT_EQ(m.primary_miss_vs_hit, 1u);  // 2
   EXPECT_EQ(m.primary_distance, 2u);     // 3, 9
   EXPECT_EQ(m.primary_errors, 4u);
   EXPECT_EQ(m.primary_other_tri, 1u);    // 4
-  EXPECT_EQ(m.shadow_compared, 8u);      // 4, 5, 6, 7, 8, 10, 11, 12
+  EXPECT_EQ(m.shadow_compared, 9u);      // 4, 5, 6, 7, 8, 10, 11, 12, 13
   EXPECT_EQ(m.false_shadow, 2u);         // 5, 7
   EXPECT_EQ(m.false_shadow_self, 1u);    // 5
   EXPECT_EQ(m.false_shadow_no_ray, 1u);  // 7
@@ -85,7 +91,7 @@ TEST(ReferenceMetrics, EachCaseAlone) {
     uint64_t self, hit_vs_miss, miss_vs_hit, distance, false_shadow, light_leak;
   } expect[] = {{0, 0, 0, 0, 0, 0}, {0, 1, 0, 0, 0, 0}, {0, 0, 1, 0, 0, 0}, {0, 0, 0, 1, 0, 0}, {0, 0, 0, 0, 0, 0},
                 {1, 0, 0, 0, 1, 0}, {0, 0, 0, 0, 0, 1}, {0, 0, 0, 0, 1, 0}, {0, 0, 0, 0, 0, 0}, {1, 0, 0, 1, 0, 0},
-                {0, 0, 0, 0, 0, 1}, {0, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 0, 0}};
+                {0, 0, 0, 0, 0, 1}, {0, 0, 0, 0, 0, 0}, {0, 0, 0, 0, 0, 0}, {1, 0, 0, 0, 0, 0}};
   ASSERT_EQ(sizeof expect / sizeof expect[0], c.size());
   for (size_t i = 0; i < c.size(); ++i) {
     sim::Frame test, ref;
@@ -125,7 +131,7 @@ TEST(ReferenceMetrics, BadFramesAreRejected) {
     EXPECT_NE(std::string(e.what()).find("pixel 3"), std::string::npos) << e.what();
   }
   bad = test;
-  bad.px.pop_back();  // size says 13, 12 pixels
+  bad.px.pop_back();  // size says 14, 13 pixels
   EXPECT_THROW(compute_errors(bad, ref, kTris), std::invalid_argument);
 }
 
@@ -134,10 +140,11 @@ TEST(ReferenceMetrics, JsonKeys) {
   frames(cases(), &test, &ref);
   const nlohmann::json j = to_json(compute_errors(test, ref, kTris));
   for (const char* k : {"pixels", "primary_rays", "shadow_rays", "self_intersections", "self_intersection_pct",
+                        "self_intersections_front",
                         "shadow_errors", "false_shadow", "light_leak", "primary_errors", "primary_miss_vs_hit",
                         "primary_hit_vs_miss", "primary_distance"})
     EXPECT_TRUE(j.contains(k)) << k;
-  EXPECT_EQ(j["self_intersections"].get<uint64_t>(), 2u);
+  EXPECT_EQ(j["self_intersections"].get<uint64_t>(), 3u);
   EXPECT_EQ(j["primary_errors"].get<uint64_t>(), 4u);
   EXPECT_EQ(j["shadow_errors"].get<uint64_t>(), 4u);
   EXPECT_EQ(j["false_shadow"].get<uint64_t>(), 2u);
