@@ -6,7 +6,7 @@
 
 #include "sim/cli.h"
 #include "sim/run.h"
-#include "systemc/cli_options.h"
+#include "sim/sc_options.h"
 #include "systemc/simulate.h"
 
 namespace raycore::cli {

@@ -10,7 +10,7 @@
 #include "sim/errors.h"
 #include "sim/output.h"
 #include "sim/run.h"
-#include "systemc/cli_options.h"
+#include "sim/sc_options.h"
 #include "systemc/simulate.h"
 
 namespace raycore::cli {

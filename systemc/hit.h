@@ -1,6 +1,6 @@
 // systemc/hit.h - the hit unit: for a finished primary ray the hit point and the shadow ray
 // (hls::hit_shadow with the configured spawn strategy; with --shadow-spawn all also when the light
-// is behind), handed to the rgu in the same slot; for a finished shadow ray the light decision; the pixel written to the frame (sim::shade_pixel, the
+// is behind), handed to the rgu in the same slot; for a finished shadow ray the light decision; the pixel written to the frame (hls::shade_pixel, the
 // golden tracer's inputs). One ray per cycle, hit_latency cycles to the pixel write / hand-over.
 #pragma once
 
@@ -9,7 +9,7 @@
 #include <cmath>
 
 #include "hls/hit.h"
-#include "sim/golden/golden.h"
+#include "hls/trace.h"
 #include "systemc/slot.h"
 #include "systemc/slot_unit.h"
 
@@ -24,19 +24,19 @@ class Hit : public SlotUnit {
     if (!ch_.hit_q.can_pop(now)) return false;
     const uint16_t s = ch_.hit_q.pop();
     Slot& r = ch_.slots[s];
-    sim::PixelResult& p = fc_.frame->px[r.pixel];
+    hls::PixelResult& p = fc_.frame->px[r.pixel];
     const Cycle done = now + lat_;
     ++st_.hit_busy;
     if (r.shadow) {
       p.lit = p.front && !r.best.found;  // --shadow-spawn all: a ray behind the light is not lit
       p.shadow_tri = r.best.found ? int32_t(r.best.id) : -1;
-      p.shade = sim::shade_pixel(true, p.lit, r.cos_light);
+      p.shade = hls::shade_pixel(true, p.lit, r.cos_light);
       ++fc_.shadow_retired[r.pixel];
       return retire(s, done);
     }
     ++fc_.primary_retired[r.pixel];
     if (!r.best.found) {
-      p.shade = sim::shade_pixel(false, false, 0);
+      p.shade = hls::shade_pixel(false, false, 0);
       return retire(s, done);
     }
     const Best& b = r.best;
@@ -49,7 +49,7 @@ class Hit : public SlotUnit {
              A::to_double(ss.h[2]) + fc_.offset[2]};
     p.front = ss.front;
     if (!ss.spawn) {
-      p.shade = sim::shade_pixel(true, false, 0);
+      p.shade = hls::shade_pixel(true, false, 0);
       return retire(s, done);
     }
     p.shadow_ray = true;

@@ -20,7 +20,7 @@ double user_cpu_seconds() {
 
 template <class A>
 SimResult run(const hls::Image& image, const scenes::Camera& cam, const scenes::Light& light,
-              const sim::TraceConfig& tc, const SimConfig& cfg) {
+              const hls::TraceConfig& tc, const SimConfig& cfg) {
   using F = typename A::Fmt;
   constexpr hls::Rounding R = A::rounding;
   const auto w0 = std::chrono::steady_clock::now();
@@ -59,8 +59,8 @@ SimResult run(const hls::Image& image, const scenes::Camera& cam, const scenes::
   fc.rgu_cam = hls::rgu_camera<A>(fc.origin, cam.forward, cam.right, cam.up, cam.yfov, tc.width,
                                   tc.height);
   fc.tmin = A::from_double(tc.tmin);
-  fc.spawn = sim::resolved_spawn(tc);
-  fc.margins = sim::frame_margins<A>(tc);
+  fc.spawn = hls::resolved_spawn(tc);
+  fc.margins = hls::frame_margins<A>(tc);
   if (cfg.stack_depth < 1 || cfg.stack_depth > uint32_t(kStackDepth))
     throw std::invalid_argument("stack depth must be 1..64");
   fc.stack_depth = cfg.stack_depth;
@@ -96,7 +96,7 @@ SimResult run(const hls::Image& image, const scenes::Camera& cam, const scenes::
 }  // namespace
 
 SimResult simulate(const hls::Image& image, const scenes::Camera& cam, const scenes::Light& light,
-                   const sim::TraceConfig& tc, const SimConfig& cfg) {
+                   const hls::TraceConfig& tc, const SimConfig& cfg) {
   if (tc.width <= 0 || tc.height <= 0) throw std::invalid_argument("image size must be positive");
   if (image.format() != tc.format || image.rounding() != tc.rounding)
     throw std::invalid_argument("memory image format/rounding differ from the configuration");
@@ -108,7 +108,7 @@ SimResult simulate(const hls::Image& image, const scenes::Camera& cam, const sce
   });
 }
 
-std::vector<PixelDiff> diff_frames(const sim::Frame& a, const sim::Frame& b, size_t max_list,
+std::vector<PixelDiff> diff_frames(const hls::Frame& a, const hls::Frame& b, size_t max_list,
                                    uint64_t* count) {
   std::vector<PixelDiff> out;
   uint64_t n = 0;

@@ -12,15 +12,15 @@
 
 #include "hls/image.h"
 #include "scenes/scene.h"
-#include "sim/frame.h"
-#include "sim/golden/golden.h"
+#include "hls/frame.h"
+#include "hls/trace.h"
 #include "systemc/config.h"
 #include "systemc/membus.h"
 
 namespace raycore::sc {
 
 struct SimResult {
-  sim::Frame frame;
+  hls::Frame frame;
   uint64_t cycles = 0;  // to the last pixel write
   std::vector<RtuStats> rtus;
   MembusStats bus;
@@ -32,14 +32,14 @@ struct SimResult {
 };
 
 SimResult simulate(const hls::Image& image, const scenes::Camera& cam, const scenes::Light& light,
-                   const sim::TraceConfig& tc, const SimConfig& cfg);
+                   const hls::TraceConfig& tc, const SimConfig& cfg);
 
 // Pixels where two frames differ in tri, t_bits, shadow_ray, lit, shadow_tri or shade.
 struct PixelDiff {
   int x, y;
-  sim::PixelResult a, b;
+  hls::PixelResult a, b;
 };
-std::vector<PixelDiff> diff_frames(const sim::Frame& a, const sim::Frame& b, size_t max_list,
+std::vector<PixelDiff> diff_frames(const hls::Frame& a, const hls::Frame& b, size_t max_list,
                                    uint64_t* count);
 
 // The report's "hardware" and "sim" objects, and the model's parameters ("config" additions).

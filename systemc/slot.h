@@ -12,7 +12,7 @@
 #include "hls/ray.h"
 #include "hls/rgu.h"
 #include "scenes/scene.h"
-#include "sim/frame.h"
+#include "hls/frame.h"
 #include "systemc/ascache.h"
 #include "systemc/config.h"
 #include "systemc/fifo.h"
@@ -85,7 +85,7 @@ struct FrameCtx {
   bool empty_tree = false;
   hls::ImageHeader header;
   uint32_t tri_line_records = 1;
-  sim::Frame* frame = nullptr;
+  hls::Frame* frame = nullptr;
   std::vector<uint8_t> primary_retired, shadow_retired;  // per pixel: times retired
   uint64_t retired = 0, issued = 0;
   Cycle last_retire = 0;

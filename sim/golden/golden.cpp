@@ -226,43 +226,6 @@ Frame trace_t(const hls::Image& image_in, const scenes::Camera& cam, const scene
 
 }  // namespace
 
-hls::SpawnParams resolved_spawn(const TraceConfig& cfg) {
-  hls::SpawnParams sp = cfg.spawn;
-  if (sp.ulps == 0) sp.ulps = default_spawn_ulps(cfg.format, sp.spawn);
-  return sp;
-}
-
-int32_t default_spawn_ulps(hls::FormatId f) {
-  // 256 FP32 ulps = 256 * 2^-23 relative = 2 * 2^-16: two FP24 ulps.
-  return f == hls::FormatId::fp24 ? 2 : 256;
-}
-
-int32_t default_spawn_ulps(hls::FormatId f, hls::Spawn s) {
-  switch (s) {
-    case hls::Spawn::ulp_offset:
-    case hls::Spawn::skip_offset:
-      return default_spawn_ulps(f);
-    case hls::Spawn::skip_slab:
-      return 4;
-    case hls::Spawn::skip_back:
-      return 1;  // ulps of the hit point: the format's own rounding, whatever the precision
-    default:
-      return 0;
-  }
-}
-
-bool spawn_uses_ulps(hls::Spawn s) {
-  return s == hls::Spawn::ulp_offset || s == hls::Spawn::skip_offset || s == hls::Spawn::skip_slab ||
-         s == hls::Spawn::skip_back;
-}
-
-uint8_t shade_pixel(bool hit, bool lit, double cos_light) {
-  // The reference's shading (sim/reference/reference.h), so images compare by eye.
-  if (!hit) return 0;
-  if (!lit) return 40;
-  return uint8_t(40 + std::lround(215.0 * std::clamp(cos_light, 0.0, 1.0)));
-}
-
 std::string to_string(hls::Spawn s) {
   switch (s) {
     case hls::Spawn::none: return "none";

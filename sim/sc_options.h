@@ -1,4 +1,4 @@
-// systemc/cli_options.h - the cycle model's command-line options (raycore simulate / compare):
+// sim/sc_options.h - the cycle model's command-line options (raycore simulate / compare):
 // --config FILE (JSON, keys of sc::config_json) first, then any option given on the command line.
 #pragma once
 
