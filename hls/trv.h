@@ -32,6 +32,7 @@ inline bool trv_clip_box(const uint32_t lo[3], const uint32_t hi[3], const Ray& 
   }
   tnear = t0;
   tfar = t1;
+  if (widen == 0) return A::le(t0, t1);  // no margin: skip the widening (the inner loop's case)
   return A::le(add_ulps<F>(t0, -widen), add_ulps<F>(t1, widen));
 }
 
@@ -52,7 +53,10 @@ template <class A>
 inline SplitStep trv_split(uint32_t split, uint32_t axis, const Ray& r, uint32_t tnear,
                            uint32_t tfar, int32_t widen = 0) {
   using F = typename A::Fmt;
-  const uint32_t tfar_w = add_ulps<F>(tfar, widen), tnear_w = add_ulps<F>(tnear, -widen);
+  // widen = 0 compares the interval itself (add_ulps by 0 changes only a zero's sign, which no
+  // comparison sees), so the inner loop's common case skips it.
+  const uint32_t tfar_w = widen ? add_ulps<F>(tfar, widen) : tfar;
+  const uint32_t tnear_w = widen ? add_ulps<F>(tnear, -widen) : tnear;
   const uint32_t ts = A::mul(A::sub(split, r.o[axis]), r.inv[axis]);
   const bool below = A::lt(r.o[axis], split) ||
                      (A::eq(r.o[axis], split) && (A::sign(r.d[axis]) || A::is_zero(r.d[axis])));

@@ -1,7 +1,7 @@
 // systemc/hit.h - the hit unit: for a finished primary ray the hit point and the shadow ray
 // (hls::hit_shadow with the configured spawn strategy; with --shadow-spawn all also when the light
-// is behind), handed to the rgu in the same slot; for a finished shadow ray the light decision; the pixel written to the frame (hls::shade_pixel, the
-// golden tracer's inputs). One ray per cycle, hit_latency cycles to the pixel write / hand-over.
+// is behind), handed to the rgu in the same slot; for a finished shadow ray the light decision;
+// the pixel written to the frame (hls::shade_pixel, the golden tracer's inputs). One ray per cycle, hit_latency cycles to the pixel write / hand-over.
 #pragma once
 
 #include <systemc>

@@ -34,7 +34,6 @@ SimResult run(const hls::Image& image, const scenes::Camera& cam, const scenes::
   FrameCtx fc;
   fc.width = tc.width;
   fc.height = tc.height;
-  fc.cam = cam;
   fc.header = image.header();
   fc.frame = &res.frame;
   fc.primary_retired.assign(res.frame.px.size(), 0);
@@ -52,11 +51,10 @@ SimResult run(const hls::Image& image, const scenes::Camera& cam, const scenes::
   }
   if (tc.vtu) vtu.box_outward(fc.box_lo, fc.box_hi);  // as transform_image translates the box
   for (int i = 0; i < 3; ++i) {
-    fc.origin[i] = setup.origin[i];
     fc.light[i] = setup.light[i];
     fc.offset[i] = setup.offset[i];
   }
-  fc.rgu_cam = hls::rgu_camera<A>(fc.origin, cam.forward, cam.right, cam.up, cam.yfov, tc.width,
+  fc.rgu_cam = hls::rgu_camera<A>(setup.origin, cam.forward, cam.right, cam.up, cam.yfov, tc.width,
                                   tc.height);
   fc.tmin = A::from_double(tc.tmin);
   fc.spawn = hls::resolved_spawn(tc);

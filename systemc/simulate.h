@@ -10,10 +10,10 @@
 
 #include <nlohmann/json.hpp>
 
-#include "hls/image.h"
-#include "scenes/scene.h"
 #include "hls/frame.h"
+#include "hls/image.h"
 #include "hls/trace.h"
+#include "scenes/scene.h"
 #include "systemc/config.h"
 #include "systemc/membus.h"
 

@@ -7,12 +7,11 @@
 #include <cstdint>
 #include <vector>
 
+#include "hls/frame.h"
 #include "hls/hit.h"
 #include "hls/margins.h"
 #include "hls/ray.h"
 #include "hls/rgu.h"
-#include "scenes/scene.h"
-#include "hls/frame.h"
 #include "systemc/ascache.h"
 #include "systemc/config.h"
 #include "systemc/fifo.h"
@@ -68,9 +67,7 @@ struct IstRes {
 // buffer the hit units write).
 struct FrameCtx {
   int width = 0, height = 0;
-  scenes::Camera cam;
-  uint32_t origin[3] = {0, 0, 0};
-  hls::RguCamera rgu_cam;  // the rgu's camera registers (hls::rgu_camera, origin included)
+  hls::RguCamera rgu_cam;  // the rgu's camera registers (hls::rgu_camera: ray origin, d00, dx, dy)
   uint32_t light[3] = {0, 0, 0};
   uint32_t box_lo[3] = {0, 0, 0}, box_hi[3] = {0, 0, 0};
   // Before the VTU (world space, in the format): a pin-level VTU translates these at set-up.
