@@ -68,6 +68,9 @@ struct SimConfig {
                                  //   sharing the triangle cache's ports
   uint32_t ist_latency = 20;     // rtl/units/ist.v: 10 operator levels x STAGES 2
   UnitView ist_view = UnitView::model;
+  // trv: the transaction model (systemc/trv.h) or rtl/units/trv_unit.v Verilated (no pin-level
+  // twin: the transaction model is its twin; systemc/trv_rtl.h).
+  UnitView trv_view = UnitView::model;
   uint32_t ist_queue = 32;       // ist input queue (triangle tests waiting)
   uint32_t hit_latency = 20;     // hit point + shadow set-up (sqrt, rcp)
   uint32_t tile = 8;             // rgu: square tiles of tile x tile pixels, round-robin over RTUs

@@ -70,6 +70,11 @@ class Ist : public sc_core::sc_module {
     // Results leaving the pipeline.
     while (ch_.ist_pipe.can_pop(now)) {
       const IstRes o = ch_.ist_pipe.pop();
+      active = true;
+      if (ch_.ist_results) {  // the trv in RTL reduces them (systemc/trv_rtl.h)
+        ch_.ist_results->push_back(o);
+        continue;
+      }
       Slot& r = ch_.slots[o.slot];
       if (o.hit) {
         Best& b = r.leaf;
@@ -80,7 +85,6 @@ class Ist : public sc_core::sc_module {
         r.state = SlotState::leaf_done;
         ch_.trv_q.push(o.slot, now + 1);
       }
-      active = true;
     }
     // Issue one test per unit (they share the triangle cache: one access per unit and cycle). A
     // miss takes its unit's issue slot.

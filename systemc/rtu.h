@@ -20,6 +20,7 @@
 #include "systemc/rgu.h"
 #include "systemc/slot.h"
 #include "systemc/trv.h"
+#include "systemc/trv_rtl.h"
 #include "systemc/vtu.h"
 
 namespace raycore::sc {
@@ -51,11 +52,22 @@ class Rtu : public sc_core::sc_module {
     bus.add_requester(&node.req(), &vtu_unit, kNodePort);
     bus.add_requester(&list.req(), &vtu_unit, kListPort);
     bus.add_requester(&tri.req(), &vtu_unit, kTriPort);
-    bind_pins(cfg, clock);
+    bind_pins(fc, cfg, clock);
   }
 
   // The pin-level units of this RTU (SystemC twins or Verilated RTL in the units' places).
-  void bind_pins(const SimConfig& cfg, pins::PinClock* clock) {
+  void bind_pins(FrameCtx& fc, const SimConfig& cfg, pins::PinClock* clock) {
+    if (cfg.trv_view == UnitView::twin)
+      throw std::invalid_argument("trv has no pin-level SystemC twin (its transaction model is the "
+                                  "twin of rtl/units/trv_unit.v): use --rtl trv");
+    if (cfg.trv_view == UnitView::rtl) {
+      trv_rtl_ = make_rtl_trv(hls::format_id<F>(), R, fc, ch_, cfg);
+      if (!trv_rtl_)
+        throw std::invalid_argument(std::string("no Verilated trv_unit for ") +
+                                    hls::format_name(hls::format_id<F>()) + " " +
+                                    hls::rounding_name(R) + " in this build; built: " +
+                                    rtl_trv_built());
+    }
     if (cfg.vtu_view != UnitView::model) {
       const unsigned stages = pin_stages("vtu", cfg.vtu_depth, 3, "--vtu-depth");
       if (cfg.vtu_view == UnitView::twin)
@@ -93,13 +105,20 @@ class Rtu : public sc_core::sc_module {
     bool a = vtu_unit.tick(now);
     a |= hit.tick(now);
     a |= ist.tick(now);
+    if (trv_rtl_) {  // the RTL's cycle: pipes, then the rgu's ray and the clock edge
+      a |= trv_rtl_->tick(now);
+      a |= rgu.tick(now);
+      trv_rtl_->edge(now);
+      return a;
+    }
     a |= trv.tick(now);
     a |= rgu.tick(now);
     return a;
   }
   Cycle next_event(Cycle now) const {
     Cycle t = std::min({vtu_unit.next_event(now), hit.next_event(), ist.next_event(now),
-                        trv.next_event(), rgu.next_event(now)});
+                        trv_rtl_ ? trv_rtl_->next_event(now) : trv.next_event(),
+                        rgu.next_event(now)});
     return t;
   }
   bool done() const { return !rgu.primaries_left() && ch_.free_slots.size() == slots_; }
@@ -109,6 +128,7 @@ class Rtu : public sc_core::sc_module {
     s.list = list.stats();
     s.tri = tri.stats();
     s.vtu_busy = vtu_unit.busy();
+    if (trv_rtl_) trv_rtl_->stats(s);
     return s;
   }
   size_t in_flight() const { return slots_ - ch_.free_slots.size(); }
@@ -154,6 +174,8 @@ class Rtu : public sc_core::sc_module {
   RtuChannels ch_;
   std::unique_ptr<pins::VtuPort> vtu_port_;
   std::vector<std::unique_ptr<pins::IstPort>> ist_ports_;
+  std::unique_ptr<TrvRtl> trv_rtl_;  // --rtl trv: rtl/units/trv_unit.v in trv's (and the ist
+                                     // reduction's) place
 
  public:
   Rgu<A> rgu;

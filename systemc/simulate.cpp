@@ -303,6 +303,7 @@ nlohmann::json config_json(const SimConfig& c) {
           {"ist_units", c.ist_units},
           {"ist_latency", c.ist_latency},
           {"ist_view", unit_view_name(c.ist_view)},
+          {"trv_view", unit_view_name(c.trv_view)},
           {"ist_queue", c.ist_queue},
           {"hit_latency", c.hit_latency},
           {"tile", c.tile}};
@@ -377,6 +378,7 @@ void config_from_json(const nlohmann::json& j, SimConfig& c) {
     else if (k == "tile") c.tile = u32(*it, k);
     else if (k == "vtu_view") c.vtu_view = unit_view(*it, k);
     else if (k == "ist_view") c.ist_view = unit_view(*it, k);
+    else if (k == "trv_view") c.trv_view = unit_view(*it, k);
     else throw std::runtime_error("config: unknown key '" + k + "'");
   }
 }

@@ -98,6 +98,9 @@ struct RtuChannels {
   TimedFifo<uint16_t> hit_q;     // trv -> hit (finished rays)
   TimedFifo<uint16_t> shadow_q;  // hit -> rgu (shadow rays handed over)
   Ascache *node = nullptr, *list = nullptr, *tri = nullptr;
+  // With the trv in RTL (systemc/trv_rtl.h): the ist hands its results leaving the pipeline here
+  // (for the RTL's reduction) instead of reducing them into the slots itself.
+  std::vector<IstRes>* ist_results = nullptr;
 };
 
 }  // namespace raycore::sc

@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <csignal>
 #include <cstdlib>
 #include <cstring>
@@ -39,8 +40,25 @@ struct Summary {
   uint64_t mismatches = 0, bad_retire = 0;  // pixels retired other than exactly once per ray
   uint64_t hash = 0;                        // of every pixel's results
   uint64_t tri_tests = 0, bus_bytes = 0;
+  // The work counters of every RTU summed (stack_max: the largest), in kWorkNames' order.
+  static constexpr int kWork = 16;
+  uint64_t work[kWork] = {};
   int first_x = -1, first_y = -1;
 };
+inline const char* const kWorkNames[Summary::kWork] = {
+    "trv_busy",     "trv_node_miss", "trv_list_miss", "trv_ist_full", "inner_steps",
+    "leaf_visits",  "pops",          "list_steps",    "trv_fused",    "stack_max",
+    "ist_busy",     "ist_tri_miss",  "hit_busy",      "node.accesses", "list.accesses",
+    "tri.accesses"};
+inline void sum_work(const sc::RtuStats& u, uint64_t* w) {
+  const uint64_t v[Summary::kWork] = {u.trv_busy,      u.trv_node_miss, u.trv_list_miss,
+                                      u.trv_ist_full,  u.inner_steps,   u.leaf_visits,
+                                      u.pops,          u.list_steps,    u.trv_fused,
+                                      u.stack_max,     u.ist_busy,      u.ist_tri_miss,
+                                      u.hit_busy,      u.node.accesses, u.list.accesses,
+                                      u.tri.accesses};
+  for (int i = 0; i < Summary::kWork; ++i) w[i] = i == 9 ? std::max(w[i], v[i]) : w[i] + v[i];
+}
 
 inline uint64_t frame_hash(const sim::Frame& f) {
   uint64_t h = 1469598103934665603ull;
@@ -90,7 +108,10 @@ inline Summary run_child(const Case& c, const sim::Frame& golden) {
       s.shadow = r.shadow_rays;
       s.hash = frame_hash(r.frame);
       s.bus_bytes = r.bus.bytes;
-      for (const auto& u : r.rtus) s.tri_tests += u.tri_tests;
+      for (const auto& u : r.rtus) {
+        s.tri_tests += u.tri_tests;
+        sum_work(u, s.work);
+      }
       std::vector<sc::PixelDiff> d = sc::diff_frames(r.frame, golden, 1, &s.mismatches);
       if (!d.empty()) {
         s.first_x = d[0].x;

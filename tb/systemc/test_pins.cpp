@@ -54,6 +54,7 @@ void expect_same_frame(const scenes::Scene& s, const sim::TraceConfig& tc, sc::S
   EXPECT_EQ(p.hash, model.hash) << what;
   EXPECT_EQ(p.bus_bytes, model.bus_bytes) << what;
   EXPECT_EQ(p.tri_tests, model.tri_tests) << what;
+  for (int i = 0; i < Summary::kWork; ++i) EXPECT_EQ(p.work[i], model.work[i]) << what << ": " << kWorkNames[i];
 }
 
 // Both units as `view`: the corridor, FP24 rtz, VTU on.
@@ -171,6 +172,85 @@ TEST(PinsFrameRtl, MissingVariantIsNamed) {
   const auto tc = config(FormatId::fp32, Rounding::rne, false, 8, 8);
   const Summary r = expect_refused(tiny_scene(), tc, cfg, "no Verilated ist for fp32 rne STAGES=2");
   EXPECT_NE(std::string(r.error).find("built: "), std::string::npos) << r.error;
+}
+
+// ---- the traversal unit in RTL (rtl/units/trv_unit.v, --rtl trv) ------------------------------
+// The frame with the Verilated trv_unit in trv's place: the transaction model's cycles, bus bytes,
+// frame and every work counter (expect_same_frame), over the model's default levers (4 pipes,
+// fuse), RayCore's baseline (1 pipe, no fuse, 1 ist unit, 64 slots), both FP24 roundings,
+// raycore and FP32, several RTUs, randomised memory latency, small caches (misses, looping, ist
+// queue full), margins, any-hit shadow rays and the other units in RTL too.
+void expect_trv_rtl(const scenes::Scene& s, const sim::TraceConfig& tc, sc::SimConfig cfg,
+                    UnitView vtu = UnitView::model, UnitView ist = UnitView::model) {
+  const Summary model = expect_match(s, tc, cfg);
+  cfg.trv_view = UnitView::rtl;
+  cfg.vtu_view = vtu;
+  cfg.ist_view = ist;
+  const Summary p = expect_match(s, tc, cfg);
+  const std::string what = "trv rtl, vtu " + std::string(sc::unit_view_name(vtu)) + ", ist " +
+                           sc::unit_view_name(ist) + ", pipes " + std::to_string(cfg.trv_pipes) +
+                           (cfg.trv_fuse ? " fused" : "");
+  EXPECT_EQ(p.cycles, model.cycles) << what;
+  EXPECT_EQ(p.hash, model.hash) << what;
+  EXPECT_EQ(p.bus_bytes, model.bus_bytes) << what;
+  EXPECT_EQ(p.tri_tests, model.tri_tests) << what;
+  for (int i = 0; i < Summary::kWork; ++i)
+    EXPECT_EQ(p.work[i], model.work[i]) << what << ": " << kWorkNames[i];
+}
+TEST(TrvRtlFrame, DefaultsFp24Rtz) {
+  expect_trv_rtl(corridor(), config(FormatId::fp24, Rounding::rtz, true, 48, 30), {});
+}
+TEST(TrvRtlFrame, BaselineFp24RneThreeRtusRandomLatency) {
+  sc::SimConfig cfg;
+  cfg.rays_in_flight = 64;
+  cfg.trv_pipes = 1;
+  cfg.trv_fuse = false;
+  cfg.ist_units = 1;
+  cfg.l2.size_bytes = 0;
+  cfg.rtus = 3;
+  cfg.seed = 7;
+  expect_trv_rtl(corridor(), config(FormatId::fp24, Rounding::rne, true, 40, 24), cfg);
+}
+TEST(TrvRtlFrame, SmallCachesMarginsTwoPipes) {
+  sc::SimConfig cfg;  // misses, MSHRs full, looping, the ist queue full
+  cfg.node_cache = {1024, 2, 64, 2, 1};
+  cfg.list_cache = {512, 2, 32, 2, 2};
+  cfg.ist_queue = 3;
+  cfg.trv_pipes = 2;
+  cfg.ist_units = 3;
+  cfg.rays_in_flight = 128;
+  cfg.rtus = 2;
+  expect_trv_rtl(corridor(), margins_config(Rounding::rne, true), cfg);
+}
+TEST(TrvRtlFrame, AnyHitSkipBackSpawnAll) {
+  auto tc = config(FormatId::fp24, Rounding::rne, true, 40, 24);
+  tc.spawn.spawn = raycore::hls::Spawn::skip_back;
+  tc.spawn.spawn_all = true;
+  tc.spawn.any_hit = true;
+  expect_trv_rtl(tiny_scene(), tc, {});
+}
+TEST(TrvRtlFrame, Fp24RaycoreAndFp32) {
+  expect_trv_rtl(tiny_scene(), config(FormatId::fp24, Rounding::raycore, false, 32, 24), {});
+  sc::SimConfig cfg;
+  cfg.trv_pipes = 3;
+  expect_trv_rtl(tiny_scene(), config(FormatId::fp32, Rounding::rne, true, 32, 24), cfg);
+}
+TEST(TrvRtlFrame, WithVtuAndIstRtl) {
+  expect_trv_rtl(corridor(), config(FormatId::fp24, Rounding::rtz, true, 32, 20), {}, UnitView::rtl,
+                 UnitView::rtl);
+}
+TEST(TrvRtlFrame, RefusesWhatTheModelCannotRun) {
+  const auto tc = config(FormatId::fp24, Rounding::rtz, false, 8, 8);
+  sc::SimConfig cfg;
+  cfg.trv_view = UnitView::rtl;
+  cfg.mailbox = 4;
+  expect_refused(tiny_scene(), tc, cfg, "the RTL has no mailbox");
+  cfg.mailbox = 0;
+  cfg.trv_pipes = 6;
+  expect_refused(tiny_scene(), tc, cfg, "is built for at most 4 --trv-pipes");
+  cfg.trv_pipes = 4;
+  cfg.trv_view = UnitView::twin;
+  expect_refused(tiny_scene(), tc, cfg, "trv has no pin-level SystemC twin");
 }
 
 // ---- lockstep: twin vs Verilated model --------------------------------------------------------

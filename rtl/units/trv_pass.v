@@ -1,0 +1,441 @@
+// trv_pass - one traversal pass of one ray: what one pipe of the traversal unit does with the ray
+// it takes from the ready queue in a cycle (trv_unit holds the slots, the stacks and the queue and
+// instantiates PIPES of these in a chain). Combinational: the ray's record, its two top stack
+// entries and the cache responses in, the record's next value, the stack push, the queue push,
+// the ist hand-off and the finish out. The rules are systemc/trv.h's (Trv::step and its
+// node_step / list_step / leaf_end / pop), step for step:
+//
+//   start      clip to the scene box (trv.v, op 1); empty tree or no hit: finish; else node 0
+//              with the clipped interval, back to the queue at now + lat
+//   node       node_step: read the node (access A, node cache, byte node * 8). Miss: back at
+//              now + extra + lat ("looping for the next chance"). Inner node: the split (trv.v,
+//              op 0): go on to the near / far child, or both (far child pushed on the stack), back
+//              at now + extra + lat + node_hl. Leaf: empty -> leaf_end; else the list fields, and
+//              with fuse its first list line in the same pass (access B), else back as an inner
+//              node's step
+//   list       list_step: with room in the ist queue read a list line (list cache, byte (first +
+//              pos) * 4): hand min(left, words to the line's end, room) entries to the ist at
+//              now + extra + 1 + list_hl; all handed out: wait for the ist (no queue push)
+//   leaf_done  the leaf's reduced result becomes the best hit (tmax = its t); leaf_end
+//   pop        pop
+//   leaf_end   finish if there is a hit and (an any-hit shadow ray, or the hit is not beyond this
+//              cell: !(tfar < best.t)); else pop
+//   pop        empty stack: finish; else take the top entry; if the best hit is before its tnear
+//              the ray stays in state pop (back at now + extra + lat); else the entry's node and
+//              interval, and with fuse its node step in the same pass (access A)
+//
+// `extra` is how far into the pass a step starts (the node cache's hit latency after a node
+// read), `fused` that the pass already counted itself busy: every counter moves exactly as the
+// model's. A pass makes at most two cache accesses (A: the node, or a list line; B: the fused
+// list line after a node), at most two pops (leaf_end -> pop -> fused node step of an empty leaf
+// -> leaf_end -> pop), one split or clip (trv.v with STAGES = 0) and four comparisons (fp_cmp_nt).
+// Cache responses come back in the same cycle (the cycle model's Ascache::access), access B's
+// request depends on access A's response: the caller evaluates A, answers it, then B.
+// The cache's read port returns the words from the addressed one to the end of its line
+// (rsp_*_avail_i of them, at most WORDS; a node read uses the first two: split_or_count, then
+// index | axis << 24, as hls::decode_node).
+//
+// Ray states (trv_unit's st encoding): 0 start, 1 node, 2 list, 3 wait_ist, 4 leaf_done, 5 pop,
+// 6 done. Best record, packed {found, t, den, pos[31:0], id[31:0], k[1:0], nu, nv, nd}.
+module trv_pass #(
+  parameter integer EXP_BITS = 7,
+  parameter integer MAN_BITS = 16,
+  parameter integer RNE      = 0,
+  parameter integer RAYCORE  = 0,
+  parameter integer WORDS    = 4   // list words a cache read returns at most (line bytes / 4)
+) (
+  input  wire                          go_i,         // this pipe takes a ray this cycle
+  // Configuration (static per frame) and the cycle.
+  input  wire [31:0]                   now_i,
+  input  wire [15:0]                   lat_i,        // trv_latency
+  input  wire [15:0]                   node_hl_i,    // node cache hit latency
+  input  wire [15:0]                   list_hl_i,    // list cache hit latency
+  input  wire                          fuse_i,
+  input  wire                          any_hit_i,    // shadow rays end at their first leaf hit
+  input  wire                          empty_i,      // the tree is empty
+  input  wire [6:0]                    depth_i,      // stack entries per ray (1..64)
+  input  wire [6:0]                    widen_i,      // interval widening in ulps
+  input  wire [6*(1+EXP_BITS+MAN_BITS)-1:0] box_i,   // {lo x, y, z, hi x, y, z}, x lowest
+  // The ray's record.
+  input  wire [2:0]                    st_i,
+  input  wire                          shadow_i,
+  input  wire [11*(1+EXP_BITS+MAN_BITS)-1:0] ray_i,  // {o xyz, d xyz, inv xyz, tmin, tmax}
+  input  wire [31:0]                   node_i,
+  input  wire [EXP_BITS+MAN_BITS:0]    tnear_i,
+  input  wire [EXP_BITS+MAN_BITS:0]    tfar_i,
+  input  wire [EXP_BITS+MAN_BITS:0]    tmax_i,
+  input  wire [6:0]                    sp_i,
+  input  wire [67+5*(1+EXP_BITS+MAN_BITS)-1:0] best_i,
+  input  wire [67+5*(1+EXP_BITS+MAN_BITS)-1:0] leaf_i,
+  input  wire [31:0]                   first_i,      // leaf list: first index, count, position
+  input  wire [31:0]                   count_i,
+  input  wire [31:0]                   pos_i,
+  input  wire [31:0]                   results_i,    // ist results received for this leaf
+  input  wire [32+2*(1+EXP_BITS+MAN_BITS)-1:0] e1_i, // stack[sp-1], {node, tnear, tfar} (tfar low)
+  input  wire [32+2*(1+EXP_BITS+MAN_BITS)-1:0] e2_i, // stack[sp-2]
+  input  wire [15:0]                   room_i,       // free entries of the ist queue
+  // Cache accesses: A (node or list), B (list, after a node read), same-cycle responses.
+  output reg                           acc_a_valid_o,
+  output reg                           acc_a_list_o,
+  output reg  [31:0]                   acc_a_byte_o,
+  input  wire                          rsp_a_hit_i,
+  input  wire [5:0]                    rsp_a_avail_i,
+  input  wire [32*WORDS-1:0]           rsp_a_data_i,
+  output reg                           acc_b_valid_o,
+  output reg  [31:0]                   acc_b_byte_o,
+  input  wire                          rsp_b_hit_i,
+  input  wire [5:0]                    rsp_b_avail_i,
+  input  wire [32*WORDS-1:0]           rsp_b_data_i,
+  // The record's next value (written when go_i), leaf / results cleared when wr_leaf_o.
+  output reg  [2:0]                    st_o,
+  output reg  [31:0]                   node_o,
+  output reg  [EXP_BITS+MAN_BITS:0]    tnear_o,
+  output reg  [EXP_BITS+MAN_BITS:0]    tfar_o,
+  output reg  [EXP_BITS+MAN_BITS:0]    tmax_o,
+  output reg  [6:0]                    sp_o,
+  output reg  [67+5*(1+EXP_BITS+MAN_BITS)-1:0] best_o,
+  output reg  [31:0]                   first_o,
+  output reg  [31:0]                   count_o,
+  output reg  [31:0]                   pos_o,
+  output reg                           wr_leaf_o,
+  output reg                           push_o,       // stack push of push_e_o at sp_o - 1
+  output reg  [32+2*(1+EXP_BITS+MAN_BITS)-1:0] push_e_o,
+  output reg                           q_push_o,     // back to the ready queue at q_ready_o
+  output reg  [31:0]                   q_ready_o,
+  output reg                           fin_o,        // done: to the hit unit
+  output reg  [5:0]                    ist_n_o,      // list entries handed to the ist
+  output reg  [31:0]                   ist_pos_o,    // the first one's position in the list
+  output reg  [31:0]                   ist_ready_o,
+  output reg  [32*WORDS-1:0]           ist_words_o,  // triangle indices (the first ist_n_o)
+  output reg  [15:0]                   room_o,       // the ist queue's room after this pass
+  // Counter increments (systemc/config.h RtuStats names).
+  output reg                           busy_o,
+  output reg                           node_miss_o,
+  output reg                           list_miss_o,
+  output reg                           ist_full_o,
+  output reg                           inner_o,
+  output reg                           leaf_o,
+  output reg  [1:0]                    pops_o,
+  output reg                           list_steps_o,
+  output reg  [1:0]                    fused_o,
+  output reg                           err_o         // a push beyond depth_i entries
+);
+
+  localparam integer W  = 1 + EXP_BITS + MAN_BITS;
+  localparam integer BW = 67 + 5 * W;
+  localparam integer EW = 32 + 2 * W;
+  localparam [2:0] S_START = 3'd0, S_NODE = 3'd1, S_LIST = 3'd2, S_WAIT = 3'd3, S_LEAF_DONE = 3'd4,
+                   S_POP = 3'd5, S_DONE = 3'd6;
+
+  // Fields of the packed records.
+  wire         best_found = best_i[BW-1];
+  wire [W-1:0] best_t     = best_i[BW-2 -: W];
+  wire         leaf_found = leaf_i[BW-1];
+  wire [W-1:0] leaf_t     = leaf_i[BW-2 -: W];
+  wire [31:0]  e1_node    = e1_i[EW-1 -: 32];
+  wire [W-1:0] e1_tnear   = e1_i[2*W-1 -: W];
+  wire [W-1:0] e1_tfar    = e1_i[W-1:0];
+  wire [W-1:0] e2_tnear   = e2_i[2*W-1 -: W];
+  // Packing of ray_i, lowest bits first: tmax, tmin, inv z, y, x, d z, y, x, o z, y, x.
+  wire [W-1:0] r_tmax  = ray_i[0 +: W];
+  wire [W-1:0] r_tmin  = ray_i[W +: W];
+  wire [W-1:0] r_inv_z = ray_i[2*W +: W];
+  wire [W-1:0] r_inv_y = ray_i[3*W +: W];
+  wire [W-1:0] r_inv_x = ray_i[4*W +: W];
+  wire [W-1:0] r_d_z   = ray_i[5*W +: W];
+  wire [W-1:0] r_d_y   = ray_i[6*W +: W];
+  wire [W-1:0] r_d_x   = ray_i[7*W +: W];
+  wire [W-1:0] r_o_z   = ray_i[8*W +: W];
+  wire [W-1:0] r_o_y   = ray_i[9*W +: W];
+  wire [W-1:0] r_o_x   = ray_i[10*W +: W];
+
+  // The best hit as the pass sees it: a leaf_done pass takes the leaf's result first.
+  wire         take_leaf = (st_i == S_LEAF_DONE) && leaf_found;
+  wire         bf = take_leaf ? 1'b1 : best_found;
+  wire [W-1:0] bt = take_leaf ? leaf_t : best_t;
+
+  // Four comparisons: leaf_end against the ray's interval or the first popped entry's, pop
+  // against the first or the second entry.
+  wire c_tfar_lt, c_e1tfar_lt, c_e1_lt, c_e2_lt;
+  wire [W-1:0] u_min0, u_max0, u_min1, u_max1, u_min2, u_max2, u_min3, u_max3;
+  wire [3:0] u_eq, u_rdy, u_vld;
+  fp_cmp_nt #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .STAGES(0)) u_c0 (
+    .clk_i(1'b0), .rst_ni(1'b1), .in_valid_i(1'b1), .in_ready_o(u_rdy[0]), .in_a_i(tfar_i),
+    .in_b_i(bt), .out_valid_o(u_vld[0]), .out_ready_i(1'b1), .out_lt_o(c_tfar_lt),
+    .out_eq_o(u_eq[0]), .out_min_o(u_min0), .out_max_o(u_max0));
+  fp_cmp_nt #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .STAGES(0)) u_c1 (
+    .clk_i(1'b0), .rst_ni(1'b1), .in_valid_i(1'b1), .in_ready_o(u_rdy[1]), .in_a_i(e1_tfar),
+    .in_b_i(bt), .out_valid_o(u_vld[1]), .out_ready_i(1'b1), .out_lt_o(c_e1tfar_lt),
+    .out_eq_o(u_eq[1]), .out_min_o(u_min1), .out_max_o(u_max1));
+  fp_cmp_nt #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .STAGES(0)) u_c2 (
+    .clk_i(1'b0), .rst_ni(1'b1), .in_valid_i(1'b1), .in_ready_o(u_rdy[2]), .in_a_i(bt),
+    .in_b_i(e1_tnear), .out_valid_o(u_vld[2]), .out_ready_i(1'b1), .out_lt_o(c_e1_lt),
+    .out_eq_o(u_eq[2]), .out_min_o(u_min2), .out_max_o(u_max2));
+  fp_cmp_nt #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .STAGES(0)) u_c3 (
+    .clk_i(1'b0), .rst_ni(1'b1), .in_valid_i(1'b1), .in_ready_o(u_rdy[3]), .in_a_i(bt),
+    .in_b_i(e2_tnear), .out_valid_o(u_vld[3]), .out_ready_i(1'b1), .out_lt_o(c_e2_lt),
+    .out_eq_o(u_eq[3]), .out_min_o(u_min3), .out_max_o(u_max3));
+  wire unused_cmp = ^{u_min0, u_max0, u_min1, u_max1, u_min2, u_max2, u_min3, u_max3, u_eq, u_rdy,
+                      u_vld};
+
+  // Whether the pass's node step starts from the first popped entry (so the split sees its
+  // interval): a leaf_done or pop pass whose pop goes on to a node, with fuse.
+  wire le1_fin  = bf && ((shadow_i && any_hit_i) || !c_tfar_lt);
+  wire pop1     = (st_i == S_POP) || ((st_i == S_LEAF_DONE) && !le1_fin);
+  wire pop1_node = pop1 && (sp_i != 7'd0) && !(bf && c_e1_lt);
+  wire node_from_e1 = pop1_node && fuse_i;
+
+  // The datapath: clip (start) or the split of the node read by access A.
+  wire         clip = (st_i == S_START);
+  wire [31:0]  nd_lo = rsp_a_data_i[31:0];
+  wire [31:0]  nd_hi = rsp_a_data_i[63:32];
+  wire [31:0]  nd_index = {8'd0, nd_hi[23:0]};
+  wire [1:0]   nd_axis = nd_hi[25:24];
+  wire [31:0]  this_node = node_from_e1 ? e1_node : node_i;
+  wire [W-1:0] dp_tnear_in = clip ? r_tmin : node_from_e1 ? e1_tnear : tnear_i;
+  wire [W-1:0] dp_tfar_in  = clip ? r_tmax : node_from_e1 ? e1_tfar : tfar_i;
+  wire         dp_rdy, dp_vld, dp_op, dp_hit, dp_below;
+  wire [1:0]   dp_visit;
+  wire [W-1:0] dp_tsplit, dp_tnear, dp_tfar, dp_far_tfar;
+  wire [31:0]  dp_node, dp_far_node;
+  wire         dp_tag;
+  trv #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(0),
+        .TAG_BITS(1)) u_dp (
+    .clk_i(1'b0), .rst_ni(1'b1), .widen_i(widen_i), .in_valid_i(1'b1), .in_ready_o(dp_rdy),
+    .in_op_i(clip), .in_axis_i(nd_axis), .in_split_i(nd_lo[W-1:0]), .in_node_i(this_node),
+    .in_child_i(nd_index), .in_o_x_i(r_o_x), .in_o_y_i(r_o_y), .in_o_z_i(r_o_z), .in_d_x_i(r_d_x),
+    .in_d_y_i(r_d_y), .in_d_z_i(r_d_z), .in_inv_x_i(r_inv_x), .in_inv_y_i(r_inv_y),
+    .in_inv_z_i(r_inv_z), .in_tnear_i(dp_tnear_in), .in_tfar_i(dp_tfar_in),
+    .in_lo_x_i(box_i[0 +: W]), .in_lo_y_i(box_i[W +: W]), .in_lo_z_i(box_i[2*W +: W]),
+    .in_hi_x_i(box_i[3*W +: W]), .in_hi_y_i(box_i[4*W +: W]), .in_hi_z_i(box_i[5*W +: W]),
+    .in_tag_i(1'b0), .out_valid_o(dp_vld), .out_ready_i(1'b1), .out_op_o(dp_op), .out_hit_o(dp_hit),
+    .out_visit_o(dp_visit), .out_below_o(dp_below), .out_tsplit_o(dp_tsplit),
+    .out_tnear_o(dp_tnear), .out_tfar_o(dp_tfar), .out_node_o(dp_node),
+    .out_far_node_o(dp_far_node), .out_far_tfar_o(dp_far_tfar), .out_tag_o(dp_tag));
+  wire unused_dp = ^{dp_rdy, dp_vld, dp_op, dp_below, dp_tag, nd_hi[31:26]};
+
+  // The pass, in the model's order.
+  reg        do_node, node_fused, do_list, list_fused, list_b, le2, pop2, hit_a;
+  reg [31:0] extra, xe, again, nxt, lbyte;
+  reg [31:0] nn, avail, left;
+  reg [6:0]  sp;
+  reg [32*WORDS-1:0] words;
+  always @* begin
+    st_o = st_i;  node_o = node_i;  tnear_o = tnear_i;  tfar_o = tfar_i;  tmax_o = tmax_i;
+    sp = sp_i;  best_o = best_i;  first_o = first_i;  count_o = count_i;  pos_o = pos_i;
+    wr_leaf_o = 1'b0;  push_o = 1'b0;  push_e_o = {EW{1'b0}};
+    q_push_o = 1'b0;  q_ready_o = 32'd0;  fin_o = 1'b0;
+    ist_n_o = 6'd0;  ist_pos_o = pos_i;  ist_ready_o = 32'd0;  ist_words_o = {32*WORDS{1'b0}};
+    room_o = room_i;
+    busy_o = 1'b0;  node_miss_o = 1'b0;  list_miss_o = 1'b0;  ist_full_o = 1'b0;  inner_o = 1'b0;
+    leaf_o = 1'b0;  pops_o = 2'd0;  list_steps_o = 1'b0;  fused_o = 2'd0;  err_o = 1'b0;
+    acc_a_valid_o = 1'b0;  acc_a_list_o = 1'b0;  acc_a_byte_o = 32'd0;
+    acc_b_valid_o = 1'b0;  acc_b_byte_o = 32'd0;
+    do_node = 1'b0;  node_fused = 1'b0;  do_list = 1'b0;  list_fused = 1'b0;  list_b = 1'b0;
+    le2 = 1'b0;  pop2 = 1'b0;  hit_a = 1'b0;
+    extra = 32'd0;  xe = 32'd0;  again = 32'd0;  nxt = 32'd0;  lbyte = 32'd0;
+    nn = 32'd0;  avail = 32'd0;  left = 32'd0;  words = {32*WORDS{1'b0}};
+    if (go_i) begin
+      case (st_i)
+        S_START: begin
+          busy_o = 1'b1;
+          best_o = {BW{1'b0}};
+          sp = 7'd0;
+          tmax_o = r_tmax;
+          tnear_o = dp_tnear;
+          tfar_o = dp_tfar;
+          if (empty_i || !dp_hit) begin
+            st_o = S_DONE;
+            fin_o = 1'b1;
+          end else begin
+            node_o = 32'd0;
+            st_o = S_NODE;
+            q_push_o = 1'b1;
+            q_ready_o = now_i + {16'd0, lat_i};
+          end
+        end
+        S_NODE: do_node = 1'b1;
+        S_LIST: do_list = 1'b1;
+        S_LEAF_DONE: begin
+          busy_o = 1'b1;
+          if (leaf_found) begin
+            best_o = leaf_i;
+            tmax_o = leaf_t;
+          end
+          if (le1_fin) begin
+            st_o = S_DONE;
+            fin_o = 1'b1;
+          end
+        end
+        S_POP: busy_o = 1'b1;
+        default: ;
+      endcase
+      // pop #1 (leaf_done without a finish, or pop), with fuse_i.
+      if (pop1) begin
+        if (sp == 7'd0) begin
+          st_o = S_DONE;
+          fin_o = 1'b1;
+        end else begin
+          sp = sp - 7'd1;
+          pops_o = pops_o + 2'd1;
+          if (bf && c_e1_lt) begin
+            st_o = S_POP;
+            q_push_o = 1'b1;
+            q_ready_o = now_i + {16'd0, lat_i};
+          end else begin
+            node_o = e1_node;
+            tnear_o = e1_tnear;
+            tfar_o = e1_tfar;
+            st_o = S_NODE;
+            if (fuse_i) begin
+              fused_o = fused_o + 2'd1;
+              do_node = 1'b1;
+              node_fused = 1'b1;
+            end else begin
+              q_push_o = 1'b1;
+              q_ready_o = now_i + {16'd0, lat_i};
+            end
+          end
+        end
+      end
+      // node_step (extra 0): access A, the node.
+      if (do_node) begin
+        again = now_i + extra + {16'd0, lat_i};
+        acc_a_valid_o = 1'b1;
+        acc_a_byte_o = {node_o[28:0], 3'd0};
+        if (!rsp_a_hit_i) begin
+          if (!node_fused) node_miss_o = 1'b1;
+          q_push_o = 1'b1;
+          q_ready_o = again;
+        end else begin
+          if (!node_fused) busy_o = 1'b1;
+          xe = extra + {16'd0, node_hl_i};
+          nxt = again + {16'd0, node_hl_i};
+          if (nd_axis != 2'd3) begin  // inner node
+            inner_o = 1'b1;
+            node_o = dp_node;
+            tnear_o = dp_tnear;
+            tfar_o = dp_tfar;
+            if (dp_visit == 2'd2) begin
+              if (sp >= depth_i) err_o = 1'b1;
+              push_o = 1'b1;
+              push_e_o = {dp_far_node, dp_tsplit, dp_far_tfar};
+              sp = sp + 7'd1;
+            end
+            q_push_o = 1'b1;
+            q_ready_o = nxt;
+          end else begin
+            leaf_o = 1'b1;
+            if (nd_lo == 32'd0) begin
+              le2 = 1'b1;
+            end else begin
+              first_o = nd_index;
+              count_o = nd_lo;
+              pos_o = 32'd0;
+              wr_leaf_o = 1'b1;
+              st_o = S_LIST;
+              if (fuse_i) begin
+                fused_o = fused_o + 2'd1;
+                do_list = 1'b1;
+                list_fused = 1'b1;
+                list_b = 1'b1;
+                extra = xe;
+              end else begin
+                q_push_o = 1'b1;
+                q_ready_o = nxt;
+              end
+            end
+          end
+        end
+      end
+      // leaf_end of an empty leaf (after its node read), without fuse.
+      if (le2) begin
+        if (bf && ((shadow_i && any_hit_i) || !(node_from_e1 ? c_e1tfar_lt : c_tfar_lt))) begin
+          st_o = S_DONE;
+          fin_o = 1'b1;
+        end else
+          pop2 = 1'b1;
+      end
+      // pop #2 (or the first pop of a node pass), without fuse: the entry below the first popped
+      // one when there was one.
+      if (pop2) begin
+        if (sp == 7'd0) begin
+          st_o = S_DONE;
+          fin_o = 1'b1;
+        end else begin
+          sp = sp - 7'd1;
+          pops_o = pops_o + 2'd1;
+          if (bf && (pop1 ? c_e2_lt : c_e1_lt)) begin
+            st_o = S_POP;
+          end else begin
+            node_o = pop1 ? e2_i[EW-1 -: 32] : e1_node;
+            tnear_o = pop1 ? e2_i[2*W-1 -: W] : e1_tnear;
+            tfar_o = pop1 ? e2_i[W-1:0] : e1_tfar;
+            st_o = S_NODE;
+          end
+          q_push_o = 1'b1;
+          q_ready_o = now_i + xe + {16'd0, lat_i};
+        end
+      end
+      // list_step: access A (a list pass) or B (fused after the node read).
+      if (do_list) begin
+        again = now_i + extra + {16'd0, lat_i};
+        lbyte = {first_o[29:0], 2'd0} + {pos_o[29:0], 2'd0};
+        if (room_i == 16'd0) begin
+          if (!list_fused) ist_full_o = 1'b1;
+          q_push_o = 1'b1;
+          q_ready_o = again;
+        end else begin
+          if (list_b) begin
+            acc_b_valid_o = 1'b1;
+            acc_b_byte_o = lbyte;
+            hit_a = rsp_b_hit_i;
+            avail = {26'd0, rsp_b_avail_i};
+            words = rsp_b_data_i;
+          end else begin
+            acc_a_valid_o = 1'b1;
+            acc_a_list_o = 1'b1;
+            acc_a_byte_o = lbyte;
+            hit_a = rsp_a_hit_i;
+            avail = {26'd0, rsp_a_avail_i};
+            words = rsp_a_data_i;
+          end
+          if (!hit_a) begin
+            if (!list_fused) list_miss_o = 1'b1;
+            q_push_o = 1'b1;
+            q_ready_o = again;
+          end else begin
+            if (!list_fused) busy_o = 1'b1;
+            list_steps_o = 1'b1;
+            left = count_o - pos_o;
+            nn = left;
+            if (avail < nn) nn = avail;
+            if ({16'd0, room_i} < nn) nn = {16'd0, room_i};
+            ist_n_o = nn[5:0];
+            ist_pos_o = pos_o;
+            ist_ready_o = now_i + extra + 32'd1 + {16'd0, list_hl_i};
+            ist_words_o = words;
+            room_o = room_i - nn[15:0];
+            pos_o = pos_o + nn;
+            if (pos_o == count_o && (wr_leaf_o ? 32'd0 : results_i) == count_o) begin
+              st_o = S_LEAF_DONE;  // nothing left at the ist (with a mailbox; not reached here)
+              q_push_o = 1'b1;
+              q_ready_o = again + {16'd0, list_hl_i};
+            end else if (pos_o == count_o) begin
+              st_o = S_WAIT;  // the ist re-queues the ray with its last result
+            end else begin
+              q_push_o = 1'b1;
+              q_ready_o = again + {16'd0, list_hl_i};
+            end
+          end
+        end
+      end
+      if (fin_o) begin  // finish: no queue push (a pass finishes at most once, last)
+        q_push_o = 1'b0;
+        st_o = S_DONE;
+      end
+    end
+    sp_o = sp;
+  end
+
+endmodule

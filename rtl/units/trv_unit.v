@@ -1,0 +1,374 @@
+// trv_unit - the traversal unit whole: the ray slots, the per-ray stacks, the ready queue with
+// looping for the next chance, PIPES traversal pipes (trv_pass, each with its trv.v datapath) and
+// the reduction of the ist's results. The RTL view of systemc/trv.h plus the result half of
+// systemc/ist.h: bound into the running frame by systemc/trv_rtl.h (raycore simulate --rtl trv),
+// cycle for cycle and bit for bit the transaction model's.
+//
+// Per cycle, in the model's order:
+//   1. up to IST ist results (res_*): each goes into its ray's leaf record (the closest, ties to
+//      the earliest list position; results of one ray in the same cycle reduce in port order);
+//      the leaf's last result puts the ray in state leaf_done and back into the queue at now + 1;
+//   2. pipe p (p < pipes_i) takes the queue's entry p if pipes 0 .. p-1 took theirs and its ready
+//      cycle has come; its pass (trv_pass) reads the caches through acc_* / rsp_* (same-cycle
+//      responses; pipe p's requests depend on the responses to pipes 0 .. p-1 through the ist
+//      queue's room and on its own access A through its access B: the caller answers them in the
+//      order A0, B0, A1, B1, ...), hands list entries to the ist (ist_*) and finished rays to the
+//      hit unit (fin_*), and pushes the ray back with its ready cycle;
+//   3. a ray from the rgu (in_*: a new primary ray or a shadow ray in its slot) enters the queue
+//      at now + 1.
+// Queue pushes of a cycle are appended in that order (results, pipes 0.., rgu); the queue is a
+// FIFO whose head blocks the entries behind it until its ready cycle: the cycle model's
+// TimedFifo. Ready cycles are 32-bit cycle numbers compared with now_i as a signed difference.
+//
+// Storage (register arrays here; SRAMs in a chip): per slot the ray (11 words), the state and
+// interval, the best and the leaf record, the list fields; per slot DEPTH stack entries of
+// {node, tnear, tfar}; the queue (2^SLOT_BITS entries of slot + ready cycle). Parameters:
+// SLOT_BITS (2^SLOT_BITS slots), DEPTH (stack entries per slot, depth_i <= DEPTH at run time),
+// PIPES (pipes_i <= PIPES at run time), IST (ist results per cycle), WORDS (list words per cache
+// read). Not here: the mailbox (--mailbox, refused by the binding).
+module trv_unit #(
+  parameter integer EXP_BITS  = 7,
+  parameter integer MAN_BITS  = 16,
+  parameter integer RNE       = 0,
+  parameter integer RAYCORE   = 0,
+  parameter integer SLOT_BITS = 3,
+  parameter integer DEPTH     = 8,
+  parameter integer PIPES     = 2,
+  parameter integer IST       = 2,
+  parameter integer WORDS     = 4
+) (
+  input  wire                            clk_i,
+  input  wire                            rst_ni,
+  input  wire [31:0]                     now_i,
+  // Configuration, static per frame.
+  input  wire [15:0]                     lat_i,
+  input  wire [15:0]                     node_hl_i,
+  input  wire [15:0]                     list_hl_i,
+  input  wire [4:0]                      pipes_i,
+  input  wire                            fuse_i,
+  input  wire                            any_hit_i,
+  input  wire                            empty_i,
+  input  wire [6:0]                      depth_i,
+  input  wire [6:0]                      widen_i,
+  input  wire [6*(1+EXP_BITS+MAN_BITS)-1:0] box_i,       // {hi z y x, lo z y x}
+  // A ray from the rgu.
+  input  wire                            in_valid_i,
+  input  wire [SLOT_BITS-1:0]            in_slot_i,
+  input  wire                            in_shadow_i,
+  input  wire [11*(1+EXP_BITS+MAN_BITS)-1:0] in_ray_i,   // {o xyz, d xyz, inv xyz, tmin, tmax}
+  // ist results (port u in bits [u*w +: w]).
+  input  wire [IST-1:0]                  res_valid_i,
+  input  wire [IST*SLOT_BITS-1:0]        res_slot_i,
+  input  wire [IST-1:0]                  res_hit_i,
+  input  wire [IST*(67+5*(1+EXP_BITS+MAN_BITS))-1:0] res_rec_i,  // {1, t, den, pos, id, k, nu, nv, nd}
+  input  wire [15:0]                     room_i,
+  // Cache accesses: port 2p = pipe p's access A, 2p+1 its access B.
+  output wire [2*PIPES-1:0]              acc_valid_o,
+  output wire [2*PIPES-1:0]              acc_list_o,
+  output wire [2*PIPES*32-1:0]           acc_byte_o,
+  input  wire [2*PIPES-1:0]              rsp_hit_i,
+  input  wire [2*PIPES*6-1:0]            rsp_avail_i,
+  input  wire [2*PIPES*32*WORDS-1:0]     rsp_data_i,
+  // Per pipe: the slot it took, finish (with the best record) and the ist hand-off.
+  output wire [PIPES-1:0]                go_o,
+  output wire [PIPES*SLOT_BITS-1:0]      slot_o,
+  output wire [PIPES-1:0]                fin_o,
+  output wire [PIPES*(67+5*(1+EXP_BITS+MAN_BITS))-1:0] best_o,
+  output wire [PIPES*6-1:0]              ist_n_o,
+  output wire [PIPES*32-1:0]             ist_pos_o,
+  output wire [PIPES*32-1:0]             ist_ready_o,
+  output wire [PIPES*(1+EXP_BITS+MAN_BITS)-1:0] ist_tmax_o,
+  output wire [PIPES*32*WORDS-1:0]       ist_words_o,
+  // The queue's head (the cycle model's next event).
+  output wire                            head_valid_o,
+  output wire [31:0]                     head_ready_o,
+  // Counters (systemc/config.h RtuStats) and the stack-overflow error.
+  output reg  [63:0]                     cnt_busy_o,
+  output reg  [63:0]                     cnt_node_miss_o,
+  output reg  [63:0]                     cnt_list_miss_o,
+  output reg  [63:0]                     cnt_ist_full_o,
+  output reg  [63:0]                     cnt_inner_o,
+  output reg  [63:0]                     cnt_leaf_o,
+  output reg  [63:0]                     cnt_pops_o,
+  output reg  [63:0]                     cnt_list_steps_o,
+  output reg  [63:0]                     cnt_fused_o,
+  output reg  [6:0]                      stack_max_o,
+  output wire                            err_o
+);
+
+  localparam integer W  = 1 + EXP_BITS + MAN_BITS;
+  localparam integer BW = 67 + 5 * W;
+  localparam integer EW = 32 + 2 * W;
+  localparam integer RW = 11 * W;
+  localparam integer NS = 1 << SLOT_BITS;
+  localparam integer DB = $clog2(DEPTH);  // DEPTH: a power of two
+  localparam [2:0] S_START = 3'd0, S_LEAF_DONE = 3'd4;
+
+  // ---- storage ---------------------------------------------------------------------------------
+  reg [2:0]      st_q      [0:NS-1];
+  reg            shadow_q  [0:NS-1];
+  reg [RW-1:0]   ray_q     [0:NS-1];
+  reg [31:0]     node_q    [0:NS-1];
+  reg [W-1:0]    tnear_q   [0:NS-1];
+  reg [W-1:0]    tfar_q    [0:NS-1];
+  reg [W-1:0]    tmax_q    [0:NS-1];
+  reg [6:0]      sp_q      [0:NS-1];
+  reg [BW-1:0]   best_q    [0:NS-1];
+  reg [BW-1:0]   leaf_q    [0:NS-1];
+  reg [31:0]     first_q   [0:NS-1];
+  reg [31:0]     count_q   [0:NS-1];
+  reg [31:0]     pos_q     [0:NS-1];
+  reg [31:0]     results_q [0:NS-1];
+  reg [EW-1:0]   stk_q     [0:NS*DEPTH-1];  // slot s, entry e at {s, e}
+  reg [SLOT_BITS-1:0] fq_slot [0:NS-1];
+  reg [31:0]     fq_ready  [0:NS-1];
+  reg [SLOT_BITS-1:0] head_q;
+  reg [SLOT_BITS:0]   cnt_q;
+  reg            err_q;
+
+  assign head_valid_o = (cnt_q != {(SLOT_BITS+1){1'b0}});
+  assign head_ready_o = fq_ready[head_q];
+
+  // ---- 1. ist results: the leaf reduction, chained over the ports ------------------------------
+  // Port u starts from the record as the earlier ports of this cycle left it (same slot).
+  wire [IST*BW-1:0] nl /* verilator split_var */;  // leaf record after port u
+  wire [IST*32-1:0] nr /* verilator split_var */;  // results count after port u
+  wire [IST-1:0]    res_done;
+  genvar u, v;
+  generate
+    for (u = 0; u < IST; u = u + 1) begin : g_res
+      wire [SLOT_BITS-1:0] s = res_slot_i[u*SLOT_BITS +: SLOT_BITS];
+      wire [BW-1:0] rec = res_rec_i[u*BW +: BW];
+      // The chain over the earlier ports: stage v+1 takes port v's record if it is the same ray's.
+      wire [(u+1)*BW-1:0] chain /* verilator split_var */;
+      wire [(u+1)*32-1:0] rchain /* verilator split_var */;
+      assign chain[BW-1:0] = leaf_q[s];
+      assign rchain[31:0] = results_q[s];
+      for (v = 0; v < u; v = v + 1) begin : g_prev
+        wire same = res_valid_i[v] && (res_slot_i[v*SLOT_BITS +: SLOT_BITS] == s);
+        assign chain[(v+1)*BW +: BW] = same ? nl[v*BW +: BW] : chain[v*BW +: BW];
+        assign rchain[(v+1)*32 +: 32] = same ? nr[v*32 +: 32] : rchain[v*32 +: 32];
+      end
+      wire [BW-1:0] cur = chain[u*BW +: BW];
+      wire [31:0]   cres = rchain[u*32 +: 32];
+      wire         lt, eq;
+      wire [W-1:0] u_min, u_max;
+      wire         u_rdy, u_vld;
+      fp_cmp_nt #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .STAGES(0)) u_cmp (
+        .clk_i(1'b0), .rst_ni(1'b1), .in_valid_i(1'b1), .in_ready_o(u_rdy),
+        .in_a_i(rec[BW-2 -: W]), .in_b_i(cur[BW-2 -: W]), .out_valid_o(u_vld),
+        .out_ready_i(1'b1), .out_lt_o(lt), .out_eq_o(eq), .out_min_o(u_min), .out_max_o(u_max));
+      wire unused = ^{u_min, u_max, u_rdy, u_vld, rec[BW-1]};
+      // The record's pos field lies below t and den.
+      wire win = res_hit_i[u] && (!cur[BW-1] || lt ||
+                                  (eq && (rec[BW-2-2*W -: 32] < cur[BW-2-2*W -: 32])));
+      assign nl[u*BW +: BW] = win ? {1'b1, rec[BW-2:0]} : cur;
+      assign nr[u*32 +: 32] = cres + 32'd1;
+      assign res_done[u] = res_valid_i[u] && (cres + 32'd1 == count_q[s]);
+    end
+  endgenerate
+
+  // The chain's results as one word each (read with a variable index below).
+  wire [IST*BW-1:0] nl_all = nl;
+  wire [IST*32-1:0] nr_all = nr;
+
+  // ---- 2. the pipes ----------------------------------------------------------------------------
+  wire [PIPES:0]    go_chain /* verilator split_var */;
+  wire [16*(PIPES+1)-1:0] room_chain /* verilator split_var */;
+  assign go_chain[0] = 1'b1;
+  assign room_chain[15:0] = room_i;
+  wire [PIPES-1:0] p_push, p_qpush, p_wr_leaf, p_busy, p_node_miss, p_list_miss, p_ist_full,
+                   p_inner, p_leaf, p_list_steps, p_err;
+  wire [PIPES*2-1:0] p_pops, p_fused;
+  wire [PIPES*3-1:0] p_st;
+  wire [PIPES*7-1:0] p_sp;
+  wire [PIPES*32-1:0] p_node, p_first, p_count, p_pos, p_qready;
+  wire [PIPES*W-1:0] p_tnear, p_tfar, p_tmax;
+  wire [PIPES*EW-1:0] p_push_e;
+  wire [PIPES*7-1:0] p_top;  // the pushed entry's index: sp after the pass - 1
+  genvar p;
+  generate
+    for (p = 0; p < PIPES; p = p + 1) begin : g_pipe
+      wire [SLOT_BITS-1:0] qi = head_q + p[SLOT_BITS-1:0];
+      wire [SLOT_BITS-1:0] s = fq_slot[qi];
+      wire [31:0] dt = fq_ready[qi] - now_i;
+      wire go = go_chain[p] && (p < pipes_i) && (cnt_q > p) && (dt[31] || dt == 32'd0);
+      assign go_chain[p+1] = go;
+      assign go_o[p] = go;
+      assign slot_o[p*SLOT_BITS +: SLOT_BITS] = s;
+      wire [6:0] sp = sp_q[s];
+      wire [6:0] sp1 = sp - 7'd1;
+      wire [6:0] sp2 = sp - 7'd2;
+      wire [EW-1:0] e1 = stk_q[{s, sp1[DB-1:0]}];
+      wire [EW-1:0] e2 = stk_q[{s, sp2[DB-1:0]}];
+      wire unused_sp = ^{sp1[6:DB], sp2[6:DB]};
+      trv_pass #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE),
+                 .WORDS(WORDS)) u_pass (
+        .go_i(go), .now_i(now_i), .lat_i(lat_i), .node_hl_i(node_hl_i), .list_hl_i(list_hl_i),
+        .fuse_i(fuse_i), .any_hit_i(any_hit_i), .empty_i(empty_i), .depth_i(depth_i),
+        .widen_i(widen_i), .box_i(box_i), .st_i(st_q[s]), .shadow_i(shadow_q[s]), .ray_i(ray_q[s]),
+        .node_i(node_q[s]), .tnear_i(tnear_q[s]), .tfar_i(tfar_q[s]), .tmax_i(tmax_q[s]),
+        .sp_i(sp), .best_i(best_q[s]), .leaf_i(leaf_q[s]), .first_i(first_q[s]),
+        .count_i(count_q[s]), .pos_i(pos_q[s]), .results_i(results_q[s]), .e1_i(e1), .e2_i(e2),
+        .room_i(room_chain[p*16 +: 16]),
+        .acc_a_valid_o(acc_valid_o[2*p]), .acc_a_list_o(acc_list_o[2*p]),
+        .acc_a_byte_o(acc_byte_o[2*p*32 +: 32]), .rsp_a_hit_i(rsp_hit_i[2*p]),
+        .rsp_a_avail_i(rsp_avail_i[2*p*6 +: 6]), .rsp_a_data_i(rsp_data_i[2*p*32*WORDS +: 32*WORDS]),
+        .acc_b_valid_o(acc_valid_o[2*p+1]), .acc_b_byte_o(acc_byte_o[(2*p+1)*32 +: 32]),
+        .rsp_b_hit_i(rsp_hit_i[2*p+1]), .rsp_b_avail_i(rsp_avail_i[(2*p+1)*6 +: 6]),
+        .rsp_b_data_i(rsp_data_i[(2*p+1)*32*WORDS +: 32*WORDS]),
+        .st_o(p_st[p*3 +: 3]), .node_o(p_node[p*32 +: 32]), .tnear_o(p_tnear[p*W +: W]),
+        .tfar_o(p_tfar[p*W +: W]), .tmax_o(p_tmax[p*W +: W]), .sp_o(p_sp[p*7 +: 7]),
+        .best_o(best_o[p*BW +: BW]), .first_o(p_first[p*32 +: 32]),
+        .count_o(p_count[p*32 +: 32]), .pos_o(p_pos[p*32 +: 32]), .wr_leaf_o(p_wr_leaf[p]),
+        .push_o(p_push[p]), .push_e_o(p_push_e[p*EW +: EW]), .q_push_o(p_qpush[p]),
+        .q_ready_o(p_qready[p*32 +: 32]), .fin_o(fin_o[p]), .ist_n_o(ist_n_o[p*6 +: 6]),
+        .ist_pos_o(ist_pos_o[p*32 +: 32]), .ist_ready_o(ist_ready_o[p*32 +: 32]),
+        .ist_words_o(ist_words_o[p*32*WORDS +: 32*WORDS]),
+        .room_o(room_chain[(p+1)*16 +: 16]), .busy_o(p_busy[p]), .node_miss_o(p_node_miss[p]),
+        .list_miss_o(p_list_miss[p]), .ist_full_o(p_ist_full[p]), .inner_o(p_inner[p]),
+        .leaf_o(p_leaf[p]), .pops_o(p_pops[p*2 +: 2]), .list_steps_o(p_list_steps[p]),
+        .fused_o(p_fused[p*2 +: 2]), .err_o(p_err[p]));
+      assign ist_tmax_o[p*W +: W] = p_tmax[p*W +: W];
+      assign p_top[p*7 +: 7] = p_sp[p*7 +: 7] - 7'd1;
+      assign acc_list_o[2*p+1] = 1'b1;  // access B is always a list read
+    end
+  endgenerate
+  wire unused_room = ^{room_chain[PIPES*16 +: 16], go_chain[PIPES], p_top};
+
+  assign err_o = err_q || |(p_err & go_o);
+
+  // ---- 3. state update -------------------------------------------------------------------------
+  // Where each queue push goes: after the live entries, in the order results, pipes, rgu (the
+  // popped entries leave from the head, so the tail does not move with them).
+  wire [SLOT_BITS-1:0] tail = head_q + cnt_q[SLOT_BITS-1:0];
+  reg  [IST*SLOT_BITS-1:0]   res_at;
+  reg  [PIPES*SLOT_BITS-1:0] pipe_at;
+  reg  [SLOT_BITS-1:0]       rgu_at;
+  reg  [SLOT_BITS:0]         pushes, pops;
+  integer a;
+  always @* begin
+    pushes = {(SLOT_BITS+1){1'b0}};
+    pops = {(SLOT_BITS+1){1'b0}};
+    res_at = {(IST*SLOT_BITS){1'b0}};
+    pipe_at = {(PIPES*SLOT_BITS){1'b0}};
+    for (a = 0; a < IST; a = a + 1) begin
+      res_at[a*SLOT_BITS +: SLOT_BITS] = tail + pushes[SLOT_BITS-1:0];
+      if (res_done[a]) pushes = pushes + 1'b1;
+    end
+    for (a = 0; a < PIPES; a = a + 1) begin
+      pipe_at[a*SLOT_BITS +: SLOT_BITS] = tail + pushes[SLOT_BITS-1:0];
+      if (go_o[a] && p_qpush[a]) pushes = pushes + 1'b1;
+      if (go_o[a]) pops = pops + 1'b1;
+    end
+    rgu_at = tail + pushes[SLOT_BITS-1:0];
+    if (in_valid_i) pushes = pushes + 1'b1;
+  end
+
+  // The slot arrays, the stacks and the queue's entries (no reset: written before they are read).
+  integer b;
+  always @(posedge clk_i) begin
+    // The rgu's ray (a free slot, or a shadow ray in its primary ray's slot).
+    if (in_valid_i) begin
+      st_q[in_slot_i] <= S_START;
+      shadow_q[in_slot_i] <= in_shadow_i;
+      ray_q[in_slot_i] <= in_ray_i;
+      fq_slot[rgu_at] <= in_slot_i;
+      fq_ready[rgu_at] <= now_i + 32'd1;
+    end
+    // The pipes' rays (distinct slots, none of them the rgu's).
+    for (b = 0; b < PIPES; b = b + 1) begin
+      if (go_o[b]) begin
+        st_q[slot_o[b*SLOT_BITS +: SLOT_BITS]]    <= p_st[b*3 +: 3];
+        node_q[slot_o[b*SLOT_BITS +: SLOT_BITS]]  <= p_node[b*32 +: 32];
+        tnear_q[slot_o[b*SLOT_BITS +: SLOT_BITS]] <= p_tnear[b*W +: W];
+        tfar_q[slot_o[b*SLOT_BITS +: SLOT_BITS]]  <= p_tfar[b*W +: W];
+        tmax_q[slot_o[b*SLOT_BITS +: SLOT_BITS]]  <= p_tmax[b*W +: W];
+        sp_q[slot_o[b*SLOT_BITS +: SLOT_BITS]]    <= p_sp[b*7 +: 7];
+        best_q[slot_o[b*SLOT_BITS +: SLOT_BITS]]  <= best_o[b*BW +: BW];
+        first_q[slot_o[b*SLOT_BITS +: SLOT_BITS]] <= p_first[b*32 +: 32];
+        count_q[slot_o[b*SLOT_BITS +: SLOT_BITS]] <= p_count[b*32 +: 32];
+        pos_q[slot_o[b*SLOT_BITS +: SLOT_BITS]]   <= p_pos[b*32 +: 32];
+        if (p_wr_leaf[b]) begin
+          leaf_q[slot_o[b*SLOT_BITS +: SLOT_BITS]] <= {BW{1'b0}};
+          results_q[slot_o[b*SLOT_BITS +: SLOT_BITS]] <= 32'd0;
+        end
+        if (p_push[b])
+          stk_q[{slot_o[b*SLOT_BITS +: SLOT_BITS], p_top[b*7 +: DB]}] <= p_push_e[b*EW +: EW];
+        if (p_qpush[b]) begin
+          fq_slot[pipe_at[b*SLOT_BITS +: SLOT_BITS]] <= slot_o[b*SLOT_BITS +: SLOT_BITS];
+          fq_ready[pipe_at[b*SLOT_BITS +: SLOT_BITS]] <= p_qready[b*32 +: 32];
+        end
+      end
+    end
+    // ist results, in port order (a later port of the same ray holds the reduction so far).
+    for (b = 0; b < IST; b = b + 1) begin
+      if (res_valid_i[b]) begin
+        leaf_q[res_slot_i[b*SLOT_BITS +: SLOT_BITS]] <= nl_all[b*BW +: BW];
+        results_q[res_slot_i[b*SLOT_BITS +: SLOT_BITS]] <= nr_all[b*32 +: 32];
+      end
+      if (res_done[b]) begin
+        st_q[res_slot_i[b*SLOT_BITS +: SLOT_BITS]] <= S_LEAF_DONE;
+        fq_slot[res_at[b*SLOT_BITS +: SLOT_BITS]] <= res_slot_i[b*SLOT_BITS +: SLOT_BITS];
+        fq_ready[res_at[b*SLOT_BITS +: SLOT_BITS]] <= now_i + 32'd1;
+      end
+    end
+  end
+
+  // The queue's head and count, the counters and the error.
+  reg [6:0] smax;
+  reg [63:0] d_busy, d_node_miss, d_list_miss, d_ist_full, d_inner, d_leaf, d_pops, d_list_steps,
+             d_fused;
+  integer c;
+  always @* begin
+    smax = stack_max_o;
+    d_busy = 64'd0; d_node_miss = 64'd0; d_list_miss = 64'd0; d_ist_full = 64'd0; d_inner = 64'd0;
+    d_leaf = 64'd0; d_pops = 64'd0; d_list_steps = 64'd0; d_fused = 64'd0;
+    for (c = 0; c < PIPES; c = c + 1) begin
+      if (go_o[c]) begin
+        d_busy = d_busy + {63'd0, p_busy[c]};
+        d_node_miss = d_node_miss + {63'd0, p_node_miss[c]};
+        d_list_miss = d_list_miss + {63'd0, p_list_miss[c]};
+        d_ist_full = d_ist_full + {63'd0, p_ist_full[c]};
+        d_inner = d_inner + {63'd0, p_inner[c]};
+        d_leaf = d_leaf + {63'd0, p_leaf[c]};
+        d_pops = d_pops + {62'd0, p_pops[c*2 +: 2]};
+        d_list_steps = d_list_steps + {63'd0, p_list_steps[c]};
+        d_fused = d_fused + {62'd0, p_fused[c*2 +: 2]};
+        if (p_push[c] && (p_sp[c*7 +: 7] > smax)) smax = p_sp[c*7 +: 7];
+      end
+    end
+  end
+  always @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      head_q <= {SLOT_BITS{1'b0}};
+      cnt_q <= {(SLOT_BITS+1){1'b0}};
+      err_q <= 1'b0;
+      cnt_busy_o <= 64'd0;
+      cnt_node_miss_o <= 64'd0;
+      cnt_list_miss_o <= 64'd0;
+      cnt_ist_full_o <= 64'd0;
+      cnt_inner_o <= 64'd0;
+      cnt_leaf_o <= 64'd0;
+      cnt_pops_o <= 64'd0;
+      cnt_list_steps_o <= 64'd0;
+      cnt_fused_o <= 64'd0;
+      stack_max_o <= 7'd0;
+    end else begin
+      head_q <= head_q + pops[SLOT_BITS-1:0];
+      cnt_q <= cnt_q - pops + pushes;
+      err_q <= err_o;
+      cnt_busy_o <= cnt_busy_o + d_busy;
+      cnt_node_miss_o <= cnt_node_miss_o + d_node_miss;
+      cnt_list_miss_o <= cnt_list_miss_o + d_list_miss;
+      cnt_ist_full_o <= cnt_ist_full_o + d_ist_full;
+      cnt_inner_o <= cnt_inner_o + d_inner;
+      cnt_leaf_o <= cnt_leaf_o + d_leaf;
+      cnt_pops_o <= cnt_pops_o + d_pops;
+      cnt_list_steps_o <= cnt_list_steps_o + d_list_steps;
+      cnt_fused_o <= cnt_fused_o + d_fused;
+      stack_max_o <= smax;
+    end
+  end
+
+endmodule

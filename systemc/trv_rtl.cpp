@@ -1,0 +1,260 @@
+// systemc/trv_rtl.cpp - the Verilated trv_unit bound into the frame (see trv_rtl.h). Built with the
+// Verilated models (RAYCORE_RTL=ON); the variants are rtl/units/trv_unit.cmake's list.
+#include "systemc/trv_rtl.h"
+
+#include <algorithm>
+#include <cstring>
+#include <stdexcept>
+#include <type_traits>
+
+// The models are built into the frame library with the SystemC ones (VM_SC=1): Verilator's
+// runtime then names sc_time_stamp unqualified, as systemc.h declares it.
+#include <systemc.h>
+
+#include "rtl_trv_unit_models.h"
+
+namespace raycore::sc {
+namespace {
+
+// Bits [lo, lo + n) of a Verilated port (an integer type or a VlWide), n <= 32.
+template <class T>
+uint32_t get_bits(const T& s, unsigned lo, unsigned n) {
+  if constexpr (std::is_integral_v<T>) {
+    return uint32_t((uint64_t(s) >> lo) & ((uint64_t(1) << n) - 1));
+  } else {
+    uint64_t w = s[lo / 32];
+    if (lo % 32 + n > 32) w |= uint64_t(s[lo / 32 + 1]) << 32;
+    return uint32_t((w >> (lo % 32)) & ((uint64_t(1) << n) - 1));
+  }
+}
+template <class T>
+void set_bits(T& s, unsigned lo, unsigned n, uint32_t v) {
+  const uint64_t mask = ((uint64_t(1) << n) - 1);
+  if constexpr (std::is_integral_v<T>) {
+    s = T((uint64_t(s) & ~(mask << lo)) | ((uint64_t(v) & mask) << lo));
+  } else {
+    for (unsigned b = 0; b < n;) {  // word by word
+      const unsigned i = (lo + b) / 32, o = (lo + b) % 32, k = std::min(n - b, 32 - o);
+      const uint32_t m = k == 32 ? ~0u : ((1u << k) - 1) << o;
+      s[i] = (s[i] & ~m) | ((uint32_t(v >> b) << o) & m);
+      b += k;
+    }
+  }
+}
+
+template <class M, unsigned W, unsigned SLOT_BITS, unsigned PIPES, unsigned IST, unsigned WORDS>
+class TrvRtlT final : public TrvRtl {
+  static constexpr unsigned BW = 67 + 5 * W;
+
+ public:
+  TrvRtlT(const char* name, FrameCtx& fc, RtuChannels& ch, const SimConfig& cfg)
+      : name_(name), fc_(fc), ch_(ch), cfg_(cfg) {
+    if (cfg.mailbox != 0)
+      throw std::invalid_argument("--rtl trv: the RTL has no mailbox (--mailbox must be 0)");
+    if (cfg.trv_pipes > PIPES || cfg.ist_units > IST || cfg.rays_in_flight > (1u << SLOT_BITS) ||
+        cfg.list_cache.line_bytes > 4 * WORDS || cfg.trv_latency > 0xFFFF ||
+        cfg.node_cache.hit_latency > 0xFFFF || cfg.list_cache.hit_latency > 0xFFFF)
+      throw std::invalid_argument(
+          "--rtl trv: " + name_ + " is built for at most " + std::to_string(PIPES) +
+          " --trv-pipes, " + std::to_string(IST) + " --ist-units, " +
+          std::to_string(1u << SLOT_BITS) + " --rays-in-flight and " + std::to_string(4 * WORDS) +
+          "-byte list cache lines (rtl/units/trv_unit.cmake)");
+    ch_.ist_results = &results_;
+    m_.clk_i = 0;
+    m_.rst_ni = 0;
+    m_.eval();
+    m_.rst_ni = 1;
+    m_.eval();
+  }
+  ~TrvRtlT() override {
+    ch_.ist_results = nullptr;
+    m_.final();
+  }
+
+  std::string name() const override { return name_; }
+
+  bool tick(Cycle now) override {
+    if (!configured_) configure();
+    m_.now_i = uint32_t(now);
+    // This cycle's ist results (the ist ticked before).
+    if (results_.size() > IST)
+      throw std::logic_error("--rtl trv: more ist results in a cycle than the RTL's ports");
+    m_.res_valid_i = 0;
+    m_.res_hit_i = 0;
+    for (unsigned u = 0; u < results_.size(); ++u) {
+      const IstRes& o = results_[u];
+      set_bits(m_.res_valid_i, u, 1, 1);
+      set_bits(m_.res_slot_i, u * SLOT_BITS, SLOT_BITS, o.slot);
+      set_bits(m_.res_hit_i, u, 1, o.hit);
+      const unsigned b = u * BW;  // {1, t, den, pos, id, k, nu, nv, nd}, nd lowest
+      set_bits(m_.res_rec_i, b, W, o.nd);
+      set_bits(m_.res_rec_i, b + W, W, o.nv);
+      set_bits(m_.res_rec_i, b + 2 * W, W, o.nu);
+      set_bits(m_.res_rec_i, b + 3 * W, 2, o.k);
+      set_bits(m_.res_rec_i, b + 3 * W + 2, 32, o.id);
+      set_bits(m_.res_rec_i, b + 3 * W + 34, 32, o.pos);
+      set_bits(m_.res_rec_i, b + 3 * W + 66, W, o.den);
+      set_bits(m_.res_rec_i, b + 4 * W + 66, W, o.t);
+      set_bits(m_.res_rec_i, b + 5 * W + 66, 1, 1);
+    }
+    const bool had_results = !results_.empty();
+    results_.clear();
+    m_.room_i = uint16_t(ch_.ist_q.capacity() - ch_.ist_q.size());
+    m_.rsp_hit_i = 0;
+    m_.eval();
+    // The pipes' cache accesses in the model's order; a hit changes what follows (re-evaluate).
+    for (unsigned a = 0; a < 2 * PIPES; ++a) {
+      if (!get_bits(m_.acc_valid_o, a, 1)) continue;
+      const uint32_t byte = get_bits(m_.acc_byte_o, a * 32, 32);
+      Ascache& c = get_bits(m_.acc_list_o, a, 1) ? *ch_.list : *ch_.node;
+      const uint32_t lb = c.line_bytes();
+      const uint8_t* line = c.access(byte / lb);
+      if (!line) continue;  // a miss: the response's default
+      const uint32_t off = byte % lb;
+      const uint32_t avail = std::min<uint32_t>((lb - off) / 4, WORDS);
+      set_bits(m_.rsp_hit_i, a, 1, 1);
+      set_bits(m_.rsp_avail_i, a * 6, 6, avail);
+      for (uint32_t i = 0; i < avail; ++i)
+        set_bits(m_.rsp_data_i, (a * WORDS + i) * 32, 32,
+                 uint32_t(hls::detail::get_le(line + off + 4 * i, 4)));
+      m_.eval();
+    }
+    if (m_.err_o)
+      throw std::runtime_error("trv: a ray needs more than the " + std::to_string(fc_.stack_depth) +
+                               " stack entries of --stack-depth (at most 64, the deepest tree)");
+    // The pipes' hand-offs, in pipe order.
+    bool any = false;
+    for (unsigned p = 0; p < PIPES; ++p) {
+      if (!get_bits(m_.go_o, p, 1)) continue;
+      any = true;
+      const uint16_t s = uint16_t(get_bits(m_.slot_o, p * SLOT_BITS, SLOT_BITS));
+      Slot& r = ch_.slots[s];
+      const uint32_t n = get_bits(m_.ist_n_o, p * 6, 6);
+      if (n != 0) {
+        r.tmax = get_bits(m_.ist_tmax_o, p * W, W);  // the leaf-entry tmax the ist tests with
+        const uint32_t pos = get_bits(m_.ist_pos_o, p * 32, 32);
+        const Cycle ready = at(now, get_bits(m_.ist_ready_o, p * 32, 32));
+        for (uint32_t i = 0; i < n; ++i)
+          ch_.ist_q.push({s, pos + i, get_bits(m_.ist_words_o, (p * WORDS + i) * 32, 32)}, ready);
+      }
+      if (get_bits(m_.fin_o, p, 1)) {
+        const unsigned b = p * BW;
+        Best& x = r.best;
+        x.nd = get_bits(m_.best_o, b, W);
+        x.nv = get_bits(m_.best_o, b + W, W);
+        x.nu = get_bits(m_.best_o, b + 2 * W, W);
+        x.k = get_bits(m_.best_o, b + 3 * W, 2);
+        x.id = get_bits(m_.best_o, b + 3 * W + 2, 32);
+        x.pos = get_bits(m_.best_o, b + 3 * W + 34, 32);
+        x.den = get_bits(m_.best_o, b + 3 * W + 66, W);
+        x.t = get_bits(m_.best_o, b + 4 * W + 66, W);
+        x.found = get_bits(m_.best_o, b + 5 * W + 66, 1) != 0;
+        r.state = SlotState::done;
+        ch_.hit_q.push(s, now + cfg_.trv_latency);
+      }
+    }
+    return any || had_results;
+  }
+
+  void edge(Cycle) override {
+    m_.in_valid_i = 0;
+    if (!ch_.trv_q.empty()) {  // the rgu's ray of this cycle (a new primary or a shadow ray)
+      const uint16_t s = ch_.trv_q.pop();
+      if (!ch_.trv_q.empty()) throw std::logic_error("--rtl trv: two rgu rays in one cycle");
+      const Slot& r = ch_.slots[s];
+      m_.in_valid_i = 1;
+      m_.in_slot_i = static_cast<std::remove_reference_t<decltype(m_.in_slot_i)>>(s);
+      m_.in_shadow_i = r.shadow;
+      const uint32_t f[11] = {r.ray.tmax, r.ray.tmin, r.ray.inv[2], r.ray.inv[1], r.ray.inv[0],
+                              r.ray.d[2], r.ray.d[1],  r.ray.d[0],   r.ray.o[2],   r.ray.o[1],
+                              r.ray.o[0]};
+      for (unsigned i = 0; i < 11; ++i) set_bits(m_.in_ray_i, i * W, W, f[i]);
+    }
+    m_.eval();
+    m_.clk_i = 1;
+    m_.eval();
+    m_.clk_i = 0;
+    m_.eval();
+  }
+
+  Cycle next_event(Cycle now) const override {
+    if (!m_.head_valid_o) return kNever;
+    return at(now, m_.head_ready_o);
+  }
+
+  void stats(RtuStats& s) const override {
+    s.trv_busy = m_.cnt_busy_o;
+    s.trv_node_miss = m_.cnt_node_miss_o;
+    s.trv_list_miss = m_.cnt_list_miss_o;
+    s.trv_ist_full = m_.cnt_ist_full_o;
+    s.inner_steps = m_.cnt_inner_o;
+    s.leaf_visits = m_.cnt_leaf_o;
+    s.pops = m_.cnt_pops_o;
+    s.list_steps = m_.cnt_list_steps_o;
+    s.trv_fused = m_.cnt_fused_o;
+    s.stack_max = m_.stack_max_o;
+    s.mailbox_skips = 0;
+  }
+
+ private:
+  // A 32-bit cycle number of the RTL as a cycle of the model (within 2^31 of now).
+  static Cycle at(Cycle now, uint32_t c) { return Cycle(int64_t(now) + int32_t(c - uint32_t(now))); }
+
+  void configure() {  // the per-frame registers (set after the VTU's set-up)
+    m_.lat_i = uint16_t(cfg_.trv_latency);
+    m_.node_hl_i = uint16_t(ch_.node->hit_latency);
+    m_.list_hl_i = uint16_t(ch_.list->hit_latency);
+    m_.pipes_i = uint8_t(cfg_.trv_pipes);
+    m_.fuse_i = cfg_.trv_fuse;
+    m_.any_hit_i = fc_.spawn.any_hit;
+    m_.empty_i = fc_.empty_tree;
+    m_.depth_i = uint8_t(fc_.stack_depth);
+    m_.widen_i = uint8_t(fc_.margins.widen_ulps);
+    for (unsigned a = 0; a < 3; ++a) {
+      set_bits(m_.box_i, a * W, W, fc_.box_lo[a]);
+      set_bits(m_.box_i, (3 + a) * W, W, fc_.box_hi[a]);
+    }
+    configured_ = true;
+  }
+
+  std::string name_;
+  FrameCtx& fc_;
+  RtuChannels& ch_;
+  const SimConfig& cfg_;
+  M m_;
+  std::vector<IstRes> results_;
+  bool configured_ = false;
+};
+
+bool matches(const char* fmt, const char* mode, hls::FormatId f, hls::Rounding r) {
+  const hls::FormatId mf = std::strcmp(fmt, "FP24") == 0 ? hls::FormatId::fp24 : hls::FormatId::fp32;
+  const hls::Rounding mr = std::strcmp(mode, "rne") == 0       ? hls::Rounding::rne
+                           : std::strcmp(mode, "raycore") == 0 ? hls::Rounding::raycore
+                                                               : hls::Rounding::rtz;
+  return mf == f && mr == r;
+}
+
+}  // namespace
+
+std::unique_ptr<TrvRtl> make_rtl_trv(hls::FormatId f, hls::Rounding r, FrameCtx& fc, RtuChannels& ch,
+                                     const SimConfig& cfg) {
+#define RAYCORE_RTL_TRVU_VARIANT(prefix, fmt, mode, width, slot_bits, depth, pipes, ist, words)    \
+  if (matches(#fmt, #mode, f, r))                                                                 \
+    return std::make_unique<TrvRtlT<prefix, width, slot_bits, pipes, ist, words>>(                \
+        "Verilated trv_unit " #fmt " " #mode, fc, ch, cfg);
+#include "rtl_trv_unit_variants.h"
+#undef RAYCORE_RTL_TRVU_VARIANT
+  return nullptr;
+}
+
+std::string rtl_trv_built() {
+  std::string s;
+#define RAYCORE_RTL_TRVU_VARIANT(prefix, fmt, mode, width, slot_bits, depth, pipes, ist, words) \
+  s += std::string(s.empty() ? "" : ", ") + "trv_unit " #fmt " " #mode " (slots " +            \
+       std::to_string(1u << slot_bits) + ", stack " #depth ", pipes " #pipes ", ist " #ist ")";
+#include "rtl_trv_unit_variants.h"
+#undef RAYCORE_RTL_TRVU_VARIANT
+  return s.empty() ? "none" : s;
+}
+
+}  // namespace raycore::sc
