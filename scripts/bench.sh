@@ -142,7 +142,7 @@ section_frames() {
 # --sc RTL (--rtl) must give the transaction model's cycle count (frames section) and golden_match;
 # reports each run's simulated cycles/s and rays/s. Needs `frames` first (its VTU-on report).
 section_cosim() {
-  header "cosim: sponza-paper 800x480 with vtu+ist as pin-level twins and as Verilated RTL"
+  header "cosim: sponza-paper 800x480 with vtu+ist as pin-level twins and as Verilated RTL, then vtu+ist+trv in RTL"
   local rc_bin="$BUILD/bin/raycore"
   local scenes=${SHARED_SCENES:-$(cd "$(dirname "$0")/.." && pwd)/../shared/scenes}
   local sponza="$scenes/sponza-paper.glb"
@@ -150,26 +150,28 @@ section_cosim() {
   if [ ! -f "$sponza" ]; then echo "sponza-paper.glb not found in $scenes (set SHARED_SCENES): skipped"; return 0; fi
   machine
   export SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1
-  local rc=0 ref="$OUT/simulate-vtu-on.json" view
+  local rc=0 ref="$OUT/simulate-vtu-on.json" run view units tag
   if [ ! -f "$ref" ]; then
     "$rc_bin" simulate "$sponza" --vtu on --no-reference --out-dir "$OUT" --report "$ref" \
       --png "$OUT/simulate-vtu-on.png" || return 1
   fi
-  for view in pins rtl; do
-    echo "command: $rc_bin simulate $sponza --vtu on --$view vtu,ist --no-reference --out-dir $OUT"
-    "$rc_bin" simulate "$sponza" --vtu on --"$view" vtu,ist --no-reference --out-dir "$OUT" \
-      --report "$OUT/simulate-$view.json" --png "$OUT/simulate-$view.png" || { rc=1; continue; }
+  # view:units:tag; the last run has every unit that has RTL in the frame in RTL.
+  for run in pins:vtu,ist:pins rtl:vtu,ist:rtl rtl:vtu,ist,trv:rtl-trv; do
+    IFS=: read -r view units tag <<<"$run"
+    echo "command: $rc_bin simulate $sponza --vtu on --$view $units --no-reference --out-dir $OUT"
+    "$rc_bin" simulate "$sponza" --vtu on --"$view" "$units" --no-reference --out-dir "$OUT" \
+      --report "$OUT/simulate-$tag.json" --png "$OUT/simulate-$tag.png" || { rc=1; continue; }
     local c0 c1
     c0=$(json_get "$ref" hardware.cycles)
-    c1=$(json_get "$OUT/simulate-$view.json" hardware.cycles)
-    printf '%-5s cycles %s (model %s) golden_match %s wall %.1f s, %.0f cycles/s, %.0f rays/s, %s pin clock edges\n' \
-      "$view" "$c1" "$c0" "$(json_get "$OUT/simulate-$view.json" golden_match)" \
-      "$(json_get "$OUT/simulate-$view.json" sim.wall_seconds)" \
-      "$(json_get "$OUT/simulate-$view.json" sim.cycles_per_second)" \
-      "$(json_get "$OUT/simulate-$view.json" sim.rays_per_second)" \
-      "$(json_get "$OUT/simulate-$view.json" sim.pin_clock_edges)"
-    [ "$c0" = "$c1" ] || { echo "cycles differ from the transaction model ($view)"; rc=1; }
-    [ "$(json_get "$OUT/simulate-$view.json" golden_match)" = "True" ] || { echo "golden_match false ($view)"; rc=1; }
+    c1=$(json_get "$OUT/simulate-$tag.json" hardware.cycles)
+    printf '%-14s cycles %s (model %s) golden_match %s wall %.1f s, %.0f cycles/s, %.0f rays/s, %s pin clock edges\n' \
+      "--$view $units" "$c1" "$c0" "$(json_get "$OUT/simulate-$tag.json" golden_match)" \
+      "$(json_get "$OUT/simulate-$tag.json" sim.wall_seconds)" \
+      "$(json_get "$OUT/simulate-$tag.json" sim.cycles_per_second)" \
+      "$(json_get "$OUT/simulate-$tag.json" sim.rays_per_second)" \
+      "$(json_get "$OUT/simulate-$tag.json" sim.pin_clock_edges)"
+    [ "$c0" = "$c1" ] || { echo "cycles differ from the transaction model ($view $units)"; rc=1; }
+    [ "$(json_get "$OUT/simulate-$tag.json" golden_match)" = "True" ] || { echo "golden_match false ($view $units)"; rc=1; }
   done
   return $rc
 }

@@ -75,6 +75,11 @@ class TrvRtlT final : public TrvRtl {
 
   bool tick(Cycle now) override {
     if (!configured_) configure();
+    // A cycle in which no pipe can take a ray and no result comes changes nothing in the RTL
+    // (every register holds): neither evaluate nor clock it (edge() clocks only with a ray in).
+    stepped_ = !results_.empty() || (m_.head_valid_o && at(now, m_.head_ready_o) <= now);
+    if (!stepped_) return false;
+    m_.clk_i = 0;  // the falling edge: nothing is sensitive to it
     m_.now_i = uint32_t(now);
     // This cycle's ist results (the ist ticked before).
     if (results_.size() > IST)
@@ -156,7 +161,7 @@ class TrvRtlT final : public TrvRtl {
     return any || had_results;
   }
 
-  void edge(Cycle) override {
+  void edge(Cycle now) override {
     m_.in_valid_i = 0;
     if (!ch_.trv_q.empty()) {  // the rgu's ray of this cycle (a new primary or a shadow ray)
       const uint16_t s = ch_.trv_q.pop();
@@ -170,11 +175,17 @@ class TrvRtlT final : public TrvRtl {
                               r.ray.o[0]};
       for (unsigned i = 0; i < 11; ++i) set_bits(m_.in_ray_i, i * W, W, f[i]);
     }
-    m_.eval();
-    m_.clk_i = 1;
-    m_.eval();
-    m_.clk_i = 0;
-    m_.eval();
+    if (!stepped_ && !m_.in_valid_i) return;  // nothing happened: the registers hold
+    if (!stepped_) {  // only the rgu's ray: the cycle's inputs as tick() would drive them
+      m_.clk_i = 0;
+      m_.now_i = uint32_t(now);
+      m_.res_valid_i = 0;
+      m_.rsp_hit_i = 0;
+      m_.room_i = uint16_t(ch_.ist_q.capacity() - ch_.ist_q.size());
+      m_.eval();  // clk low seen, so that the next evaluation has a rising edge
+    }
+    m_.clk_i = 1;  // the inputs and the rising edge in one evaluation (Verilator settles the
+    m_.eval();     // input-driven logic first)
   }
 
   Cycle next_event(Cycle now) const override {
@@ -224,6 +235,7 @@ class TrvRtlT final : public TrvRtl {
   M m_;
   std::vector<IstRes> results_;
   bool configured_ = false;
+  bool stepped_ = false;  // this cycle's tick evaluated the model
 };
 
 bool matches(const char* fmt, const char* mode, hls::FormatId f, hls::Rounding r) {
