@@ -229,8 +229,7 @@ TEST(TrvRtlFrame, AnyHitSkipBackSpawnAll) {
   tc.spawn.any_hit = true;
   expect_trv_rtl(tiny_scene(), tc, {});
 }
-TEST(TrvRtlFrame, Fp24RaycoreAndFp32) {
-  expect_trv_rtl(tiny_scene(), config(FormatId::fp24, Rounding::raycore, false, 32, 24), {});
+TEST(TrvRtlFrame, Fp32ThreePipes) {
   sc::SimConfig cfg;
   cfg.trv_pipes = 3;
   expect_trv_rtl(tiny_scene(), config(FormatId::fp32, Rounding::rne, true, 32, 24), cfg);
@@ -251,6 +250,10 @@ TEST(TrvRtlFrame, RefusesWhatTheModelCannotRun) {
   cfg.trv_pipes = 4;
   cfg.trv_view = UnitView::twin;
   expect_refused(tiny_scene(), tc, cfg, "trv has no pin-level SystemC twin");
+  cfg.trv_view = UnitView::rtl;  // not built: the message lists what is
+  const Summary r = expect_refused(tiny_scene(), config(FormatId::fp24, Rounding::raycore, false, 8, 8),
+                                   cfg, "no Verilated trv_unit for fp24 raycore");
+  EXPECT_NE(std::string(r.error).find("trv_unit FP32 rne"), std::string::npos) << r.error;
 }
 
 // ---- lockstep: twin vs Verilated model --------------------------------------------------------
