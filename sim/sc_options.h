@@ -101,10 +101,10 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
     auto list = std::make_shared<std::vector<std::string>>();
     c.add_option(name, *list, help)
         ->delimiter(',')
-        ->check(CLI::IsMember({"vtu", "ist"}))
+        ->check(CLI::IsMember({"vtu", "ist", "hit"}))
         ->each([&o, list, view](const std::string& unit) {
           o.overrides.push_back([unit, view](SimConfig& s) {
-            UnitView& v = unit == "vtu" ? s.vtu_view : s.ist_view;
+            UnitView& v = unit == "vtu" ? s.vtu_view : unit == "ist" ? s.ist_view : s.hit_view;
             if (v != UnitView::model && v != view)
               throw raycore::cli::UserError("unit '" + unit + "' given to both --rtl and --pins");
             v = view;
@@ -112,9 +112,9 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
         });
   };
   views("--rtl", UnitView::rtl,
-        "units (vtu,ist) simulated by their Verilated RTL, bound to the unit's pins in the frame");
+        "units (vtu,ist,hit) simulated by their Verilated RTL, bound to the unit's pins in the frame");
   views("--pins", UnitView::twin,
-        "units (vtu,ist) simulated by their pin-level SystemC twin (same ports as the RTL)");
+        "units (vtu,ist,hit) simulated by their pin-level SystemC twin (same ports as the RTL)");
   c.add_option("--trace", o.cfg.trace_file, "write a VCD of the top-level handshakes and counters");
   c.add_option("--config", o.config_file, "JSON file with the model's parameters (options override it)");
 }
