@@ -82,13 +82,18 @@ inline void plane_normal(const HitTri& tri, uint32_t one, uint32_t n[3]) {
 // |dens| is floored at 1/16 (a grazing light would otherwise skip a long stretch of the ray:
 // measured, that leaks light through real occluders). Hardware: a max of three exponents, a max, one
 // reciprocal, two multiplies, a comparison (returns the larger of t_min and t_min').
+// scale2 = 2 ulps as a number of the format (HitRegs::slab_scale, a per-frame register).
 template <class A>
-inline uint32_t slab_tmin(const uint32_t h[3], uint32_t dens, int32_t ulps, uint32_t tmin) {
+inline uint32_t slab_tmin_scaled(const uint32_t h[3], uint32_t dens, uint32_t scale2, uint32_t tmin) {
   using F = typename A::Fmt;
   const uint32_t hmax = A::max(A::max(A::abs(h[0]), A::abs(h[1])), A::abs(h[2]));
-  const uint32_t slab = A::mul(A::from_double(2.0 * double(ulps)), ulp<F>(hmax));
+  const uint32_t slab = A::mul(scale2, ulp<F>(hmax));
   const uint32_t t0 = A::mul(slab, A::rcp(A::max(A::abs(dens), A::from_double(1.0 / 16))));
   return A::lt(tmin, t0) ? t0 : tmin;
+}
+template <class A>
+inline uint32_t slab_tmin(const uint32_t h[3], uint32_t dens, int32_t ulps, uint32_t tmin) {
+  return slab_tmin_scaled<A>(h, dens, A::from_double(2.0 * double(ulps)), tmin);
 }
 
 }  // namespace detail
@@ -109,13 +114,37 @@ constexpr uint32_t unit_roundoff() {
   return uint32_t(e) << F::man_bits;
 }
 
+// The hit unit's per-frame registers that depend on the spawn parameters (computed once by the
+// host, in the format; rtl/units/hit.v takes them as static inputs): the one definition of these
+// constants, used by hit_shadow below.
+struct HitRegs {
+  uint32_t scale = 0;       // ulp_offset, skip_offset: ulps as a number
+  uint32_t fixed = 0;       //   and ulps * ulp(2^-5) (the fixed offset near zero)
+  uint32_t slab_scale = 0;  // skip_slab: 2 ulps; skip_back: 2 kBackSlabUlps (as numbers)
+  int32_t back = 0;         // skip_back: the hit point's t moved by this many ulps (-ulps)
+};
 template <class A>
-inline ShadowSetup hit_shadow(const Ray& pr, uint32_t t, const HitTri& tri, const uint32_t light[3],
-                              uint32_t tmin, const SpawnParams& sp) {
+inline HitRegs hit_regs(const SpawnParams& sp) {
+  using F = typename A::Fmt;
+  HitRegs g;
+  g.scale = A::from_double(double(sp.ulps));
+  g.fixed = A::mul(g.scale, ulp<F>(uint32_t(F::bias - 5) << F::man_bits));  // ulp(2^-5)
+  g.slab_scale = A::from_double(
+      2.0 * double(sp.spawn == Spawn::skip_back ? kBackSlabUlps : sp.ulps));
+  g.back = -sp.ulps;
+  return g;
+}
+
+// The unit with its registers given (sp.ulps is not read: g holds what depends on it); the pin-level
+// twin calls this with the register values on its pins.
+template <class A>
+inline ShadowSetup hit_shadow_regs(const Ray& pr, uint32_t t, const HitTri& tri,
+                                   const uint32_t light[3], uint32_t tmin, const SpawnParams& sp,
+                                   const HitRegs& g) {
   using F = typename A::Fmt;
   ShadowSetup s{};
   // Hit point (skip_back: at t - ulps ulps of t, on the bit pattern).
-  const uint32_t th = sp.spawn == Spawn::skip_back ? add_ulps<F>(t, -sp.ulps) : t;
+  const uint32_t th = sp.spawn == Spawn::skip_back ? add_ulps<F>(t, g.back) : t;
   for (int i = 0; i < 3; ++i) s.h[i] = A::add(pr.o[i], A::mul(th, pr.d[i]));
   // Direction to the light. unit (default): normalised, t in (tmin, distance to the light), so
   // t_min is in world units; segment: light - h unnormalised, t in (tmin, 1), so t_min is a
@@ -157,11 +186,11 @@ inline ShadowSetup hit_shadow(const Ray& pr, uint32_t t, const HitTri& tri, cons
       break;
     case Spawn::skip_slab:
       s.skip_id = tri.id;
-      r.tmin = detail::slab_tmin<A>(s.h, s.dens, sp.ulps, r.tmin);
+      r.tmin = detail::slab_tmin_scaled<A>(s.h, s.dens, g.slab_scale, r.tmin);
       break;
-    case Spawn::skip_back:  // the back-off is in the hit point above
+    case Spawn::skip_back:  // the back-off is in the hit point above; slab_scale = 2 kBackSlabUlps
       s.skip_id = tri.id;
-      r.tmin = detail::slab_tmin<A>(s.h, s.dens, kBackSlabUlps, r.tmin);
+      r.tmin = detail::slab_tmin_scaled<A>(s.h, s.dens, g.slab_scale, r.tmin);
       break;
     case Spawn::skip_offset:
       s.skip_id = tri.id;
@@ -169,9 +198,8 @@ inline ShadowSetup hit_shadow(const Ray& pr, uint32_t t, const HitTri& tri, cons
     case Spawn::ulp_offset: {
       // Waechter & Binder: of_i = int(ulps * n_i) ulps of p_i; near zero (|p_i| < 2^-5) a fixed
       // offset of ulps * n_i * ulp(2^-5) instead.
-      const uint32_t scale = A::from_double(double(sp.ulps));
+      const uint32_t scale = g.scale, fixed = g.fixed;
       const uint32_t origin = uint32_t(F::bias - 5) << F::man_bits;  // 2^-5
-      const uint32_t fixed = A::mul(scale, ulp<F>(origin));
       for (int i = 0; i < 3; ++i) {
         const uint32_t ni = side_neg ? A::neg(n[i]) : n[i];
         if (A::lt(A::abs(s.h[i]), origin))
@@ -221,6 +249,12 @@ inline ShadowSetup hit_shadow(const Ray& pr, uint32_t t, const HitTri& tri, cons
     }
   }
   return s;
+}
+
+template <class A>
+inline ShadowSetup hit_shadow(const Ray& pr, uint32_t t, const HitTri& tri, const uint32_t light[3],
+                              uint32_t tmin, const SpawnParams& sp) {
+  return hit_shadow_regs<A>(pr, t, tri, light, tmin, sp, hit_regs<A>(sp));
 }
 
 }  // namespace raycore::hls

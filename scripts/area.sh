@@ -31,6 +31,12 @@ MODULES=(fp_add fp_add3 fp_mul fp_div fp_sqrt fp_rcp fp_cmp "${UNITS[@]}")
 srcs_for() {
   local f=(rtl/fp/*.v)
   if [ -f "rtl/units/$1.v" ]; then f+=("rtl/units/$1.v"); f+=($(ls rtl/units/"$1"_*.v 2>/dev/null || true)); fi
+  # and another unit's helper it instantiates (hit.v: spawn_ops.v)
+  local g
+  for g in rtl/units/*_*.v; do
+    [[ " ${f[*]} " == *" $g "* ]] && continue
+    grep -Eq "^\s*$(basename "$g" .v)\s+#" "rtl/units/$1.v" 2>/dev/null && f+=("$g")
+  done
   echo "${f[@]}"
 }
 file_of() { [ -f "rtl/fp/$1.v" ] && echo "rtl/fp/$1.v" || echo "rtl/units/$1.v"; }

@@ -101,10 +101,13 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
     auto list = std::make_shared<std::vector<std::string>>();
     c.add_option(name, *list, help)
         ->delimiter(',')
-        ->check(CLI::IsMember({"vtu", "ist", "trv"}))
+        ->check(CLI::IsMember({"vtu", "ist", "trv", "hit"}))
         ->each([&o, list, view](const std::string& unit) {
           o.overrides.push_back([unit, view](SimConfig& s) {
-            UnitView& v = unit == "vtu" ? s.vtu_view : unit == "ist" ? s.ist_view : s.trv_view;
+            UnitView& v = unit == "vtu"   ? s.vtu_view
+                          : unit == "ist" ? s.ist_view
+                          : unit == "trv" ? s.trv_view
+                                          : s.hit_view;
             if (v != UnitView::model && v != view)
               throw raycore::cli::UserError("unit '" + unit + "' given to both --rtl and --pins");
             v = view;
@@ -112,11 +115,11 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
         });
   };
   views("--rtl", UnitView::rtl,
-        "units (vtu,ist,trv) simulated by their Verilated RTL in the frame (vtu, ist at their pins; "
-        "trv: rtl/units/trv_unit.v stepped from C++)");
+        "units (vtu,ist,trv,hit) simulated by their Verilated RTL in the frame (vtu, ist, hit at "
+        "their pins; trv: rtl/units/trv_unit.v stepped from C++)");
   views("--pins", UnitView::twin,
-        "units (vtu,ist) simulated by their pin-level SystemC twin (same ports as the RTL; trv has "
-        "none)");
+        "units (vtu,ist,hit) simulated by their pin-level SystemC twin (same ports as the RTL; trv "
+        "has none)");
   c.add_option("--trace", o.cfg.trace_file, "write a VCD of the top-level handshakes and counters");
   c.add_option("--config", o.config_file, "JSON file with the model's parameters (options override it)");
 }

@@ -72,7 +72,9 @@ struct SimConfig {
   // twin: the transaction model is its twin; systemc/trv_rtl.h).
   UnitView trv_view = UnitView::model;
   uint32_t ist_queue = 32;       // ist input queue (triangle tests waiting)
-  uint32_t hit_latency = 20;     // hit point + shadow set-up (sqrt, rcp)
+  uint32_t hit_latency = 20;     // rtl/units/hit.v: 10 operator levels x STAGES 2 (hit point,
+                                 //   shadow ray, spawn; sqrt, rcp)
+  UnitView hit_view = UnitView::model;
   uint32_t tile = 8;             // rgu: square tiles of tile x tile pixels, round-robin over RTUs
   // Simulator.
   std::string trace_file;  // VCD of the top-level handshakes and counters

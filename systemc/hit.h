@@ -1,15 +1,27 @@
 // systemc/hit.h - the hit unit: for a finished primary ray the hit point and the shadow ray
 // (hls::hit_shadow with the configured spawn strategy; with --shadow-spawn all also when the light
 // is behind), handed to the rgu in the same slot; for a finished shadow ray the light decision;
-// the pixel written to the frame (hls::shade_pixel, the golden tracer's inputs). One ray per cycle, hit_latency cycles to the pixel write / hand-over.
+// the pixel written to the frame (hls::shade_pixel, the golden tracer's inputs). One ray per cycle
+// enters the unit (a primary hit, a primary miss or a finished shadow ray); everything happens when
+// it leaves, hit_latency cycles later, as in a pipelined unit: the slot is freed (a miss, a shadow
+// ray, a hit without a shadow ray), the pixel written, or the shadow ray handed to the rgu.
+//
+// Two views (SimConfig::hit_view): the transaction model (hls::hit_shadow at entry, applied at
+// leave; default) or a pin-level unit with rtl/units/hit.v's ports (systemc/pins/hit.h: the
+// SystemC twin or the Verilated RTL), every ray driven into it (the result is read only for a
+// primary hit). Same cycles and bits.
 #pragma once
 
 #include <systemc>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
+#include <stdexcept>
 
 #include "hls/hit.h"
 #include "hls/trace.h"
+#include "systemc/pins/hit.h"
 #include "systemc/slot.h"
 #include "systemc/slot_unit.h"
 
@@ -18,41 +30,115 @@ namespace raycore::sc {
 template <class A>
 class Hit : public SlotUnit {
  public:
-  using SlotUnit::SlotUnit;
+  Hit(sc_core::sc_module_name name, FrameCtx& fc, RtuChannels& ch, RtuStats& st, uint32_t latency)
+      : SlotUnit(name, fc, ch, st, latency) {
+    pipe_.reset(size_t(latency) + 2);  // one ray enters per cycle
+  }
+
+  // The pin-level view: hit.v (twin or RTL) at port.
+  void bind(pins::HitPort* port) { port_ = port; }
+  bool wants_edge() const { return edge_; }
 
   bool tick(Cycle now) {
-    if (!ch_.hit_q.can_pop(now)) return false;
+    bool active = false;
+    edge_ = false;
+    // A result leaving the unit: the slot is freed, the pixel written or the shadow ray handed
+    // over now (hit_latency cycles after the ray entered).
+    if (port_) {
+      if (port_->out_valid()) {  // put out at the last edge
+        const pins::HitOutRec x = port_->out();
+        Done d;
+        d.slot = side_[x.tag % side_.size()];
+        for (int i = 0; i < 3; ++i) {
+          d.ss.h[i] = x.h[i];
+          d.ss.ray.o[i] = x.o[i];
+          d.ss.ray.d[i] = x.d[i];
+          d.ss.ray.inv[i] = x.inv[i];
+        }
+        d.ss.front = x.front;
+        d.ss.spawn = x.spawn;
+        d.ss.dens = x.dens;
+        d.ss.ray.tmin = x.tmin;
+        d.ss.ray.tmax = x.tmax;
+        d.ss.skip_id = x.skip_id;
+        --in_flight_;
+        finish(d, now);
+        active = edge_ = true;
+      }
+    } else {
+      while (pipe_.can_pop(now)) {
+        finish(pipe_.pop(), now);
+        active = true;
+      }
+    }
+    // A ray entering: a finished primary ray (hit or miss) or shadow ray, one per cycle.
+    if (!ch_.hit_q.can_pop(now)) {
+      if (port_) {
+        port_->idle();
+        edge_ |= in_flight_ != 0;
+      }
+      return active || edge_;
+    }
     const uint16_t s = ch_.hit_q.pop();
+    ++st_.hit_busy;
+    const Slot& r = ch_.slots[s];
+    const Best& b = r.best;
+    const hls::HitTri ht{b.id, b.k, b.nu, b.nv, b.nd, b.den};
+    if (port_) {
+      drive(s, r, ht);
+      return true;
+    }
+    Done d;
+    d.slot = s;
+    if (!r.shadow && b.found)  // the unit's result for a primary hit (others: not read)
+      d.ss = hls::hit_shadow<A>(r.ray, b.t, ht, fc_.light, fc_.tmin, fc_.spawn);
+    pipe_.push(d, now + lat_);
+    return true;
+  }
+
+  Cycle next_event(Cycle now) const {
+    if (port_ && in_flight_ != 0) return now + 1;
+    return std::min(ch_.hit_q.head_ready(), pipe_.head_ready());
+  }
+
+ private:
+  struct Done {
+    uint16_t slot = 0;
+    hls::ShadowSetup ss{};
+  };
+
+  // The unit's result for slot d.slot, at cycle now (when it leaves the unit).
+  void finish(const Done& d, Cycle now) {
+    const uint16_t s = d.slot;
     Slot& r = ch_.slots[s];
     hls::PixelResult& p = fc_.frame->px[r.pixel];
-    const Cycle done = now + lat_;
-    ++st_.hit_busy;
     if (r.shadow) {
       p.lit = p.front && !r.best.found;  // --shadow-spawn all: a ray behind the light is not lit
       p.shadow_tri = r.best.found ? int32_t(r.best.id) : -1;
       p.shade = hls::shade_pixel(true, p.lit, r.cos_light);
       ++fc_.shadow_retired[r.pixel];
-      return retire(s, done);
+      return retire(s, now);
     }
     ++fc_.primary_retired[r.pixel];
     if (!r.best.found) {
       p.shade = hls::shade_pixel(false, false, 0);
-      return retire(s, done);
+      return retire(s, now);
     }
     const Best& b = r.best;
+    const hls::ShadowSetup& ss = d.ss;
     p.tri = int32_t(b.id);
     p.t_bits = b.t;
     p.t = A::to_double(b.t);
-    const hls::HitTri ht{b.id, b.k, b.nu, b.nv, b.nd, b.den};
-    const hls::ShadowSetup ss = hls::hit_shadow<A>(r.ray, b.t, ht, fc_.light, fc_.tmin, fc_.spawn);
     p.hit = {A::to_double(ss.h[0]) + fc_.offset[0], A::to_double(ss.h[1]) + fc_.offset[1],
              A::to_double(ss.h[2]) + fc_.offset[2]};
     p.front = ss.front;
     if (!ss.spawn) {
       p.shade = hls::shade_pixel(true, false, 0);
-      return retire(s, done);
+      return retire(s, now);
     }
     p.shadow_ray = true;
+    // The shade's cosine: a host-side computation in double from the unit's outputs (the shadow
+    // direction and dens) and the triangle's plane; not part of the unit.
     const double nu = A::to_double(b.nu), nv = A::to_double(b.nv);
     double l2 = 0;
     for (int i = 0; i < 3; ++i) l2 += A::to_double(ss.ray.d[i]) * A::to_double(ss.ray.d[i]);
@@ -61,23 +147,57 @@ class Hit : public SlotUnit {
     r.skip_id = ss.skip_id;
     r.shadow = true;
     r.state = SlotState::start;
-    ch_.shadow_q.push(s, done);
+    ch_.shadow_q.push(s, now);
     ++fc_.retired;  // the primary ray
     ++st_.retired;
-    fc_.last_retire = std::max(fc_.last_retire, done);
-    return true;
+    fc_.last_retire = std::max(fc_.last_retire, now);
   }
 
-  Cycle next_event() const { return ch_.hit_q.head_ready(); }
-
- private:
-  bool retire(uint16_t s, Cycle done) {
+  void retire(uint16_t s, Cycle now) {
     ch_.free_slots.push_back(s);
     ++fc_.retired;
     ++st_.retired;
-    fc_.last_retire = std::max(fc_.last_retire, done);
-    return true;
+    fc_.last_retire = std::max(fc_.last_retire, now);
   }
+
+  // Drives slot s's ray into the pin-level unit (the registers are written with the first ray:
+  // the light is the VTU's, translated at set-up).
+  void drive(uint16_t s, const Slot& r, const hls::HitTri& ht) {
+    if (!port_->in_ready()) throw std::logic_error("hit: pin-level unit not ready with out_ready high");
+    if (!configured_) {
+      pins::HitConfig c;
+      for (int i = 0; i < 3; ++i) c.light[i] = fc_.light[i];
+      c.tmin = fc_.tmin;
+      c.sp = fc_.spawn;
+      c.g = hls::hit_regs<A>(fc_.spawn);
+      port_->config(c);
+      configured_ = true;
+    }
+    pins::HitIn in;
+    for (int i = 0; i < 3; ++i) {
+      in.o[i] = r.ray.o[i];
+      in.d[i] = r.ray.d[i];
+    }
+    in.t = r.best.t;
+    in.k = ht.k;
+    in.nu = ht.n_u;
+    in.nv = ht.n_v;
+    in.nd = ht.n_d;
+    in.den = ht.den;
+    in.id = ht.id;
+    in.tag = next_tag_;
+    side_[next_tag_ % side_.size()] = s;
+    next_tag_ = (next_tag_ + 1) & 0xFFFFu;  // TAG_BITS 16
+    port_->drive(in);
+    ++in_flight_;
+    edge_ = true;
+  }
+
+  TimedFifo<Done> pipe_;          // the model: results leaving after hit_latency
+  pins::HitPort* port_ = nullptr;  // the pin-level view (nullptr: the model)
+  std::array<uint16_t, 1024> side_{};  // slot of each tag in flight
+  uint32_t next_tag_ = 0, in_flight_ = 0;
+  bool edge_ = false, configured_ = false;
 };
 
 }  // namespace raycore::sc

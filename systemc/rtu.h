@@ -95,10 +95,22 @@ class Rtu : public sc_core::sc_module {
       }
       ist.bind(ports);
     }
+    if (cfg.hit_view != UnitView::model) {
+      const unsigned stages = pin_stages("hit", cfg.hit_latency, 10, "--hit-latency");
+      if (cfg.hit_view == UnitView::twin)
+        hit_port_ = std::make_unique<pins::HitPortT<pins::HitTwin<A>>>(
+            "hit_pins", "SystemC twin", clock->clk, clock->rst_n, stages);
+      else
+        hit_port_ = pins::make_rtl_hit(hls::format_id<F>(), R, stages, "hit_rtl", clock->clk,
+                                       clock->rst_n);
+      if (!hit_port_) no_rtl("hit", stages);
+      hit.bind(hit_port_.get());
+    }
   }
   pins::VtuPort* vtu_port() { return vtu_port_.get(); }
   pins::IstPort* ist_port() { return ist_ports_.empty() ? nullptr : ist_ports_[0].get(); }
-  bool wants_edge() const { return vtu_unit.wants_edge() || ist.wants_edge(); }
+  pins::HitPort* hit_port() { return hit_port_.get(); }
+  bool wants_edge() const { return vtu_unit.wants_edge() || ist.wants_edge() || hit.wants_edge(); }
 
   bool tick(Cycle now) {
     node.now = list.now = tri.now = now;
@@ -116,7 +128,7 @@ class Rtu : public sc_core::sc_module {
     return a;
   }
   Cycle next_event(Cycle now) const {
-    Cycle t = std::min({vtu_unit.next_event(now), hit.next_event(), ist.next_event(now),
+    Cycle t = std::min({vtu_unit.next_event(now), hit.next_event(now), ist.next_event(now),
                         trv_rtl_ ? trv_rtl_->next_event(now) : trv.next_event(),
                         rgu.next_event(now)});
     return t;
@@ -176,6 +188,7 @@ class Rtu : public sc_core::sc_module {
   std::vector<std::unique_ptr<pins::IstPort>> ist_ports_;
   std::unique_ptr<TrvRtl> trv_rtl_;  // --rtl trv: rtl/units/trv_unit.v in trv's (and the ist
                                      // reduction's) place
+  std::unique_ptr<pins::HitPort> hit_port_;
 
  public:
   Rgu<A> rgu;

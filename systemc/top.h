@@ -42,7 +42,8 @@ class Top : public sc_core::sc_module {
         period_(1000.0 / cfg.clock_mhz, sc_core::SC_NS) {
     bus.set_l2(cfg.l2);
     if (cfg.rtus < 1 || cfg.rtus > 64) throw std::invalid_argument("rtus must be 1..64");
-    if (cfg.vtu_view != UnitView::model || cfg.ist_view != UnitView::model)
+    if (cfg.vtu_view != UnitView::model || cfg.ist_view != UnitView::model ||
+        cfg.hit_view != UnitView::model)
       clock_ = std::make_unique<pins::PinClock>(period_);
     for (int i = 0; i < cfg.rtus; ++i)
       rtus.push_back(std::make_unique<Rtu<A>>(("rtu" + std::to_string(i)).c_str(), fc, cfg, i,
@@ -88,6 +89,14 @@ class Top : public sc_core::sc_module {
         sc_core::sc_trace(tf_, t->s.out_tag, "rtu0_ist_out_tag_o");
         sc_core::sc_trace(tf_, t->s.out_exit, "rtu0_ist_out_exit_o");
         sc_core::sc_trace(tf_, t->s.out_t, "rtu0_ist_out_t_o");
+      }
+      if (pins::HitPort* h = rtus[0]->hit_port()) {
+        sc_core::sc_trace(tf_, h->s.in_valid, "rtu0_hit_in_valid_i");
+        sc_core::sc_trace(tf_, h->s.in_tag, "rtu0_hit_in_tag_i");
+        sc_core::sc_trace(tf_, h->s.out_valid, "rtu0_hit_out_valid_o");
+        sc_core::sc_trace(tf_, h->s.out_tag, "rtu0_hit_out_tag_o");
+        sc_core::sc_trace(tf_, h->s.out_spawn, "rtu0_hit_out_spawn_o");
+        sc_core::sc_trace(tf_, h->s.out_skip_id, "rtu0_hit_out_skip_id_o");
       }
     }
     SC_THREAD(run);

@@ -1,5 +1,5 @@
 // systemc/pins/rtl.h - the Verilated (--sc) models this binary can bind in place of a unit's
-// SystemC twin (raycore simulate --rtl vtu,ist). Built from rtl/ when RAYCORE_RTL is ON
+// SystemC twin (raycore simulate --rtl vtu,ist,hit). Built from rtl/ when RAYCORE_RTL is ON
 // (systemc/pins/rtl.cpp, models listed in rtl/CMakeLists.txt "raycore_rtl_frame"); without it
 // (the sanitizer build) every call says so (rtl_none.cpp).
 #pragma once
@@ -11,6 +11,7 @@
 
 #include "hls/fp.h"
 #include "hls/image.h"
+#include "systemc/pins/hit.h"
 #include "systemc/pins/ist.h"
 #include "systemc/pins/vtu.h"
 
@@ -21,6 +22,9 @@ std::unique_ptr<VtuPort> make_rtl_vtu(hls::FormatId f, hls::Rounding r, unsigned
                                       const char* name, sc_core::sc_signal<bool>& clk,
                                       sc_core::sc_signal<bool>& rst_n);
 std::unique_ptr<IstPort> make_rtl_ist(hls::FormatId f, hls::Rounding r, unsigned stages,
+                                      const char* name, sc_core::sc_signal<bool>& clk,
+                                      sc_core::sc_signal<bool>& rst_n);
+std::unique_ptr<HitPort> make_rtl_hit(hls::FormatId f, hls::Rounding r, unsigned stages,
                                       const char* name, sc_core::sc_signal<bool>& clk,
                                       sc_core::sc_signal<bool>& rst_n);
 // "vtu fp24 rtz STAGES=2, ..." or "none (built with RAYCORE_RTL=OFF)".

@@ -1,12 +1,13 @@
 // tb/systemc/test_pins.cpp - the pin-level units of the cycle model (systemc/pins/).
 //
 // Built twice (tb/systemc/CMakeLists.txt):
-//   test_pins      (label unit): frames with the SystemC twins (--pins vtu,ist) in the units'
+//   test_pins      (label unit): frames with the SystemC twins (--pins vtu,ist,hit) in the units'
 //                  places give the same cycles, bus bytes, tests and bits as the transaction model
 //                  (and the golden tracer's frame), across formats, roundings, STAGES, VTU on/off
 //                  and randomised memory latency; bad latencies are refused with a message.
 //   test_pins_rtl  (label rtl, RAYCORE_TEST_RTL): the same with the Verilated RTL (--rtl) bound in
-//                  place, every subset of {vtu, ist}; and unit lockstep tests: the SystemC twin and
+//                  place, every subset of {vtu, ist}, hit with several spawn strategies, and all
+//                  three; and unit lockstep tests: the SystemC twin and
 //                  the Verilated --sc model side by side on the same clock, the same random
 //                  stimulus (tb/rtl/stimulus.h) with random input gaps and random out_ready
 //                  back-pressure; in_ready_o, out_valid_o and every output transaction are compared
@@ -83,7 +84,59 @@ sim::TraceConfig margins_config(Rounding r, bool vtu) {
   return tc;
 }
 
+// The hit unit as `view` (vtu and ist the model): the corridor (VTU on, FP24 with rounding r) with
+// each spawn configuration, --rtus 1 and 3, gives the transaction model's cycles, frame, bus bytes,
+// tests and ray counts.
+void expect_hit_view(UnitView view, Rounding r, std::initializer_list<hls::SpawnParams> sps) {
+  for (const int rtus : {1, 3})
+    for (const hls::SpawnParams& sp : sps) {
+      auto tc = config(FormatId::fp24, r, true, 32, 20);
+      tc.spawn = sp;
+      sc::SimConfig cfg;
+      cfg.rtus = rtus;
+      const Summary model = expect_match(corridor(), tc, cfg);
+      cfg.hit_view = view;
+      const Summary p = expect_match(corridor(), tc, cfg);
+      const std::string what = std::string("hit ") + sc::unit_view_name(view) + " " +
+                               sim::to_string(sp.spawn) + (sp.segment ? " segment" : "") +
+                               (sp.spawn_all ? " all" : "") + " rtus " + std::to_string(rtus);
+      EXPECT_EQ(p.cycles, model.cycles) << what;
+      EXPECT_EQ(p.hash, model.hash) << what;
+      EXPECT_EQ(p.bus_bytes, model.bus_bytes) << what;
+      EXPECT_EQ(p.tri_tests, model.tri_tests) << what;
+      EXPECT_EQ(p.issued, model.issued) << what;
+      EXPECT_EQ(p.shadow, model.shadow) << what;
+      EXPECT_EQ(p.retired, model.retired) << what;
+    }
+}
+hls::SpawnParams spawn(hls::Spawn s, bool all = false, bool segment = false) {
+  hls::SpawnParams sp;
+  sp.spawn = s;
+  sp.spawn_all = all;
+  sp.segment = segment;
+  return sp;
+}
+
 #ifndef RAYCORE_TEST_RTL
+
+TEST(PinsFrame, HitTwinFp24Rtz) {
+  expect_hit_view(UnitView::twin, Rounding::rtz,
+                  {spawn(hls::Spawn::skip_origin), spawn(hls::Spawn::skip_back),
+                   spawn(hls::Spawn::none, true), spawn(hls::Spawn::error_bound),
+                   spawn(hls::Spawn::ulp_offset, false, true)});
+}
+TEST(PinsFrame, HitTwinFp24Rne) {
+  expect_hit_view(UnitView::twin, Rounding::rne,
+                  {spawn(hls::Spawn::skip_back), spawn(hls::Spawn::skip_slab, true),
+                   spawn(hls::Spawn::skip_offset), spawn(hls::Spawn::error_bound, true, true)});
+}
+TEST(PinsFrame, HitLatencyNotAMultipleOfTheLevelsIsRefused) {
+  const auto tc = config(FormatId::fp24, Rounding::rtz, true, 8, 8);
+  sc::SimConfig cfg;
+  cfg.hit_view = UnitView::twin;
+  cfg.hit_latency = 24;
+  expect_refused(tiny_scene(), tc, cfg, "--hit-latency must be 10 x STAGES");
+}
 
 TEST(PinsFrame, TwinsWithMargins) {
   expect_same_frame(corridor(), margins_config(Rounding::rtz, true), {}, UnitView::twin,
@@ -165,6 +218,36 @@ TEST(PinsFrameRtl, IstUnitsOneAndThree) {
 TEST(PinsFrameRtl, VtuAndIstFp24Raycore) {
   expect_same_frame(corridor(), config(FormatId::fp24, Rounding::raycore, true, 32, 20), {},
                     UnitView::rtl, UnitView::rtl);
+}
+TEST(PinsFrameRtl, HitFp24Rtz) {
+  expect_hit_view(UnitView::rtl, Rounding::rtz,
+                  {spawn(hls::Spawn::skip_origin), spawn(hls::Spawn::skip_back),
+                   spawn(hls::Spawn::none, true), spawn(hls::Spawn::error_bound)});
+}
+TEST(PinsFrameRtl, HitFp24Rne) {
+  expect_hit_view(UnitView::rtl, Rounding::rne,
+                  {spawn(hls::Spawn::skip_back), spawn(hls::Spawn::ulp_offset, true),
+                   spawn(hls::Spawn::skip_origin, false, true), spawn(hls::Spawn::none)});
+}
+// vtu, ist and hit all as Verilated RTL, FP24 raycore, skip-back with every hit spawning.
+TEST(PinsFrameRtl, VtuIstHitFp24Raycore) {
+  auto tc = config(FormatId::fp24, Rounding::raycore, true, 32, 20);
+  tc.spawn = spawn(hls::Spawn::skip_back, true);
+  sc::SimConfig cfg;
+  const Summary model = expect_match(corridor(), tc, cfg);
+  cfg.vtu_view = cfg.ist_view = cfg.hit_view = UnitView::rtl;
+  const Summary p = expect_match(corridor(), tc, cfg);
+  EXPECT_EQ(p.cycles, model.cycles);
+  EXPECT_EQ(p.hash, model.hash);
+  EXPECT_EQ(p.bus_bytes, model.bus_bytes);
+  EXPECT_EQ(p.tri_tests, model.tri_tests);
+}
+TEST(PinsFrameRtl, HitMissingVariantIsNamed) {
+  sc::SimConfig cfg;
+  cfg.hit_view = UnitView::rtl;
+  const auto tc = config(FormatId::fp32, Rounding::rne, false, 8, 8);
+  const Summary r = expect_refused(tiny_scene(), tc, cfg, "no Verilated hit for fp32 rne STAGES=2");
+  EXPECT_NE(std::string(r.error).find("built: "), std::string::npos) << r.error;
 }
 TEST(PinsFrameRtl, MissingVariantIsNamed) {
   sc::SimConfig cfg;

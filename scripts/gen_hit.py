@@ -1,0 +1,259 @@
+#!/usr/bin/env python3
+"""scripts/gen_hit.py - writes rtl/units/hit.v, the hit unit's pipelined datapath.
+
+The datapath is described below as twelve sublevels of rtl/fp operators (spawn_ops groups, one
+kind of operator per group) with the values each reads; the script computes, for every value, the
+levels it has to be carried through (from the level that produces it to the last that reads it)
+and emits one fp_pipe per sublevel with exactly those values, so the carries cannot drift from the
+data flow. Run it after changing the description: python3 scripts/gen_hit.py > rtl/units/hit.v
+"""
+import re
+import sys
+
+W = "W"
+# Sublevels: (stages, [groups], [post wires]). A group is (op, [(out, a, b, c, sub)]); op: mul,
+# add (sub = 1'b1 subtracts), add3, rcp (1 / b), sqrt (of a). Expressions name values in braces:
+# {x} is x as available at the input of the sublevel (or at its output, for post wires and the
+# outputs). Post wires: (name, width, expr), combinational after the sublevel's registers.
+Z = "{W{1'b0}}"
+LEVELS = [
+    # 1 (level 1, first half): the hit point's products and the primary ray's error terms
+    ("SA", [
+        ("mul", [("td_x", "{th}", "{d_x}"), ("td_y", "{th}", "{d_y}"), ("td_z", "{th}", "{d_z}"),
+                 ("nuou", "{nu}", "{ou}"), ("nvov", "{nv}", "{ov}"), ("nudu", "{nu}", "{du}"),
+                 ("nvdv", "{nv}", "{dv}"), ("tden", "{t}", "{den}")]),
+        ("add", [("ndok", "{and}", "fabs({ok})")]),
+    ], []),
+    # 2 (level 1, second half): h = o + t d; e_num, e_den
+    ("SB", [
+        ("add", [("h_x", "{o_x}", "{td_x}"), ("h_y", "{o_y}", "{td_y}"), ("h_z", "{o_z}", "{td_z}")]),
+        ("add3", [("e_num", "{ndok}", "fabs({nuou})", "fabs({nvov})"),
+                  ("e_den", "fabs({dk})", "fabs({nudu})", "fabs({nvdv})")]),
+    ], []),
+    # 3 (level 2): light - h; |t d_i| + |h_i|, |n_i| |h_i|, |n_d| + |h_k|, n_u h_u, n_v h_v,
+    #   5 e_num, |t| e_den, 2 |t den|; the slab 2 ulps ulp(max |h_i|)
+    ("STAGES", [
+        ("sub", [("ld_x", "light_x_i", "{h_x}"), ("ld_y", "light_y_i", "{h_y}"),
+                 ("ld_z", "light_z_i", "{h_z}")]),
+        ("add", [("s_x", "fabs({td_x})", "fabs({h_x})"), ("s_y", "fabs({td_y})", "fabs({h_y})"),
+                 ("s_z", "fabs({td_z})", "fabs({h_z})"),
+                 ("ndhk", "{and}", "fabs(pk({k}, {h_x}, {h_y}, {h_z}))")]),
+        ("mul", [("m_x", "fabs({n_x})", "fabs({h_x})"), ("m_y", "fabs({n_y})", "fabs({h_y})"),
+                 ("m_z", "fabs({n_z})", "fabs({h_z})"),
+                 ("nuhu", "pu({k}, {n_x}, {n_y}, {n_z})", "pu({k}, {h_x}, {h_y}, {h_z})"),
+                 ("nvhv", "pv({k}, {n_x}, {n_y}, {n_z})", "pv({k}, {h_x}, {h_y}, {h_z})"),
+                 ("c5num", "C5", "{e_num}"), ("ated", "{at}", "{e_den}"),
+                 ("c2tden", "C2", "fabs({tden})"),
+                 ("slab", "slab_scale_i", "ulp_max({h_x}[W-2:M], {h_y}[W-2:M], {h_z}[W-2:M])")]),
+    ], []),
+    # 4 (level 3): squares; |n_i| (|t d_i| + |h_i|); e_move's first sum; e_snum; 3 |t| e_den
+    ("STAGES", [
+        ("mul", [("sq_x", "{ld_x}", "{ld_x}"), ("sq_y", "{ld_y}", "{ld_y}"),
+                 ("sq_z", "{ld_z}", "{ld_z}"),
+                 ("x_x", "fabs({n_x})", "{s_x}"), ("x_y", "fabs({n_y})", "{s_y}"),
+                 ("x_z", "fabs({n_z})", "{s_z}"), ("c3ted", "C3", "{ated}")]),
+        ("add", [("em1", "{m_x}", "{m_y}")]),
+        ("add3", [("e_snum", "{ndhk}", "fabs({nuhu})", "fabs({nvhv})")]),
+    ], []),
+    # 5 (level 4): |light - h|^2; b1; e_hit's first sum, e_move; 5 e_snum
+    ("STAGES", [
+        ("add3", [("len2", "{sq_x}", "{sq_y}", "{sq_z}"),
+                  ("b1", "{c5num}", "{c3ted}", "{c2tden}")]),
+        ("add", [("eh1", "{x_x}", "{x_y}"), ("em", "{em1}", "{m_z}")]),
+        ("mul", [("c5snum", "C5", "{e_snum}")]),
+    ], []),
+    # 6 (level 5): the distance to the light; e_hit; 5 e_snum + e_move
+    ("STAGES", [
+        ("sqrt", [("len", "{len2}")]),
+        ("add", [("eh", "{eh1}", "{x_z}"), ("snmv", "{c5snum}", "{em}")]),
+    ], []),
+    # 7 (level 6): 1 / len; 2 e_hit
+    ("STAGES", [
+        ("rcp", [("rl", "{len}")]),
+        ("mul", [("c2hit", "C2", "{eh}")]),
+    ], []),
+    # 8 (level 7): the unit direction; the bound B. Then the shadow direction (segment: light - h)
+    ("STAGES", [
+        ("mul", [("dd_x", "{ld_x}", "{rl}"), ("dd_y", "{ld_y}", "{rl}"), ("dd_z", "{ld_z}", "{rl}")]),
+        ("add3", [("b2", "{b1}", "{c2hit}", "{snmv}")]),
+    ], [("ds_x", W, "segment_i ? {ld_x} : {dd_x}"), ("ds_y", W, "segment_i ? {ld_y} : {dd_y}"),
+        ("ds_z", W, "segment_i ? {ld_z} : {dd_z}")]),
+    # 9 (level 8): 1 / d_i; n_u d_u, n_v d_v; u B
+    ("STAGES", [
+        ("rcp", [("inv_x", "{ds_x}"), ("inv_y", "{ds_y}"), ("inv_z", "{ds_z}")]),
+        ("mul", [("nud", "pu({k}, {n_x}, {n_y}, {n_z})", "pu({k}, {ds_x}, {ds_y}, {ds_z})"),
+                 ("nvd", "pv({k}, {n_x}, {n_y}, {n_z})", "pv({k}, {ds_x}, {ds_y}, {ds_z})"),
+                 ("ub", "UU", "{b2}")]),
+    ], []),
+    # 10 (level 9): dens = n . d_shadow; delta = 2 u B. Then the light side and the operands of the
+    #   last level: n_i or -n_i (the side of the light), max(|dens|, 1/16)
+    ("STAGES", [
+        ("add3", [("dens", "pk({k}, {ds_x}, {ds_y}, {ds_z})", "{nud}", "{nvd}")]),
+        ("mul", [("delta", "C2", "{ub}")]),
+    ], [("front", "1", "{dens}[W-2:M] != {E{1'b0}} && {den}[W-2:M] != {E{1'b0}} && "
+                       "{dens}[W-1] != {den}[W-1]"),
+        ("sn_x", W, "{dens}[W-1] ? fneg({n_x}) : {n_x}"),
+        ("sn_y", W, "{dens}[W-1] ? fneg({n_y}) : {n_y}"),
+        ("sn_z", W, "{dens}[W-1] ? fneg({n_z}) : {n_z}"),
+        ("dmax", W, "fmax_sixteenth({dens})")]),
+    # 11 (level 10, first half): 1 / max(|dens|, 1/16); delta n_i (error-bound) or fixed * (+-n_i)
+    #   (ulp-offset), scale * (+-n_i); then the ulp-offset origin away from zero
+    ("SA", [
+        ("rcp", [("rd", "{dmax}")]),
+        ("mul", [("ma_x", "s_eb ? {delta} : fixed_i", "s_eb ? {n_x} : {sn_x}"),
+                 ("ma_y", "s_eb ? {delta} : fixed_i", "s_eb ? {n_y} : {sn_y}"),
+                 ("ma_z", "s_eb ? {delta} : fixed_i", "s_eb ? {n_z} : {sn_z}"),
+                 ("ps_x", "scale_i", "{sn_x}"), ("ps_y", "scale_i", "{sn_y}"),
+                 ("ps_z", "scale_i", "{sn_z}")]),
+    ], [("q_x", W, "add_ulps_num({h_x}, {ps_x})"), ("q_y", W, "add_ulps_num({h_y}, {ps_y})"),
+        ("q_z", W, "add_ulps_num({h_z}, {ps_z})")]),
+    # 12 (level 10, second half): the slab's t_min; h +- delta n (error-bound), h + fixed n_i
+    ("SB", [
+        ("mul", [("t0", "{slab}", "{rd}")]),
+        ("add", [("oa_x", "{h_x}", "{ma_x}", None, "s_eb & {dens}[W-1]"),
+                 ("oa_y", "{h_y}", "{ma_y}", None, "s_eb & {dens}[W-1]"),
+                 ("oa_z", "{h_z}", "{ma_z}", None, "s_eb & {dens}[W-1]")]),
+    ], []),
+]
+# The sublevels of the two fused levels: 1-2 (SA + SB = STAGES) and 11-12; the others STAGES.
+
+# Values available at the input (level 0) and their widths (default W).
+INPUTS = {"tag": "TAG_BITS", "id": "32", "k": "2", "th": W, "t": W, "at": W, "and": W, "den": W,
+          "nu": W, "nv": W, "n_x": W, "n_y": W, "n_z": W, "o_x": W, "o_y": W, "o_z": W,
+          "d_x": W, "d_y": W, "d_z": W, "ok": W, "ou": W, "ov": W, "dk": W, "du": W, "dv": W}
+# The outputs (expressions at the last level's output).
+OUTPUTS = [
+    ("out_h_x_o", "{h_x}"), ("out_h_y_o", "{h_y}"), ("out_h_z_o", "{h_z}"),
+    ("out_front_o", "{front}"), ("out_spawn_o", "spawn12"), ("out_dens_o", "{dens}"),
+    ("out_o_x_o", "!spawn12 ? {h_x} : s_eb ? {oa_x} : !s_ulp ? {h_x} : "
+     "{h_x}[W-2:M] < ENEAR ? {oa_x} : {q_x}"),
+    ("out_o_y_o", "!spawn12 ? {h_y} : s_eb ? {oa_y} : !s_ulp ? {h_y} : "
+     "{h_y}[W-2:M] < ENEAR ? {oa_y} : {q_y}"),
+    ("out_o_z_o", "!spawn12 ? {h_z} : s_eb ? {oa_z} : !s_ulp ? {h_z} : "
+     "{h_z}[W-2:M] < ENEAR ? {oa_z} : {q_z}"),
+    ("out_d_x_o", "{ds_x}"), ("out_d_y_o", "{ds_y}"), ("out_d_z_o", "{ds_z}"),
+    ("out_inv_x_o", "{inv_x}"), ("out_inv_y_o", "{inv_y}"), ("out_inv_z_o", "{inv_z}"),
+    ("out_tmin_o", "spawn12 && s_slab && flt(tmin_i, {t0}) ? {t0} : tmin_i"),
+    ("out_tmax_o", "segment_i ? ONE : {len}"),
+    ("out_skip_id_o", "spawn12 && s_skip ? {id} : 32'hFFFF_FFFF"),
+    ("out_tag_o", "{tag}"),
+]
+
+OPCODE = {"mul": 0, "add": 1, "sub": 1, "add3": 2, "rcp": 3, "sqrt": 4}
+NL = len(LEVELS)
+
+produced = {n: 0 for n in INPUTS}
+width = dict(INPUTS)
+for li, (_, groups, posts) in enumerate(LEVELS, 1):
+    for op, items in groups:
+        for it in items:
+            produced[it[0]] = li
+            width[it[0]] = W
+    for name, w, _ in posts:
+        produced[name] = li
+        width[name] = w
+last = {}  # value -> the last level at whose output it is needed
+
+
+def refs(expr):
+    return re.findall(r"\{([a-z_0-9]+)\}", expr)
+
+
+def need(name, at):
+    if name not in produced:
+        raise SystemExit(f"unknown value {name}")
+    if at < produced[name]:
+        raise SystemExit(f"{name} used at {at} before it is produced at {produced[name]}")
+    last[name] = max(last.get(name, 0), at)
+
+
+for li, (_, groups, posts) in enumerate(LEVELS, 1):
+    for op, items in groups:
+        for it in items:
+            for e in it[1:]:
+                if e:
+                    for n in refs(e):
+                        need(n, li - 1)
+    for name, w, e in posts:
+        for n in refs(e):
+            need(n, li)
+for _, e in OUTPUTS:
+    for n in refs(e):
+        need(n, NL)
+need("front", NL)
+
+
+def at(name, lvl):
+    """The wire holding `name` at the output of level lvl."""
+    p = produced[name]
+    if lvl == p:
+        return name if p > 0 else name + "_0"
+    return f"{name}_c{lvl}"
+
+
+def sub(expr, lvl):
+    return re.sub(r"\{([a-z_0-9]+)\}", lambda m: at(m.group(1), lvl), expr)
+
+
+def carried(lvl):
+    """Values carried through level lvl (produced before, needed at its output or later)."""
+    return [n for n in produced if produced[n] < lvl and last.get(n, -1) >= lvl]
+
+
+out = []
+w = out.append
+import os
+w(open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "gen_hit_head.v")).read().rstrip("\n") + "\n")
+unused = []
+v = lambda i: f"v[{i}]"
+for li, (stg, groups, posts) in enumerate(LEVELS, 1):
+    w(f"  // ---- sublevel {li} " + "-" * 78)
+    cs = carried(li)
+    cw = " + ".join(width[n] for n in cs)
+    w(f"  localparam integer C{li}_W = {cw};")
+    for n in cs:
+        w(f"  wire [{width[n]}-1:0] {at(n, li)};")
+    w(f"  fp_pipe #(.WIDTH(C{li}_W), .STAGES({stg})) u_c{li} (")
+    w(f"    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[{li-1}]), .in_ready_o(r[{li}]),")
+    w(f"    .in_data_i({{{', '.join(at(n, li - 1) for n in cs)}}}),")
+    w(f"    .out_valid_o(v[{li}]), .out_ready_i(r[{li+1}]),")
+    w(f"    .out_data_o({{{', '.join(at(n, li) for n in cs)}}}));")
+    for gi, (op, items) in enumerate(groups):
+        g = f"g{li}_{op}"
+        n = len(items)
+        a = [sub(it[1], li - 1) for it in items]
+        b = [sub(it[2], li - 1) if len(it) > 2 and it[2] else Z for it in items]
+        c = [sub(it[3], li - 1) if len(it) > 3 and it[3] else Z for it in items]
+        s = [sub(it[4], li - 1) if len(it) > 4 and it[4] else ("1'b1" if op == "sub" else "1'b0")
+             for it in items]
+        if op == "rcp":  # 1 / x: spawn_ops' divider takes (ONE, x); raycore's table takes x
+            b = a
+            a = ["ONE"] * n
+        w(f"  wire [{n}*W-1:0] {g}_res;")
+        w(f"  wire {g}_ur, {g}_uv;")
+        unused += [f"{g}_ur", f"{g}_uv"]
+        w(f"  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES({stg}),")
+        w(f"              .OP({OPCODE[op]}), .N({n})) u_{g} (")
+        w(f"    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[{li-1}]), .in_ready_o({g}_ur),")
+        rev = lambda xs: "{" + ", ".join(reversed(xs)) + "}"
+        w(f"    .in_a_i({rev(a)}),")
+        w(f"    .in_b_i({rev(b)}),")
+        w(f"    .in_c_i({rev(c)}), .in_sub_i({rev(s)}),")
+        w(f"    .out_valid_o({g}_uv), .out_ready_i(r[{li+1}]), .out_res_o({g}_res));")
+        for i, it in enumerate(items):
+            w(f"  wire [W-1:0] {it[0]} = {g}_res[{i}*W +: W];")
+    for name, wd, e in posts:
+        w(f"  wire [{wd}-1:0] {name} = {sub(e, li)};")
+    w("")
+w("  // ---- outputs " + "-" * 84)
+w(f"  assign out_valid_o = v[{NL}];")
+w(f"  assign r[{NL+1}] = out_ready_i;")
+w(f"  wire spawn12 = {at('front', NL)} | all_i;  // a shadow ray: light in front, or every hit")
+for o, e in OUTPUTS:
+    w(f"  assign {o} = {sub(e, NL)};")
+w("")
+w("  wire unused_hs;")
+w("  assign unused_hs = ^{" + ", ".join(unused) + "};")
+w("")
+w("endmodule")
+print("\n".join(out))
