@@ -74,6 +74,11 @@ struct SimConfig {
   uint32_t ist_queue = 32;       // ist input queue (triangle tests waiting)
   uint32_t hit_latency = 20;     // hit point + shadow set-up (sqrt, rcp)
   uint32_t tile = 8;             // rgu: square tiles of tile x tile pixels, round-robin over RTUs
+  // rgu: the primary-ray datapath's latency; rtl/units/rgu.v has 8 operator levels of STAGES
+  // registers: 16 = STAGES 2. The first primary ray leaves hls::RguTiles::startup() (the walk's
+  // set-up after start in cycle 0) + rgu_latency cycles into the frame, as from rgu.v.
+  uint32_t rgu_latency = 16;
+  UnitView rgu_view = UnitView::model;
   // Simulator.
   std::string trace_file;  // VCD of the top-level handshakes and counters
   bool progress = false;   // progress bar on stderr
