@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 
 namespace raycore::sc {
@@ -23,6 +24,13 @@ struct L2Config {
   uint32_t line_bytes = 64;
   uint32_t latency = 20;    // cycles from accepting a request to its first beat on a hit
   uint32_t bandwidth = 32;  // bytes per cycle from the L2 to the RTUs' caches
+};
+
+// A configuration the model refuses because of what is built or what a pin-level unit's ports
+// allow (a latency that is no multiple of its operator levels, a format or depth with no Verilated
+// model, rgu tiles that are no power of two): the user's error, the CLI exits with status 2.
+struct ConfigError : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
 };
 
 // How a unit with a pin-level form is modelled in the frame: the fast transaction-level model

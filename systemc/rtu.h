@@ -100,18 +100,18 @@ class Rtu : public sc_core::sc_module {
       const unsigned stages = pin_stages("rgu", cfg.rgu_latency, 8, "--rgu-latency");
       const uint32_t tile = cfg.tile;
       if (tile < 2 || tile > 256 || (tile & (tile - 1)) != 0)
-        throw std::invalid_argument("rgu at pin level walks tiles of 2^TILE_BITS pixels a side: "
+        throw ConfigError("rgu at pin level walks tiles of 2^TILE_BITS pixels a side: "
                                     "tile must be a power of two 2..256, not " +
                                     std::to_string(tile));
       if (uint32_t(fc.width) > 65535 || uint32_t(fc.height) > 65535)
-        throw std::invalid_argument("rgu at pin level: frames up to 65535 pixels a side "
+        throw ConfigError("rgu at pin level: frames up to 65535 pixels a side "
                                     "(rgu.v's COORD_BITS 16)");
       if (cfg.rgu_view == UnitView::twin) {
         rgu_port_ = std::make_unique<pins::RguPortT<pins::RguTwin<A>>>(
             "rgu_pins", "SystemC twin", clock->clk, clock->rst_n, stages, int(tile));
       } else {
         if (tile != pins::kRtlRguTile)
-          throw std::invalid_argument("no Verilated rgu with " + std::to_string(tile) + " x " +
+          throw ConfigError("no Verilated rgu with " + std::to_string(tile) + " x " +
                                       std::to_string(tile) + " tiles in this build (built: " +
                                       std::to_string(pins::kRtlRguTile) + " x " +
                                       std::to_string(pins::kRtlRguTile) + "); models: " +
@@ -169,14 +169,14 @@ class Rtu : public sc_core::sc_module {
   // A pin-level unit has levels x STAGES registers: the model's latency must be such a multiple.
   static unsigned pin_stages(const char* unit, uint32_t latency, uint32_t levels, const char* opt) {
     if (latency == 0 || latency % levels != 0 || latency / levels > 64)
-      throw std::invalid_argument(std::string(unit) + " at pin level has " + std::to_string(levels) +
+      throw ConfigError(std::string(unit) + " at pin level has " + std::to_string(levels) +
                                   " operator levels of STAGES registers: " + opt + " must be " +
                                   std::to_string(levels) + " x STAGES (STAGES 1..64), not " +
                                   std::to_string(latency));
     return latency / levels;
   }
   static void no_rtl(const char* unit, unsigned stages) {
-    throw std::invalid_argument(std::string("no Verilated ") + unit + " for " +
+    throw ConfigError(std::string("no Verilated ") + unit + " for " +
                                 hls::format_name(hls::format_id<F>()) + " " +
                                 hls::rounding_name(R) + " STAGES=" +
                                 std::to_string(stages) + " in this build; built: " +
