@@ -246,14 +246,17 @@ TEST(PinsFrameRtl, MissingVariantIsNamed) {
 // raycore and FP32, several RTUs, randomised memory latency, small caches (misses, looping, ist
 // queue full), margins, any-hit shadow rays and the other units in RTL too.
 void expect_trv_rtl(const scenes::Scene& s, const sim::TraceConfig& tc, sc::SimConfig cfg,
-                    UnitView vtu = UnitView::model, UnitView ist = UnitView::model) {
+                    UnitView vtu = UnitView::model, UnitView ist = UnitView::model,
+                    UnitView rgu = UnitView::model) {
   const Summary model = expect_match(s, tc, cfg);
   cfg.trv_view = UnitView::rtl;
   cfg.vtu_view = vtu;
   cfg.ist_view = ist;
+  cfg.rgu_view = rgu;
   const Summary p = expect_match(s, tc, cfg);
   const std::string what = "trv rtl, vtu " + std::string(sc::unit_view_name(vtu)) + ", ist " +
-                           sc::unit_view_name(ist) + ", pipes " + std::to_string(cfg.trv_pipes) +
+                           sc::unit_view_name(ist) + ", rgu " + sc::unit_view_name(rgu) +
+                           ", pipes " + std::to_string(cfg.trv_pipes) +
                            (cfg.trv_fuse ? " fused" : "");
   EXPECT_EQ(p.cycles, model.cycles) << what;
   EXPECT_EQ(p.hash, model.hash) << what;
@@ -303,6 +306,13 @@ TEST(TrvRtlFrame, Fp24RaycoreAndFp32) {
 TEST(TrvRtlFrame, WithVtuAndIstRtl) {
   expect_trv_rtl(corridor(), config(FormatId::fp24, Rounding::rtz, true, 32, 20), {}, UnitView::rtl,
                  UnitView::rtl);
+}
+// Every unit with RTL in the frame: trv, vtu, ist and rgu (its primary rays), 3 RTUs.
+TEST(TrvRtlFrame, WithVtuIstRguRtl) {
+  sc::SimConfig cfg;
+  cfg.rtus = 3;
+  expect_trv_rtl(corridor(), config(FormatId::fp24, Rounding::rne, true, 32, 20), cfg, UnitView::rtl,
+                 UnitView::rtl, UnitView::rtl);
 }
 TEST(TrvRtlFrame, RefusesWhatTheModelCannotRun) {
   const auto tc = config(FormatId::fp24, Rounding::rtz, false, 8, 8);
