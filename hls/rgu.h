@@ -19,6 +19,7 @@
 // (systemc/rgu.h) issues its primary rays in this order; rtl/units/rgu_walk.v is its twin.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -70,6 +71,13 @@ inline RguCamera rgu_camera(const uint32_t origin[3], const Vec3& forward, const
   return c;
 }
 
+// A primary ray's interval: tmin (the host's register) to the format's largest number.
+template <class A>
+constexpr void rgu_interval(Ray& r, uint32_t tmin) {
+  r.tmin = tmin;
+  r.tmax = A::Fmt::max_mag;
+}
+
 // The unit's datapath: the primary ray through the centre of pixel (x, y). 9 mul, 4 add3, 1 sqrt,
 // 4 rcp, in eight levels: products, sums, squares, their sum, sqrt, rcp, the normalised
 // direction, its reciprocals (rtl/units/rgu.v).
@@ -86,8 +94,7 @@ constexpr Ray rgu_primary(const RguCamera& c, uint32_t x, uint32_t y, uint32_t t
     r.d[i] = A::mul(p[i], rl);
     r.inv[i] = A::rcp(r.d[i]);
   }
-  r.tmin = tmin;
-  r.tmax = A::Fmt::max_mag;
+  rgu_interval<A>(r, tmin);
   return r;
 }
 
@@ -95,12 +102,17 @@ constexpr Ray rgu_primary(const RguCamera& c, uint32_t x, uint32_t y, uint32_t t
 class RguTiles {
  public:
   RguTiles(int width, int height, int tile, int rtu, int rtus)
-      : w_(width), h_(height), tile_(tile), rtus_(rtus), tile_idx_(rtu) {
+      : w_(width), h_(height), tile_(tile), rtu_(rtu), rtus_(rtus), tile_idx_(rtu) {
     tiles_x_ = (w_ + tile_ - 1) / tile_;
     tiles_ = tiles_x_ * ((h_ + tile_ - 1) / tile_);
     advance_to_valid();
   }
   bool done() const { return tile_idx_ >= tiles_; }
+  // The walk's start-up in rtl/units/rgu_walk.v: with start in cycle 0, the first pixel is at the
+  // walk's output (the datapath's input) in this cycle: start is sampled at the end of cycle 0,
+  // then one cycle per subtraction dividing rtu and rtus by the tile columns, then one cycle
+  // loading the first tile. The unit's first ray comes rgu_ray.v's 8 x STAGES cycles later.
+  int startup() const { return std::max(rtu_, rtus_) / tiles_x_ + 2; }
   int x() const { return (tile_idx_ % tiles_x_) * tile_ + px_; }
   int y() const { return (tile_idx_ / tiles_x_) * tile_ + py_; }
   uint32_t pixel() const { return uint32_t(y()) * uint32_t(w_) + uint32_t(x()); }
@@ -124,7 +136,7 @@ class RguTiles {
     while (!done() && !pixel_ok()) step();
   }
 
-  int w_, h_, tile_, rtus_;
+  int w_, h_, tile_, rtu_, rtus_;
   int tiles_x_ = 0, tiles_ = 0, tile_idx_ = 0, px_ = 0, py_ = 0;
 };
 

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "sim/cli.h"
+#include "systemc/config.h"
 
 namespace raycore::cli {
 namespace {
@@ -29,6 +30,9 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   } catch (const raycore::cli::UserError& e) {
+    std::fprintf(stderr, "raycore: %s\n", e.what());
+    return 2;
+  } catch (const raycore::sc::ConfigError& e) {  // e.g. --rtl of a configuration not built
     std::fprintf(stderr, "raycore: %s\n", e.what());
     return 2;
   } catch (const std::exception& e) {

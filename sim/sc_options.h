@@ -83,6 +83,8 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
   opt("--ist-units", &SimConfig::ist_units, "intersection pipelines per RTU (tests per cycle)", 1u, 16u);
   opt("--ist-latency", &SimConfig::ist_latency, "ist pipeline latency (sum of stages)", 1u, 1000u);
   opt("--hit-latency", &SimConfig::hit_latency, "hit unit latency", 1u, 1000u);
+  opt("--rgu-latency", &SimConfig::rgu_latency,
+      "rgu primary-ray datapath latency (rtl/units/rgu.v: 8 x STAGES)", 0u, 1000u);
   auto kb = [&](const char* name, CacheConfig SimConfig::*cache, const char* help) {
     auto value = std::make_shared<double>((o.cfg.*cache).size_bytes / 1024.0);
     c.add_option(name, *value, help)
@@ -101,13 +103,14 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
     auto list = std::make_shared<std::vector<std::string>>();
     c.add_option(name, *list, help)
         ->delimiter(',')
-        ->check(CLI::IsMember({"vtu", "ist", "trv", "hit"}))
+        ->check(CLI::IsMember({"vtu", "ist", "trv", "hit", "rgu"}))
         ->each([&o, list, view](const std::string& unit) {
           o.overrides.push_back([unit, view](SimConfig& s) {
             UnitView& v = unit == "vtu"   ? s.vtu_view
                           : unit == "ist" ? s.ist_view
                           : unit == "trv" ? s.trv_view
-                                          : s.hit_view;
+                          : unit == "hit" ? s.hit_view
+                                          : s.rgu_view;
             if (v != UnitView::model && v != view)
               throw raycore::cli::UserError("unit '" + unit + "' given to both --rtl and --pins");
             v = view;
@@ -115,10 +118,11 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
         });
   };
   views("--rtl", UnitView::rtl,
-        "units (vtu,ist,trv,hit) simulated by their Verilated RTL in the frame (vtu, ist, hit at "
-        "their pins; trv: rtl/units/trv_unit.v stepped from C++)");
+        "units (vtu,ist,trv,hit,rgu) simulated by their Verilated RTL in the frame (vtu, ist, hit, rgu "
+        "at their pins; rgu: the primary rays, shadow rays are forwarded by the model; trv: "
+        "rtl/units/trv_unit.v stepped from C++)");
   views("--pins", UnitView::twin,
-        "units (vtu,ist,hit) simulated by their pin-level SystemC twin (same ports as the RTL; trv "
+        "units (vtu,ist,hit,rgu) simulated by their pin-level SystemC twin (same ports as the RTL; trv "
         "has none)");
   c.add_option("--trace", o.cfg.trace_file, "write a VCD of the top-level handshakes and counters");
   c.add_option("--config", o.config_file, "JSON file with the model's parameters (options override it)");

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <stdexcept>
 #include <string>
 
 namespace raycore::sc {
@@ -23,6 +24,13 @@ struct L2Config {
   uint32_t line_bytes = 64;
   uint32_t latency = 20;    // cycles from accepting a request to its first beat on a hit
   uint32_t bandwidth = 32;  // bytes per cycle from the L2 to the RTUs' caches
+};
+
+// A configuration the model refuses because of what is built or what a pin-level unit's ports
+// allow (a latency that is no multiple of its operator levels, a format or depth with no Verilated
+// model, rgu tiles that are no power of two): the user's error, the CLI exits with status 2.
+struct ConfigError : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
 };
 
 // How a unit with a pin-level form is modelled in the frame: the fast transaction-level model
@@ -76,6 +84,11 @@ struct SimConfig {
                                  //   shadow ray, spawn; sqrt, rcp)
   UnitView hit_view = UnitView::model;
   uint32_t tile = 8;             // rgu: square tiles of tile x tile pixels, round-robin over RTUs
+  // rgu: the primary-ray datapath's latency; rtl/units/rgu.v has 8 operator levels of STAGES
+  // registers: 16 = STAGES 2. The first primary ray leaves hls::RguTiles::startup() (the walk's
+  // set-up after start in cycle 0) + rgu_latency cycles into the frame, as from rgu.v.
+  uint32_t rgu_latency = 16;
+  UnitView rgu_view = UnitView::model;
   // Simulator.
   std::string trace_file;  // VCD of the top-level handshakes and counters
   bool progress = false;   // progress bar on stderr

@@ -1,11 +1,29 @@
 // systemc/rgu.h - ray generation: primary rays in tile order (hls::RguTiles: tile i of the frame
 // belongs to RTU i mod N), one ray per cycle into a free slot, each computed by hls::rgu_primary
 // from the camera registers (FrameCtx::rgu_cam); shadow rays handed over by hit go first.
+//
+// Start-up, as rtl/units/rgu.v: the host starts the unit in cycle 0; its walk divides rtu and N by
+// the tile columns and loads the first tile (hls::RguTiles::startup() cycles), then the datapath
+// takes `latency` cycles (SimConfig::rgu_latency = 8 x STAGES), so the first primary ray can be
+// issued in cycle startup() + latency. After that the datapath, kept full by back-pressure, has a
+// ray in every cycle until the RTU's last pixel.
+//
+// Two views (SimConfig::rgu_view): the transaction model (the ray computed at issue), or a
+// pin-level rgu (systemc/pins/rgu.h: the SystemC twin or the Verilated rgu.v) started in cycle 0
+// and clocked in every cycle of its start-up and in every cycle the model takes a ray, with
+// out_ready_i high exactly then. The model's schedule decides when a primary ray is issued; the
+// pins must agree (out_valid_o high then, low before the first ray, the pixel the model expects:
+// else std::logic_error naming the cycle), and the ray's bits and pixel index in the slot are the
+// pins'. rgu.v has no shadow path: shadow rays are forwarded here in every view.
 #pragma once
 
 #include <systemc>
 
+#include <stdexcept>
+#include <string>
+
 #include "hls/rgu.h"
+#include "systemc/pins/rgu.h"
 #include "systemc/slot.h"
 
 namespace raycore::sc {
@@ -14,13 +32,32 @@ template <class A>
 class Rgu : public sc_core::sc_module {
  public:
   Rgu(sc_core::sc_module_name name, FrameCtx& fc, RtuChannels& ch, RtuStats& st, int rtu, int rtus,
-      uint32_t tile)
-      : sc_core::sc_module(name), fc_(fc), ch_(ch), st_(st),
-        walk_(fc.width, fc.height, int(tile), rtu, rtus) {}
+      uint32_t tile, uint32_t latency)
+      : sc_core::sc_module(name), fc_(fc), ch_(ch), st_(st), rtu_(rtu), rtus_(rtus),
+        walk_(fc.width, fc.height, int(tile), rtu, rtus),
+        first_(Cycle(walk_.startup()) + latency) {}
+
+  // The pin-level view (nullptr: the model): the port's configuration registers are written
+  // here, start_i goes high in cycle 0.
+  void bind(pins::RguPort* p) {
+    port_ = p;
+    if (!port_) return;
+    port_->config(fc_.rgu_cam, fc_.width, fc_.height, rtu_, rtus_);
+    port_->start(false);
+    port_->out_ready(false);
+  }
+  bool wants_edge() const { return edge_; }
+  pins::RguPort* port() const { return port_; }
+  Cycle first_primary() const { return first_; }
 
   bool primaries_left() const { return !walk_.done(); }
 
   bool tick(Cycle now) {
+    edge_ = false;
+    if (port_) {
+      port_->out_ready(false);
+      port_->start(now == 0 && primaries_left());
+    }
     if (ch_.shadow_q.can_pop(now) && ch_.trv_q.can_push()) {
       const uint16_t s = ch_.shadow_q.pop();
       ch_.trv_q.push(s, now + 1);
@@ -30,6 +67,14 @@ class Rgu : public sc_core::sc_module {
       return true;
     }
     if (!primaries_left()) return false;
+    if (now < first_) {  // start-up: the pin-level unit is clocked through it
+      if (!port_) return false;
+      if (port_->out_valid())
+        throw std::logic_error(where(now) + "out_valid_o is high before the model's first primary "
+                               "ray (cycle " + std::to_string(first_) + ")");
+      edge_ = true;
+      return true;
+    }
     if (ch_.free_slots.empty() || !ch_.trv_q.can_push()) {
       ++st_.rgu_stall_no_slot;
       return false;
@@ -37,9 +82,28 @@ class Rgu : public sc_core::sc_module {
     const uint16_t s = ch_.free_slots.back();
     ch_.free_slots.pop_back();
     Slot& sl = ch_.slots[s];
-    sl.ray = hls::rgu_primary<A>(fc_.rgu_cam, uint32_t(walk_.x()), uint32_t(walk_.y()), fc_.tmin);
+    if (port_) {
+      if (!port_->out_valid())
+        throw std::logic_error(where(now) + "the model issues the primary ray of pixel " +
+                               std::to_string(walk_.pixel()) + " but out_valid_o is low");
+      const pins::RguRay r = port_->out();
+      if (r.pixel != walk_.pixel())
+        throw std::logic_error(where(now) + "out_pixel_o is " + std::to_string(r.pixel) +
+                               ", the model's next pixel " + std::to_string(walk_.pixel()));
+      for (int i = 0; i < 3; ++i) {
+        sl.ray.o[i] = r.o[i];
+        sl.ray.d[i] = r.d[i];
+        sl.ray.inv[i] = r.inv[i];
+      }
+      hls::rgu_interval<A>(sl.ray, fc_.tmin);  // tmin and tmax: not the unit's
+      sl.pixel = r.pixel;
+      port_->out_ready(true);
+      edge_ = true;
+    } else {
+      sl.ray = hls::rgu_primary<A>(fc_.rgu_cam, uint32_t(walk_.x()), uint32_t(walk_.y()), fc_.tmin);
+      sl.pixel = walk_.pixel();
+    }
     sl.shadow = false;
-    sl.pixel = walk_.pixel();
     sl.skip_id = ~0u;
     sl.state = SlotState::start;
     ch_.trv_q.push(s, now + 1);
@@ -56,15 +120,24 @@ class Rgu : public sc_core::sc_module {
 
   Cycle next_event(Cycle now) const {
     Cycle t = ch_.shadow_q.head_ready();
-    if (primaries_left() && !ch_.free_slots.empty()) t = std::min(t, now + 1);
+    if (primaries_left() && !ch_.free_slots.empty()) t = std::min(t, std::max(now + 1, first_));
     return t;
   }
 
  private:
+  std::string where(Cycle now) const {
+    return "rgu of RTU " + std::to_string(rtu_) + " (" + port_->model() + "), cycle " +
+           std::to_string(now) + ": ";
+  }
+
   FrameCtx& fc_;
   RtuChannels& ch_;
   RtuStats& st_;
+  int rtu_, rtus_;
   hls::RguTiles walk_;
+  Cycle first_;                      // the first cycle a primary ray can be issued in
+  pins::RguPort* port_ = nullptr;    // pin-level view
+  bool edge_ = false;
 };
 
 }  // namespace raycore::sc

@@ -16,6 +16,7 @@
 #include "systemc/ist.h"
 #include "systemc/membus.h"
 #include "systemc/pins/clock.h"
+#include "systemc/pins/rgu.h"
 #include "systemc/pins/rtl.h"
 #include "systemc/rgu.h"
 #include "systemc/slot.h"
@@ -41,7 +42,7 @@ class Rtu : public sc_core::sc_module {
         vtu_unit("vtu", vtu_on, vtu, cfg.vtu_depth, fc.header, {&node, &list, &tri},
                  cfg.node_cache.mshrs + cfg.list_cache.mshrs + cfg.tri_cache.mshrs),
         ch_(make_channels(cfg)),
-        rgu("rgu", fc, ch_, st_, index, cfg.rtus, cfg.tile),
+        rgu("rgu", fc, ch_, st_, index, cfg.rtus, cfg.tile, cfg.rgu_latency),
         trv("trv", fc, ch_, st_, cfg.trv_latency, cfg.trv_pipes, cfg.trv_fuse),
         ist("ist", fc, ch_, st_, cfg.ist_latency, cfg.ist_units),
         hit("hit", fc, ch_, st_, cfg.hit_latency),
@@ -58,15 +59,14 @@ class Rtu : public sc_core::sc_module {
   // The pin-level units of this RTU (SystemC twins or Verilated RTL in the units' places).
   void bind_pins(FrameCtx& fc, const SimConfig& cfg, pins::PinClock* clock) {
     if (cfg.trv_view == UnitView::twin)
-      throw std::invalid_argument("trv has no pin-level SystemC twin (its transaction model is the "
-                                  "twin of rtl/units/trv_unit.v): use --rtl trv");
+      throw ConfigError("trv has no pin-level SystemC twin (its transaction model is the twin of "
+                        "rtl/units/trv_unit.v): use --rtl trv");
     if (cfg.trv_view == UnitView::rtl) {
       trv_rtl_ = make_rtl_trv(hls::format_id<F>(), R, fc, ch_, cfg);
       if (!trv_rtl_)
-        throw std::invalid_argument(std::string("no Verilated trv_unit for ") +
-                                    hls::format_name(hls::format_id<F>()) + " " +
-                                    hls::rounding_name(R) + " in this build; built: " +
-                                    rtl_trv_built());
+        throw ConfigError(std::string("no Verilated trv_unit for ") +
+                          hls::format_name(hls::format_id<F>()) + " " + hls::rounding_name(R) +
+                          " in this build; built: " + rtl_trv_built());
     }
     if (cfg.vtu_view != UnitView::model) {
       const unsigned stages = pin_stages("vtu", cfg.vtu_depth, 3, "--vtu-depth");
@@ -106,11 +106,39 @@ class Rtu : public sc_core::sc_module {
       if (!hit_port_) no_rtl("hit", stages);
       hit.bind(hit_port_.get());
     }
+    if (cfg.rgu_view != UnitView::model) {  // the primary rays (rgu.v has no shadow path)
+      const unsigned stages = pin_stages("rgu", cfg.rgu_latency, 8, "--rgu-latency");
+      const uint32_t tile = cfg.tile;
+      if (tile < 2 || tile > 256 || (tile & (tile - 1)) != 0)
+        throw ConfigError("rgu at pin level walks tiles of 2^TILE_BITS pixels a side: tile must "
+                          "be a power of two 2..256, not " + std::to_string(tile));
+      if (uint32_t(fc.width) > 65535 || uint32_t(fc.height) > 65535)
+        throw ConfigError("rgu at pin level: frames up to 65535 pixels a side (rgu.v's "
+                          "COORD_BITS 16)");
+      if (cfg.rgu_view == UnitView::twin) {
+        rgu_port_ = std::make_unique<pins::RguPortT<pins::RguTwin<A>>>(
+            "rgu_pins", "SystemC twin", clock->clk, clock->rst_n, stages, int(tile));
+      } else {
+        if (tile != pins::kRtlRguTile)
+          throw ConfigError("no Verilated rgu with " + std::to_string(tile) + " x " +
+                            std::to_string(tile) + " tiles in this build (built: " +
+                            std::to_string(pins::kRtlRguTile) + " x " +
+                            std::to_string(pins::kRtlRguTile) + "); models: " +
+                            pins::rtl_models_built());
+        rgu_port_ = pins::make_rtl_rgu(hls::format_id<F>(), R, stages, "rgu_rtl", clock->clk,
+                                       clock->rst_n);
+      }
+      if (!rgu_port_) no_rtl("rgu", stages);
+      rgu.bind(rgu_port_.get());
+    }
   }
   pins::VtuPort* vtu_port() { return vtu_port_.get(); }
   pins::IstPort* ist_port() { return ist_ports_.empty() ? nullptr : ist_ports_[0].get(); }
   pins::HitPort* hit_port() { return hit_port_.get(); }
-  bool wants_edge() const { return vtu_unit.wants_edge() || ist.wants_edge() || hit.wants_edge(); }
+  pins::RguPort* rgu_port() { return rgu_port_.get(); }
+  bool wants_edge() const {
+    return vtu_unit.wants_edge() || ist.wants_edge() || hit.wants_edge() || rgu.wants_edge();
+  }
 
   bool tick(Cycle now) {
     node.now = list.now = tri.now = now;
@@ -153,18 +181,17 @@ class Rtu : public sc_core::sc_module {
   // A pin-level unit has levels x STAGES registers: the model's latency must be such a multiple.
   static unsigned pin_stages(const char* unit, uint32_t latency, uint32_t levels, const char* opt) {
     if (latency == 0 || latency % levels != 0 || latency / levels > 64)
-      throw std::invalid_argument(std::string(unit) + " at pin level has " + std::to_string(levels) +
-                                  " operator levels of STAGES registers: " + opt + " must be " +
-                                  std::to_string(levels) + " x STAGES (STAGES 1..64), not " +
-                                  std::to_string(latency));
+      throw ConfigError(std::string(unit) + " at pin level has " + std::to_string(levels) +
+                        " operator levels of STAGES registers: " + opt + " must be " +
+                        std::to_string(levels) + " x STAGES (STAGES 1..64), not " +
+                        std::to_string(latency));
     return latency / levels;
   }
   static void no_rtl(const char* unit, unsigned stages) {
-    throw std::invalid_argument(std::string("no Verilated ") + unit + " for " +
-                                hls::format_name(hls::format_id<F>()) + " " +
-                                hls::rounding_name(R) + " STAGES=" +
-                                std::to_string(stages) + " in this build; built: " +
-                                pins::rtl_models_built());
+    throw ConfigError(std::string("no Verilated ") + unit + " for " +
+                      hls::format_name(hls::format_id<F>()) + " " + hls::rounding_name(R) +
+                      " STAGES=" + std::to_string(stages) + " in this build; built: " +
+                      pins::rtl_models_built());
   }
 
   static RtuChannels make_channels(const SimConfig& cfg) {
@@ -189,6 +216,7 @@ class Rtu : public sc_core::sc_module {
   std::unique_ptr<TrvRtl> trv_rtl_;  // --rtl trv: rtl/units/trv_unit.v in trv's (and the ist
                                      // reduction's) place
   std::unique_ptr<pins::HitPort> hit_port_;
+  std::unique_ptr<pins::RguPort> rgu_port_;
 
  public:
   Rgu<A> rgu;

@@ -307,7 +307,9 @@ nlohmann::json config_json(const SimConfig& c) {
           {"ist_queue", c.ist_queue},
           {"hit_latency", c.hit_latency},
           {"hit_view", unit_view_name(c.hit_view)},
-          {"tile", c.tile}};
+          {"tile", c.tile},
+          {"rgu_latency", c.rgu_latency},
+          {"rgu_view", unit_view_name(c.rgu_view)}};
 }
 
 void config_from_json(const nlohmann::json& j, SimConfig& c) {
@@ -377,6 +379,8 @@ void config_from_json(const nlohmann::json& j, SimConfig& c) {
     else if (k == "ist_queue") c.ist_queue = u32(*it, k);
     else if (k == "hit_latency") c.hit_latency = u32(*it, k);
     else if (k == "tile") c.tile = u32(*it, k);
+    else if (k == "rgu_latency") c.rgu_latency = u32(*it, k);
+    else if (k == "rgu_view") c.rgu_view = unit_view(*it, k);
     else if (k == "vtu_view") c.vtu_view = unit_view(*it, k);
     else if (k == "ist_view") c.ist_view = unit_view(*it, k);
     else if (k == "trv_view") c.trv_view = unit_view(*it, k);

@@ -43,7 +43,8 @@ class Top : public sc_core::sc_module {
     bus.set_l2(cfg.l2);
     if (cfg.rtus < 1 || cfg.rtus > 64) throw std::invalid_argument("rtus must be 1..64");
     if (cfg.vtu_view != UnitView::model || cfg.ist_view != UnitView::model ||
-        cfg.hit_view != UnitView::model)
+        cfg.hit_view != UnitView::model ||
+        cfg.rgu_view != UnitView::model)
       clock_ = std::make_unique<pins::PinClock>(period_);
     for (int i = 0; i < cfg.rtus; ++i)
       rtus.push_back(std::make_unique<Rtu<A>>(("rtu" + std::to_string(i)).c_str(), fc, cfg, i,
@@ -97,6 +98,14 @@ class Top : public sc_core::sc_module {
         sc_core::sc_trace(tf_, h->s.out_tag, "rtu0_hit_out_tag_o");
         sc_core::sc_trace(tf_, h->s.out_spawn, "rtu0_hit_out_spawn_o");
         sc_core::sc_trace(tf_, h->s.out_skip_id, "rtu0_hit_out_skip_id_o");
+      }
+      if (pins::RguPort* g = rtus[0]->rgu_port()) {
+        sc_core::sc_trace(tf_, g->s.start, "rtu0_rgu_start_i");
+        sc_core::sc_trace(tf_, g->s.busy, "rtu0_rgu_busy_o");
+        sc_core::sc_trace(tf_, g->s.out_valid, "rtu0_rgu_out_valid_o");
+        sc_core::sc_trace(tf_, g->s.out_ready, "rtu0_rgu_out_ready_i");
+        sc_core::sc_trace(tf_, g->s.out_pixel, "rtu0_rgu_out_pixel_o");
+        sc_core::sc_trace(tf_, g->s.out_d_x, "rtu0_rgu_out_d_x_o");
       }
     }
     SC_THREAD(run);

@@ -50,11 +50,11 @@ class TrvRtlT final : public TrvRtl {
   TrvRtlT(const char* name, FrameCtx& fc, RtuChannels& ch, const SimConfig& cfg)
       : name_(name), fc_(fc), ch_(ch), cfg_(cfg) {
     if (cfg.mailbox != 0)
-      throw std::invalid_argument("--rtl trv: the RTL has no mailbox (--mailbox must be 0)");
+      throw ConfigError("--rtl trv: the RTL has no mailbox (--mailbox must be 0)");
     if (cfg.trv_pipes > PIPES || cfg.ist_units > IST || cfg.rays_in_flight > (1u << SLOT_BITS) ||
         cfg.list_cache.line_bytes > 4 * WORDS || cfg.trv_latency > 0xFFFF ||
         cfg.node_cache.hit_latency > 0xFFFF || cfg.list_cache.hit_latency > 0xFFFF)
-      throw std::invalid_argument(
+      throw ConfigError(
           "--rtl trv: " + name_ + " is built for at most " + std::to_string(PIPES) +
           " --trv-pipes, " + std::to_string(IST) + " --ist-units, " +
           std::to_string(1u << SLOT_BITS) + " --rays-in-flight and " + std::to_string(4 * WORDS) +

@@ -35,7 +35,7 @@ class TrvRtl {
 };
 
 // The Verilated trv_unit of that format and rounding bound to an RTU's frame context, channels and
-// caches (ch.node, ch.list). Throws std::invalid_argument for a configuration the built model
+// caches (ch.node, ch.list). Throws ConfigError for a configuration the built model
 // cannot run (mailbox, more pipes, ist units or slots than its parameters, list lines over 64
 // bytes); nullptr when no model of that format and rounding is built.
 std::unique_ptr<TrvRtl> make_rtl_trv(hls::FormatId f, hls::Rounding r, FrameCtx& fc, RtuChannels& ch,

@@ -22,6 +22,7 @@ module rgu #(
   parameter integer EXP_BITS   = 7,
   parameter integer MAN_BITS   = 16,
   parameter integer RNE        = 0,
+  parameter integer RAYCORE    = 0,   // rounding mode raycore (FP24; overrides RNE): see rgu_ray
   parameter integer STAGES     = 2,
   parameter integer COORD_BITS = 16,
   parameter integer TILE_BITS  = 3,
@@ -77,7 +78,7 @@ module rgu #(
     .out_valid_o(walk_valid), .out_ready_i(walk_ready),
     .out_x_o(walk_x), .out_y_o(walk_y), .out_pixel_o(walk_pixel));
 
-  rgu_ray #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .STAGES(STAGES),
+  rgu_ray #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
             .TAG_BITS(PB), .COORD_BITS(COORD_BITS)) u_ray (
     .clk_i(clk_i), .rst_ni(rst_ni),
     .cam_o_x_i(cam_o_x_i), .cam_o_y_i(cam_o_y_i), .cam_o_z_i(cam_o_z_i),

@@ -15,10 +15,13 @@
 //   3  p[c]*p[c]                                  3 fp_mul
 //   4  add3 of the squares                        1 fp_add3
 //   5  len = sqrt(...)                            1 fp_sqrt
-//   6  rl = 1 / len                               1 fp_div
+//   6  rl = 1 / len                               1 fp_div (RAYCORE: fp_rcp)
 //   7  d[c] = p[c] * rl                           3 fp_mul
-//   8  inv[c] = 1 / d[c]                          3 fp_div
+//   8  inv[c] = 1 / d[c]                          3 fp_div (RAYCORE: fp_rcp)
 // Latency = 8 * STAGES cycles (STAGES = 0: combinational), one ray per cycle.
+// RAYCORE = 1 (FP24): rounding mode raycore (hls Rounding::raycore, overrides RNE): the adders'
+// raycore windows, truncating conversions, products and square root, raycore's table reciprocal
+// (fp_rcp) for 1 / len and 1 / d.
 //
 // Handshake: valid/ready as every rtl/fp operator. The operators of a level receive the same
 // in_valid and out_ready and have the same depth, so their registers hold the same valid bits at
@@ -29,6 +32,7 @@ module rgu_ray #(
   parameter integer EXP_BITS   = 7,
   parameter integer MAN_BITS   = 16,
   parameter integer RNE        = 0,
+  parameter integer RAYCORE    = 0,   // rounding mode raycore (hls Rounding::raycore; RNE ignored)
   parameter integer STAGES     = 2,
   parameter integer TAG_BITS   = 32,
   parameter integer COORD_BITS = 16   // pixel coordinates 0 .. 2^COORD_BITS - 1
@@ -76,6 +80,8 @@ module rgu_ray #(
   localparam integer EXP_W = E + 3;
   localparam [W-1:0] ONE   = {1'b0, BIAS[E-1:0], {M{1'b0}}};  // 1.0
   localparam integer T     = TAG_BITS;
+  localparam integer RND   = RAYCORE != 0 ? 0 : RNE;  // raycore truncates (conversion, sqrt)
+  wire unused_one = ^ONE;  // not read with RAYCORE = 1 (fp_rcp has its own 1)
 
   // Level handshakes: v[L] / r[L] = valid / ready at the output of level L (index 0 = the input).
   wire [8:0] v;
@@ -92,10 +98,10 @@ module rgu_ray #(
   localparam integer COORD_EXP_I = BIAS + COORD_BITS - 1;
   localparam [EXP_W-1:0] COORD_EXP = COORD_EXP_I[EXP_W-1:0];
   wire [W-1:0] fx, fy;
-  fp_round #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .MAG_BITS(CM_W), .EXP_W(EXP_W)) u_cvt_x (
+  fp_round #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RND), .MAG_BITS(CM_W), .EXP_W(EXP_W)) u_cvt_x (
     .sign_i(1'b0), .exp_i(COORD_EXP), .mag_i({in_x_i, {(M+3){1'b0}}}), .sticky_i(1'b0),
     .res_o(fx));
-  fp_round #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .MAG_BITS(CM_W), .EXP_W(EXP_W)) u_cvt_y (
+  fp_round #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RND), .MAG_BITS(CM_W), .EXP_W(EXP_W)) u_cvt_y (
     .sign_i(1'b0), .exp_i(COORD_EXP), .mag_i({in_y_i, {(M+3){1'b0}}}), .sticky_i(1'b0),
     .res_o(fy));
 
@@ -111,7 +117,7 @@ module rgu_ray #(
   genvar gj;
   generate
     for (gj = 0; gj < 6; gj = gj + 1) begin : g_l1_mul
-      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_mul (
+      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_mul (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[gj]),
         .in_a_i(l1_a[gj*W +: W]), .in_b_i(l1_b[gj*W +: W]), .out_valid_o(l1_unused_v[gj]),
         .out_ready_i(r[2]), .out_res_o(l1_prod[gj*W +: W]));
@@ -128,7 +134,7 @@ module rgu_ray #(
     .out_valid_o(v[2]), .out_ready_i(r[3]), .out_data_o(c2_tag));
   generate
     for (gj = 0; gj < 3; gj = gj + 1) begin : g_l2_add3
-      fp_add3_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_add3 (
+      fp_add3_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_add3 (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[gj]),
         .in_a_i(l2_d00[gj*W +: W]), .in_b_i(l1_prod[gj*W +: W]),
         .in_c_i(l1_prod[(3+gj)*W +: W]), .out_valid_o(l2_unused_v[gj]), .out_ready_i(r[3]),
@@ -147,7 +153,7 @@ module rgu_ray #(
     .out_data_o({c3_tag, c3_p}));
   generate
     for (gj = 0; gj < 3; gj = gj + 1) begin : g_l3_mul
-      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_mul (
+      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_mul (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[gj]),
         .in_a_i(l2_p[gj*W +: W]), .in_b_i(l2_p[gj*W +: W]), .out_valid_o(l3_unused_v[gj]),
         .out_ready_i(r[4]), .out_res_o(l3_sq[gj*W +: W]));
@@ -163,7 +169,7 @@ module rgu_ray #(
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(r[4]),
     .in_data_i({c3_tag, c3_p}), .out_valid_o(v[4]), .out_ready_i(r[5]),
     .out_data_o({c4_tag, c4_p}));
-  fp_add3_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l4_add3 (
+  fp_add3_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_l4_add3 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(l4_unused_r),
     .in_a_i(l3_sq[0 +: W]), .in_b_i(l3_sq[W +: W]), .in_c_i(l3_sq[2*W +: W]),
     .out_valid_o(l4_unused_v), .out_ready_i(r[5]), .out_res_o(l4_len2));
@@ -177,7 +183,7 @@ module rgu_ray #(
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(r[5]),
     .in_data_i({c4_tag, c4_p}), .out_valid_o(v[5]), .out_ready_i(r[6]),
     .out_data_o({c5_tag, c5_p}));
-  fp_sqrt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l5_sqrt (
+  fp_sqrt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RND), .STAGES(STAGES)) u_l5_sqrt (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(l5_unused_r),
     .in_a_i(l4_len2), .in_tag_i(1'b0), .out_valid_o(l5_unused_v), .out_ready_i(r[6]),
     .out_res_o(l5_len), .out_tag_o(l5_unused_tag));
@@ -191,10 +197,20 @@ module rgu_ray #(
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(r[6]),
     .in_data_i({c5_tag, c5_p}), .out_valid_o(v[6]), .out_ready_i(r[7]),
     .out_data_o({c6_tag, c6_p}));
-  fp_op2_nt #(.OP("div"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l6_rcp (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(l6_unused_r),
-    .in_a_i(ONE), .in_b_i(l5_len), .out_valid_o(l6_unused_v), .out_ready_i(r[7]),
-    .out_res_o(l6_rl));
+  generate
+    if (RAYCORE != 0) begin : g_l6_table  // raycore: the table reciprocal (hls::rcp<F, raycore>)
+      wire unused_tag;
+      fp_rcp #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(STAGES)) u_l6_rcp (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(l6_unused_r),
+        .in_a_i(l5_len), .in_tag_i(1'b0), .out_valid_o(l6_unused_v), .out_ready_i(r[7]),
+        .out_res_o(l6_rl), .out_tag_o(unused_tag));
+    end else begin : g_l6_div  // rtz, rne: 1 / len, rounded once
+      fp_op2_nt #(.OP("div"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l6_rcp (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(l6_unused_r),
+        .in_a_i(ONE), .in_b_i(l5_len), .out_valid_o(l6_unused_v), .out_ready_i(r[7]),
+        .out_res_o(l6_rl));
+    end
+  endgenerate
 
   // ---- level 7: the normalised direction --------------------------------------------------------
   wire [3*W-1:0] l7_d;
@@ -205,7 +221,7 @@ module rgu_ray #(
     .out_valid_o(v[7]), .out_ready_i(r[8]), .out_data_o(c7_tag));
   generate
     for (gj = 0; gj < 3; gj = gj + 1) begin : g_l7_mul
-      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_mul (
+      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_mul (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(l7_unused_r[gj]),
         .in_a_i(c6_p[gj*W +: W]), .in_b_i(l6_rl), .out_valid_o(l7_unused_v[gj]),
         .out_ready_i(r[8]), .out_res_o(l7_d[gj*W +: W]));
@@ -223,10 +239,18 @@ module rgu_ray #(
     .out_data_o({c8_tag, c8_d}));
   generate
     for (gj = 0; gj < 3; gj = gj + 1) begin : g_l8_rcp
-      fp_op2_nt #(.OP("div"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_rcp (
-        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(l8_unused_r[gj]),
-        .in_a_i(ONE), .in_b_i(l7_d[gj*W +: W]), .out_valid_o(l8_unused_v[gj]),
-        .out_ready_i(r[9]), .out_res_o(l8_inv[gj*W +: W]));
+      if (RAYCORE != 0) begin : g_table
+        wire unused_tag;
+        fp_rcp #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(STAGES)) u_rcp (
+          .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(l8_unused_r[gj]),
+          .in_a_i(l7_d[gj*W +: W]), .in_tag_i(1'b0), .out_valid_o(l8_unused_v[gj]),
+          .out_ready_i(r[9]), .out_res_o(l8_inv[gj*W +: W]), .out_tag_o(unused_tag));
+      end else begin : g_div
+        fp_op2_nt #(.OP("div"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_rcp (
+          .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(l8_unused_r[gj]),
+          .in_a_i(ONE), .in_b_i(l7_d[gj*W +: W]), .out_valid_o(l8_unused_v[gj]),
+          .out_ready_i(r[9]), .out_res_o(l8_inv[gj*W +: W]));
+      end
     end
   endgenerate
 

@@ -29,6 +29,11 @@ class ReadyChain {
     return false;
   }
   bool out_valid() const { return v_.back(); }
+  bool any() const {  // some register holds an item
+    for (bool v : v_)
+      if (v) return true;
+    return false;
+  }
   const T& out() const { return d_.back(); }
   void reset() { v_.assign(v_.size(), false); }
   // One clock edge; in is taken only if in_valid && in_ready(out_ready).

@@ -22,6 +22,7 @@ bool matches(const char* fmt, const char* mode, unsigned stages, hls::FormatId f
 using PortOf_vtu = VtuPort;
 using PortOf_ist = IstPort;
 using PortOf_hit = HitPort;
+using PortOf_rgu = RguPort;
 
 // The built model of the unit whose port is Port (only its module's lines instantiate one; the
 // others' ports do not match), bound to a new Port; nullptr if none has that configuration.
@@ -54,6 +55,9 @@ std::unique_ptr<IstPort> make_rtl_ist(hls::FormatId f, hls::Rounding r, unsigned
 std::unique_ptr<HitPort> make_rtl_hit(hls::FormatId f, hls::Rounding r, unsigned s, const char* name,
                                       sc_core::sc_signal<bool>& clk, sc_core::sc_signal<bool>& rst_n) {
   return make_rtl<HitPort>(f, r, s, name, clk, rst_n);
+std::unique_ptr<RguPort> make_rtl_rgu(hls::FormatId f, hls::Rounding r, unsigned s, const char* name,
+                                      sc_core::sc_signal<bool>& clk, sc_core::sc_signal<bool>& rst_n) {
+  return make_rtl<RguPort>(f, r, s, name, clk, rst_n);
 }
 
 std::string rtl_models_built() {

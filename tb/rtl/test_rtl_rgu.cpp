@@ -15,8 +15,9 @@
 //   and datapath) runs whole frames for one RTU of N: 60 frames (sizes 1..90 x 1..60 and one
 //   800 x 480, N = 1..8, every RTU index), the rays compared in order with hls::RguTiles (the
 //   cycle model's order) and hls::rgu_primary: pixel index, o, d, inv. Every third frame runs at
-//   full rate (out_ready_i always high: the rays must leave one per cycle, no bubble, after a
-//   set-up of at most max(rtu, N) / tiles_x + 2 + 8*STAGES cycles), the others with random
+//   full rate (out_ready_i always high: the rays must leave one per cycle, no bubble, the first
+//   exactly max(rtu, N) / tiles_x + 2 + 8*STAGES cycles after start_i: hls::RguTiles::startup()
+//   + 8*STAGES, the cycle model's start-up), the others with random
 //   back-pressure. busy_o must fall after the frame's last ray. Summary `RGUTOPSUM ...`.
 #include <gtest/gtest.h>
 #include <verilated.h>
@@ -338,8 +339,10 @@ void run_top_variant(const char* name, int stages, int tile_bits) {
     std::vector<std::pair<uint32_t, hls::Ray>> expect;
     for (hls::RguTiles t(w, h, tile, rtu, rtus); !t.done(); t.next())
       expect.emplace_back(t.pixel(), hls::rgu_primary<A>(cam.c, uint32_t(t.x()), uint32_t(t.y()), 0));
-    const int tiles_x = (w + tile - 1) / tile;
-    const uint64_t setup_max = uint64_t(std::max(rtu, rtus) / tiles_x + 2 + 8 * stages);
+    // The first ray's cycle, counted from the start_i cycle (cycle -1 here): hls::RguTiles's
+    // walk start-up (the cycle model's, systemc/rgu.h) + 8 x STAGES.
+    const uint64_t setup =
+        uint64_t(hls::RguTiles(w, h, tile, rtu, rtus).startup() + 8 * stages);
 
     drive_cam(m, cam.c);
     set(m.width_i, w);
@@ -390,7 +393,7 @@ void run_top_variant(const char* name, int stages, int tile_bits) {
                                    << rtu << " of " << rtus << ")";
     if (full && !expect.empty()) {
       EXPECT_EQ(last - first + 1, expect.size()) << name << " frame " << k << ": bubbles at full rate";
-      EXPECT_LE(first, setup_max) << name << " frame " << k << ": set-up latency";
+      EXPECT_EQ(first + 1, setup) << name << " frame " << k << ": set-up latency";
     }
     rays += next;
     cycles += c;
@@ -404,10 +407,11 @@ void run_top_variant(const char* name, int stages, int tile_bits) {
               (unsigned long long)cycles);
 }
 
-template <int E, int M, int Rne>
-using TopArith = hls::Arith<hls::Format<E, M>, Rne != 0 ? Rounding::rne : Rounding::rtz>;
-#define RAYCORE_RTL_RGU_TOP_VARIANT(V, e_bits, m_bits, rne_bit, stages, tile_bits) \
-  TEST(RtlRguTop, V) { run_top_variant<V, TopArith<e_bits, m_bits, rne_bit>>(#V, stages, tile_bits); }
+#define RAYCORE_RTL_RGU_TOP_VARIANT(V, mode, e_bits, m_bits, rne_bit, raycore_bit, stages, tile_bits) \
+  TEST(RtlRguTop, V) {                                                                           \
+    run_top_variant<V, hls::Arith<hls::Format<e_bits, m_bits>, Rounding::mode>>(#V, stages,       \
+                                                                               tile_bits);         \
+  }
 #include "rtl_rgu_top_variants.h"
 #undef RAYCORE_RTL_RGU_TOP_VARIANT
 

@@ -2,16 +2,20 @@
 //
 // Built twice (tb/systemc/CMakeLists.txt):
 //   test_pins      (label unit): frames with the SystemC twins (--pins vtu,ist,hit) in the units'
+//   test_pins      (label unit): frames with the SystemC twins (--pins vtu,ist,rgu) in the units'
 //                  places give the same cycles, bus bytes, tests and bits as the transaction model
 //                  (and the golden tracer's frame), across formats, roundings, STAGES, VTU on/off
 //                  and randomised memory latency; bad latencies are refused with a message.
 //   test_pins_rtl  (label rtl, RAYCORE_TEST_RTL): the same with the Verilated RTL (--rtl) bound in
 //                  place, every subset of {vtu, ist}, hit with several spawn strategies, and all
 //                  three; and unit lockstep tests: the SystemC twin and
+//                  place, every subset of {vtu, ist}, rgu alone (1 and 3 RTUs, rtz and rne) and
+//                  with vtu and ist; and unit lockstep tests: the SystemC twin and
 //                  the Verilated --sc model side by side on the same clock, the same random
 //                  stimulus (tb/rtl/stimulus.h) with random input gaps and random out_ready
 //                  back-pressure; in_ready_o, out_valid_o and every output transaction are compared
-//                  cycle by cycle, and the first difference is printed.
+//                  cycle by cycle, and the first difference is printed (the rgu, a source:
+//                  whole frames started by start_i, out_valid_o and busy_o every cycle).
 #define SC_INCLUDE_DYNAMIC_PROCESSES  // sc_spawn
 #include <gtest/gtest.h>
 
@@ -27,6 +31,7 @@
 
 #include "systemc/pins/clock.h"
 #include "systemc/pins/ist.h"
+#include "systemc/pins/rgu.h"
 #include "systemc/pins/rtl.h"
 #include "systemc/pins/vtu.h"
 #include "tb/systemc/frame_check.h"
@@ -44,18 +49,34 @@ using raycore::sc::UnitView;
 
 // The transaction model's frame, then the same configuration with the given views: equal.
 void expect_same_frame(const scenes::Scene& s, const sim::TraceConfig& tc, sc::SimConfig cfg,
-                       UnitView vtu, UnitView ist) {
+                       UnitView vtu, UnitView ist, UnitView rgu = UnitView::model) {
   const Summary model = expect_match(s, tc, cfg);
   cfg.vtu_view = vtu;
   cfg.ist_view = ist;
+  cfg.rgu_view = rgu;
   const Summary p = expect_match(s, tc, cfg);
   const std::string what = std::string("vtu ") + sc::unit_view_name(vtu) + ", ist " +
-                           sc::unit_view_name(ist);
+                           sc::unit_view_name(ist) + ", rgu " + sc::unit_view_name(rgu) +
+                           ", rtus " + std::to_string(cfg.rtus);
   EXPECT_EQ(p.cycles, model.cycles) << what;
   EXPECT_EQ(p.hash, model.hash) << what;
   EXPECT_EQ(p.bus_bytes, model.bus_bytes) << what;
   EXPECT_EQ(p.tri_tests, model.tri_tests) << what;
   for (int i = 0; i < Summary::kWork; ++i) EXPECT_EQ(p.work[i], model.work[i]) << what << ": " << kWorkNames[i];
+  EXPECT_EQ(p.shadow, model.shadow) << what;
+  EXPECT_EQ(p.issued, model.issued) << what;
+}
+
+// The rgu as `view` (the primary rays from its pins), every other unit the model: the corridor
+// at 32 x 20, FP24 rtz and rne, 1 and 3 RTUs.
+void expect_rgu_view(UnitView view) {
+  for (const Rounding r : {Rounding::rtz, Rounding::rne})
+    for (const int rtus : {1, 3}) {
+      sc::SimConfig cfg;
+      cfg.rtus = rtus;
+      expect_same_frame(corridor(), config(FormatId::fp24, r, true, 32, 20), cfg, UnitView::model,
+                        UnitView::model, view);
+    }
 }
 
 // Both units as `view`: the corridor, FP24 rtz, VTU on.
@@ -179,6 +200,31 @@ TEST(PinsFrame, TwinsVtuOffBypassesTheUnit) {
   expect_same_frame(corridor(), config(FormatId::fp24, Rounding::rtz, false, 32, 20), {},
                     UnitView::twin, UnitView::twin);
 }
+TEST(PinsFrame, RguTwinRtusOneAndThree) { expect_rgu_view(UnitView::twin); }
+// The twin at STAGES 1 and 3 in FP32 (the RTL is built at STAGES 2, FP24), 4 x 4 tiles, with
+// randomised memory latency.
+TEST(PinsFrame, RguTwinFp32OtherDepthsAndTiles) {
+  sc::SimConfig cfg;
+  cfg.rgu_latency = 8;
+  cfg.rtus = 2;
+  expect_same_frame(tiny_scene(), config(FormatId::fp32, Rounding::rne, false, 32, 24), cfg,
+                    UnitView::model, UnitView::model, UnitView::twin);
+  cfg.rgu_latency = 24;
+  cfg.tile = 4;
+  cfg.seed = 3;
+  expect_same_frame(tiny_scene(), config(FormatId::fp24, Rounding::raycore, true, 32, 24), cfg,
+                    UnitView::twin, UnitView::twin, UnitView::twin);
+}
+TEST(PinsFrame, RguLatencyAndTileRefused) {
+  const auto tc = config(FormatId::fp24, Rounding::rtz, true, 8, 8);
+  sc::SimConfig cfg;
+  cfg.rgu_view = UnitView::twin;
+  cfg.rgu_latency = 12;
+  expect_refused(tiny_scene(), tc, cfg, "--rgu-latency must be 8 x STAGES");
+  cfg.rgu_latency = 16;
+  cfg.tile = 6;
+  expect_refused(tiny_scene(), tc, cfg, "tile must be a power of two");
+}
 TEST(PinsFrame, LatencyNotAMultipleOfTheLevelsIsRefused) {
   const auto tc = config(FormatId::fp24, Rounding::rtz, true, 8, 8);
   sc::SimConfig cfg;
@@ -248,6 +294,26 @@ TEST(PinsFrameRtl, HitMissingVariantIsNamed) {
   const auto tc = config(FormatId::fp32, Rounding::rne, false, 8, 8);
   const Summary r = expect_refused(tiny_scene(), tc, cfg, "no Verilated hit for fp32 rne STAGES=2");
   EXPECT_NE(std::string(r.error).find("built: "), std::string::npos) << r.error;
+TEST(PinsFrameRtl, RguRtusOneAndThree) { expect_rgu_view(UnitView::rtl); }
+TEST(PinsFrameRtl, RguWithVtuAndIst) {
+  sc::SimConfig cfg;
+  cfg.rtus = 3;
+  expect_same_frame(corridor(), config(FormatId::fp24, Rounding::rtz, true, 32, 20), cfg,
+                    UnitView::rtl, UnitView::rtl, UnitView::rtl);
+  cfg.rtus = 2;
+  cfg.seed = 9;
+  expect_same_frame(corridor(), config(FormatId::fp24, Rounding::raycore, false, 32, 20), cfg,
+                    UnitView::twin, UnitView::rtl, UnitView::rtl);
+}
+TEST(PinsFrameRtl, RguMissingVariantIsNamed) {
+  sc::SimConfig cfg;
+  cfg.rgu_view = UnitView::rtl;
+  const Summary r = expect_refused(tiny_scene(), config(FormatId::fp32, Rounding::rne, false, 8, 8),
+                                   cfg, "no Verilated rgu for fp32 rne STAGES=2");
+  EXPECT_NE(std::string(r.error).find("rgu FP24 rtz STAGES=2"), std::string::npos) << r.error;
+  cfg.tile = 4;
+  expect_refused(tiny_scene(), config(FormatId::fp24, Rounding::rtz, false, 8, 8), cfg,
+                 "no Verilated rgu with 4 x 4 tiles");
 }
 TEST(PinsFrameRtl, MissingVariantIsNamed) {
   sc::SimConfig cfg;
@@ -264,14 +330,17 @@ TEST(PinsFrameRtl, MissingVariantIsNamed) {
 // raycore and FP32, several RTUs, randomised memory latency, small caches (misses, looping, ist
 // queue full), margins, any-hit shadow rays and the other units in RTL too.
 void expect_trv_rtl(const scenes::Scene& s, const sim::TraceConfig& tc, sc::SimConfig cfg,
-                    UnitView vtu = UnitView::model, UnitView ist = UnitView::model) {
+                    UnitView vtu = UnitView::model, UnitView ist = UnitView::model,
+                    UnitView rgu = UnitView::model) {
   const Summary model = expect_match(s, tc, cfg);
   cfg.trv_view = UnitView::rtl;
   cfg.vtu_view = vtu;
   cfg.ist_view = ist;
+  cfg.rgu_view = rgu;
   const Summary p = expect_match(s, tc, cfg);
   const std::string what = "trv rtl, vtu " + std::string(sc::unit_view_name(vtu)) + ", ist " +
-                           sc::unit_view_name(ist) + ", pipes " + std::to_string(cfg.trv_pipes) +
+                           sc::unit_view_name(ist) + ", rgu " + sc::unit_view_name(rgu) +
+                           ", pipes " + std::to_string(cfg.trv_pipes) +
                            (cfg.trv_fuse ? " fused" : "");
   EXPECT_EQ(p.cycles, model.cycles) << what;
   EXPECT_EQ(p.hash, model.hash) << what;
@@ -320,6 +389,13 @@ TEST(TrvRtlFrame, Fp32ThreePipes) {
 TEST(TrvRtlFrame, WithVtuAndIstRtl) {
   expect_trv_rtl(corridor(), config(FormatId::fp24, Rounding::rtz, true, 32, 20), {}, UnitView::rtl,
                  UnitView::rtl);
+}
+// Every unit with RTL in the frame: trv, vtu, ist and rgu (its primary rays), 3 RTUs.
+TEST(TrvRtlFrame, WithVtuIstRguRtl) {
+  sc::SimConfig cfg;
+  cfg.rtus = 3;
+  expect_trv_rtl(corridor(), config(FormatId::fp24, Rounding::rne, true, 32, 20), cfg, UnitView::rtl,
+                 UnitView::rtl, UnitView::rtl);
 }
 TEST(TrvRtlFrame, RefusesWhatTheModelCannotRun) {
   const auto tc = config(FormatId::fp24, Rounding::rtz, false, 8, 8);
@@ -558,6 +634,107 @@ void ist_lockstep(const char* name) {
   for (int e = 0; e < 5; ++e) EXPECT_GT(by_exit[e], n / 100) << name << ": exit code " << e;
 }
 
+// The rgu (a source: configuration registers, start_i, busy_o and a valid/ready output): twin
+// and Verilated model on one clock, RAYCORE_LOCKSTEP_RGU_FRAMES frames (default 40) of random
+// size (1..90 x 1..60, one 200 x 120), RTU index of 1..8 RTUs and camera, random out_ready
+// back-pressure (some frames at full rate); out_valid_o and busy_o are compared every cycle, each
+// ray (o, d, inv, pixel) on its way out, and the count with hls::RguTiles's.
+template <class A, class V>
+void rgu_lockstep(const char* name) {
+  const char* env = std::getenv("RAYCORE_LOCKSTEP_RGU_FRAMES");
+  const int frames = env && *env ? std::atoi(env) : 40;
+  pins::PinClock clk(sc_core::sc_time(2, sc_core::SC_NS));
+  pins::RguPortT<pins::RguTwin<A>> twin("twin", "twin", clk.clk, clk.rst_n, 2u, 8);
+  pins::RguPortT<V> rtl("rtl", "rtl", clk.clk, clk.rst_n);
+  LockResult res;
+  sc_core::sc_spawn([&] {
+    std::mt19937_64 rng(2028);
+    auto uni = [&](double lo, double hi) {
+      return std::uniform_real_distribution<double>(lo, hi)(rng);
+    };
+    const auto t0 = std::chrono::steady_clock::now();
+    twin.out_ready(false);
+    rtl.out_ready(false);
+    clk.reset();
+    for (int k = 0; k < frames && res.failure.empty(); ++k) {
+      const int w = k == 1 ? 200 : 1 + int(rng() % 90), h = k == 1 ? 120 : 1 + int(rng() % 60);
+      const int rtus = 1 + int(rng() % 8), rtu = int(rng() % uint64_t(rtus));
+      uint32_t origin[3];
+      for (uint32_t& o : origin) o = A::from_double(uni(-50, 50));
+      const hls::Vec3 f{uni(-1, 1), uni(-1, 1), -1}, r{1, 0, uni(-0.3, 0.3)}, up{0, 1, uni(-0.3, 0.3)};
+      const hls::RguCamera cam = hls::rgu_camera<A>(origin, f, r, up, uni(0.1, 2.5), w, h);
+      uint64_t expect = 0;
+      for (hls::RguTiles t(w, h, 8, rtu, rtus); !t.done(); t.next()) ++expect;
+      for (pins::RguPort* p : {static_cast<pins::RguPort*>(&twin), static_cast<pins::RguPort*>(&rtl)}) {
+        p->config(cam, w, h, rtu, rtus);
+        p->start(true);
+      }
+      clk.edge();
+      twin.start(false);
+      rtl.start(false);
+      const bool full = k % 4 == 0;
+      unsigned rate = 100;
+      uint64_t got = 0;
+      for (uint64_t c = 0;; ++c, ++res.cycles) {
+        if (c % 64 == 0) rate = full ? 100 : unsigned(10 + rng() % 91);
+        const bool ready = rng() % 100 < rate;
+        twin.out_ready(ready);
+        rtl.out_ready(ready);
+        pins::PinClock::settle();
+        std::ostringstream where;
+        where << "frame " << k << " (" << w << "x" << h << ", rtu " << rtu << " of " << rtus
+              << ") cycle " << c << " (" << got << " rays out): ";
+        if (twin.out_valid() != rtl.out_valid() || twin.busy() != rtl.busy()) {
+          res.failure = where.str() + "out_valid_o twin " + std::to_string(twin.out_valid()) +
+                        " rtl " + std::to_string(rtl.out_valid()) + ", busy_o twin " +
+                        std::to_string(twin.busy()) + " rtl " + std::to_string(rtl.busy());
+          break;
+        }
+        if (twin.out_valid() && ready) {
+          const pins::RguRay a = twin.out(), b = rtl.out();
+          bool same = a.pixel == b.pixel;
+          for (int i = 0; i < 3; ++i)
+            same = same && a.o[i] == b.o[i] && a.d[i] == b.d[i] && a.inv[i] == b.inv[i];
+          if (!same) {
+            res.failure = where.str() + "ray differs: twin pixel " + std::to_string(a.pixel) +
+                          " d " + hex(a.d[0]) + " " + hex(a.d[1]) + " " + hex(a.d[2]) +
+                          ", rtl pixel " + std::to_string(b.pixel) + " d " + hex(b.d[0]) + " " +
+                          hex(b.d[1]) + " " + hex(b.d[2]);
+            break;
+          }
+          ++got;
+        }
+        if (twin.out_valid() && !ready) ++res.stalled_out;
+        if (!twin.busy() && c > 0) break;
+        clk.edge();
+        if (c > 100000) {
+          res.failure = where.str() + "busy_o still high";
+          break;
+        }
+      }
+      if (res.failure.empty() && got != expect)
+        res.failure = "frame " + std::to_string(k) + ": " + std::to_string(got) + " rays, " +
+                      "hls::RguTiles has " + std::to_string(expect);
+      res.received += got;
+    }
+    res.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    sc_core::sc_stop();
+  });
+  sc_core::sc_start();
+  report(name, res, res.received);
+  EXPECT_GT(res.received, 20000u) << name;
+}
+
+TEST(Lockstep, RguFp24Rtz) {
+  rgu_lockstep<hls::Arith<hls::FP24, Rounding::rtz>, Vrgu_fp24_rtz_s2_sc>("rgu_fp24_rtz_s2");
+}
+TEST(Lockstep, RguFp24Rne) {
+  rgu_lockstep<hls::Arith<hls::FP24, Rounding::rne>, Vrgu_fp24_rne_s2_sc>("rgu_fp24_rne_s2");
+}
+TEST(Lockstep, RguFp24Raycore) {
+  rgu_lockstep<hls::Arith<hls::FP24, Rounding::raycore>, Vrgu_fp24_raycore_s2_sc>(
+      "rgu_fp24_raycore_s2");
+}
 TEST(Lockstep, VtuFp24Rtz) {
   vtu_lockstep<hls::FP24, Rounding::rtz, Vvtu_fp24_rtz_s2_sc>("vtu_fp24_rtz_s2");
 }

@@ -115,6 +115,7 @@ Drawn draw(uint64_t seed, uint64_t index) {
   const double margins[] = {0.0, 0.008, std::ldexp(1.0, -12), 0.03};
   d.tc.bary_margin = pick(0, 1) == 0 ? 0.0 : margins[pick(0, 3)];
   d.tc.trv_widen = pick(0, 1) == 0 ? 0 : int32_t(pick(0, 8));
+  c.rgu_latency = uint32_t(pick(0, 40));  // the rgu's datapath latency (start-up)
   std::ostringstream os;
   os << "scene " << scene_by_index(d.scene).name << " " << d.tc.width << "x" << d.tc.height << " "
      << hls::format_name(f) << "-" << hls::rounding_name(r) << (d.tc.vtu ? " vtu" : " novtu") << " spawn "
@@ -132,7 +133,7 @@ Drawn draw(uint64_t seed, uint64_t index) {
      << c.l2.bandwidth << "B | rays " << c.rays_in_flight << " stack " << c.stack_depth << " vtu "
      << c.vtu_depth << " trv " << c.trv_latency << "x" << c.trv_pipes << (c.trv_fuse ? " fuse" : "")
      << " mailbox " << c.mailbox << " ist " << c.ist_latency << "x" << c.ist_units << " q" << c.ist_queue << " hit " << c.hit_latency
-     << " tile " << c.tile;
+     << " tile " << c.tile << " rgu " << c.rgu_latency;
   d.line = os.str();
   return d;
 }
