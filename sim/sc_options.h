@@ -103,26 +103,32 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
     auto list = std::make_shared<std::vector<std::string>>();
     c.add_option(name, *list, help)
         ->delimiter(',')
-        ->check(CLI::IsMember({"vtu", "ist", "trv", "hit", "rgu"}))
+        ->check(CLI::IsMember({"vtu", "ist", "trv", "hit", "rgu", "all"}))
         ->each([&o, list, view](const std::string& unit) {
           o.overrides.push_back([unit, view](SimConfig& s) {
-            UnitView& v = unit == "vtu"   ? s.vtu_view
-                          : unit == "ist" ? s.ist_view
-                          : unit == "trv" ? s.trv_view
-                          : unit == "hit" ? s.hit_view
-                                          : s.rgu_view;
-            if (v != UnitView::model && v != view)
-              throw raycore::cli::UserError("unit '" + unit + "' given to both --rtl and --pins");
-            v = view;
+            auto set = [&](const std::string& u) {
+              UnitView& v = u == "vtu"   ? s.vtu_view
+                            : u == "ist" ? s.ist_view
+                            : u == "trv" ? s.trv_view
+                            : u == "hit" ? s.hit_view
+                                         : s.rgu_view;
+              if (v != UnitView::model && v != view)
+                throw raycore::cli::UserError("unit '" + u + "' given to both --rtl and --pins");
+              v = view;
+            };
+            if (unit != "all") return set(unit);
+            // all: every unit with that view (trv has no pin-level twin)
+            for (const char* u : {"vtu", "ist", "trv", "hit", "rgu"})
+              if (view == UnitView::rtl || std::string(u) != "trv") set(u);
           });
         });
   };
   views("--rtl", UnitView::rtl,
-        "units (vtu,ist,trv,hit,rgu) simulated by their Verilated RTL in the frame (vtu, ist, hit, rgu "
+        "units (vtu,ist,trv,hit,rgu, or all) simulated by their Verilated RTL in the frame (vtu, ist, hit, rgu "
         "at their pins; rgu: the primary rays, shadow rays are forwarded by the model; trv: "
         "rtl/units/trv_unit.v stepped from C++)");
   views("--pins", UnitView::twin,
-        "units (vtu,ist,hit,rgu) simulated by their pin-level SystemC twin (same ports as the RTL; trv "
+        "units (vtu,ist,hit,rgu, or all) simulated by their pin-level SystemC twin (same ports as the RTL; trv "
         "has none)");
   c.add_option("--trace", o.cfg.trace_file, "write a VCD of the top-level handshakes and counters");
   c.add_option("--config", o.config_file, "JSON file with the model's parameters (options override it)");
