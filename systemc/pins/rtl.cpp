@@ -55,6 +55,7 @@ std::unique_ptr<IstPort> make_rtl_ist(hls::FormatId f, hls::Rounding r, unsigned
 std::unique_ptr<HitPort> make_rtl_hit(hls::FormatId f, hls::Rounding r, unsigned s, const char* name,
                                       sc_core::sc_signal<bool>& clk, sc_core::sc_signal<bool>& rst_n) {
   return make_rtl<HitPort>(f, r, s, name, clk, rst_n);
+}
 std::unique_ptr<RguPort> make_rtl_rgu(hls::FormatId f, hls::Rounding r, unsigned s, const char* name,
                                       sc_core::sc_signal<bool>& clk, sc_core::sc_signal<bool>& rst_n) {
   return make_rtl<RguPort>(f, r, s, name, clk, rst_n);

@@ -26,6 +26,8 @@ std::unique_ptr<IstPort> make_rtl_ist(hls::FormatId f, hls::Rounding r, unsigned
                                       const char* name, sc_core::sc_signal<bool>& clk,
                                       sc_core::sc_signal<bool>& rst_n);
 std::unique_ptr<HitPort> make_rtl_hit(hls::FormatId f, hls::Rounding r, unsigned stages,
+                                      const char* name, sc_core::sc_signal<bool>& clk,
+                                      sc_core::sc_signal<bool>& rst_n);
 // rgu.v is built with TILE_BITS 3: tiles of kRtlRguTile x kRtlRguTile pixels (the default).
 constexpr uint32_t kRtlRguTile = 8;
 std::unique_ptr<RguPort> make_rtl_rgu(hls::FormatId f, hls::Rounding r, unsigned stages,

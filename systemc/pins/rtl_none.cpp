@@ -12,6 +12,9 @@ std::unique_ptr<IstPort> make_rtl_ist(hls::FormatId, hls::Rounding, unsigned, co
   return nullptr;
 }
 std::unique_ptr<HitPort> make_rtl_hit(hls::FormatId, hls::Rounding, unsigned, const char*,
+                                      sc_core::sc_signal<bool>&, sc_core::sc_signal<bool>&) {
+  return nullptr;
+}
 std::unique_ptr<RguPort> make_rtl_rgu(hls::FormatId, hls::Rounding, unsigned, const char*,
                                       sc_core::sc_signal<bool>&, sc_core::sc_signal<bool>&) {
   return nullptr;

@@ -397,6 +397,22 @@ TEST(TrvRtlFrame, WithVtuIstRguRtl) {
   expect_trv_rtl(corridor(), config(FormatId::fp24, Rounding::rne, true, 32, 20), cfg, UnitView::rtl,
                  UnitView::rtl, UnitView::rtl);
 }
+// Every unit with RTL in the frame (--rtl all: vtu, ist, trv, hit, rgu), 3 RTUs, randomised memory
+// latency, FP24 rne with skip-back shadow rays: the transaction model's frame, cycles and counters.
+TEST(TrvRtlFrame, AllUnitsRtlThreeRtusRandomLatency) {
+  sc::SimConfig cfg;
+  cfg.rtus = 3;
+  cfg.seed = 11;
+  auto tc = config(FormatId::fp24, Rounding::rne, true, 40, 24);
+  tc.spawn.spawn = raycore::hls::Spawn::skip_back;
+  const Summary model = expect_match(corridor(), tc, cfg);
+  cfg.vtu_view = cfg.ist_view = cfg.trv_view = cfg.hit_view = cfg.rgu_view = UnitView::rtl;
+  const Summary p = expect_match(corridor(), tc, cfg);
+  EXPECT_EQ(p.cycles, model.cycles);
+  EXPECT_EQ(p.hash, model.hash);
+  EXPECT_EQ(p.bus_bytes, model.bus_bytes);
+  for (int i = 0; i < Summary::kWork; ++i) EXPECT_EQ(p.work[i], model.work[i]) << kWorkNames[i];
+}
 TEST(TrvRtlFrame, RefusesWhatTheModelCannotRun) {
   const auto tc = config(FormatId::fp24, Rounding::rtz, false, 8, 8);
   sc::SimConfig cfg;
