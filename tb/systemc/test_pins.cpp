@@ -294,6 +294,7 @@ TEST(PinsFrameRtl, HitMissingVariantIsNamed) {
   const auto tc = config(FormatId::fp32, Rounding::rne, false, 8, 8);
   const Summary r = expect_refused(tiny_scene(), tc, cfg, "no Verilated hit for fp32 rne STAGES=2");
   EXPECT_NE(std::string(r.error).find("built: "), std::string::npos) << r.error;
+}
 TEST(PinsFrameRtl, RguRtusOneAndThree) { expect_rgu_view(UnitView::rtl); }
 TEST(PinsFrameRtl, RguWithVtuAndIst) {
   sc::SimConfig cfg;
