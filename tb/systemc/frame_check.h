@@ -35,7 +35,7 @@ using hls::Vec3;
 
 struct Summary {
   bool ok = false;
-  char error[256] = {};
+  char error[1024] = {};  // the refusals list every built model
   uint64_t cycles = 0, issued = 0, retired = 0, primary = 0, shadow = 0;
   uint64_t mismatches = 0, bad_retire = 0;  // pixels retired other than exactly once per ray
   uint64_t hash = 0;                        // of every pixel's results
