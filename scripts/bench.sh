@@ -142,7 +142,7 @@ section_frames() {
 # --sc RTL (--rtl) must give the transaction model's cycle count (frames section) and golden_match;
 # reports each run's simulated cycles/s and rays/s. Needs `frames` first (its VTU-on report).
 section_cosim() {
-  header "cosim: sponza-paper 800x480 with vtu+ist+rgu as pin-level twins and as Verilated RTL, then vtu+ist+rgu+trv in RTL"
+  header "cosim: sponza-paper 800x480 with vtu+ist+hit+rgu as pin-level twins and as Verilated RTL, then every unit in RTL (--rtl all)"
   local rc_bin="$BUILD/bin/raycore"
   local scenes=${SHARED_SCENES:-$(cd "$(dirname "$0")/.." && pwd)/../shared/scenes}
   local sponza="$scenes/sponza-paper.glb"
@@ -156,7 +156,7 @@ section_cosim() {
       --png "$OUT/simulate-vtu-on.png" || return 1
   fi
   # view:units:tag; the last run has every unit that has RTL in the frame in RTL.
-  for run in pins:vtu,ist,rgu:pins rtl:vtu,ist,rgu:rtl rtl:vtu,ist,rgu,trv:rtl-trv; do
+  for run in pins:vtu,ist,hit,rgu:pins rtl:vtu,ist,hit,rgu:rtl rtl:all:rtl-all; do
     IFS=: read -r view units tag <<<"$run"
     echo "command: $rc_bin simulate $sponza --vtu on --$view $units --no-reference --out-dir $OUT"
     "$rc_bin" simulate "$sponza" --vtu on --"$view" "$units" --no-reference --out-dir "$OUT" \
