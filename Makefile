@@ -2,6 +2,7 @@
 # machine: both install the Debian packages they need (deps) and build first.
 BUILD      ?= build
 ASAN_BUILD ?= build-asan
+RUN_BUILD  ?= build-run
 JOBS       ?= $(shell nproc)
 GEN        := $(shell command -v ninja >/dev/null 2>&1 && echo "-G Ninja")
 CTEST      := ctest --output-on-failure -j $(JOBS)
@@ -23,11 +24,12 @@ configure: deps $(BUILD)/CMakeCache.txt
 build: configure
 	cmake --build $(BUILD) -j $(JOBS)
 
-# Only what the run needs: the raycore binary and the libraries it links (not the tests, benches
-# and the other Verilated variants, which `make build` / `make test` build).
-run: configure
-	cmake --build $(BUILD) --target raycore -j $(JOBS)
-	./scripts/run.sh $(RAYCORE)
+# Only what the run needs: the raycore binary without the Verilated models (`--rtl`), in its own
+# build folder (the tests, benches and the RTL in the frame are `make build` / `make test`'s).
+run: deps
+	cmake -S . -B $(RUN_BUILD) $(GEN) -DCMAKE_BUILD_TYPE=Release -DRAYCORE_RTL=OFF
+	cmake --build $(RUN_BUILD) --target raycore -j $(JOBS)
+	./scripts/run.sh $(RUN_BUILD)/bin/raycore
 
 # The unit tests in Release (all of them), then once more under ASan + UBSan (the C++ unit
 # tests; Verilated models are left out of the sanitizer build, see README).
