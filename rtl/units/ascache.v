@@ -4,13 +4,15 @@
 // side by side). Lines are addressed by their index within the cache's region (acc_line_i, as
 // Ascache::access(line)); the bus adapter turns a line index into a byte address.
 //
-// One access per cycle, always accepted; its response comes HIT_LATENCY cycles later:
+// PORTS accesses per cycle, always accepted; port k's response comes HIT_LATENCY cycles later:
 //   hit            rsp_hit_o, rsp_data_o = the line (byte i at bits [8i+7:8i]); LRU updated.
 //   miss, merged   rsp_merge_o: an MSHR already fetches the line (Ascache counts mshr_merges).
 //   miss, full     rsp_full_o: no MSHR free; nothing is fetched (Ascache counts mshr_full).
 //   miss           (none of the three) an MSHR was allocated (the lowest free index) and its
 //                  request queued: req_valid_o from the next cycle on, in allocation order.
 // Every miss kind returns "no data" (Ascache::access's nullptr): the requester retries later.
+// The accesses of one cycle act in port order, each seeing the LRU ranks and MSHRs as the earlier
+// ports leave them: Ascache::access called once per port, port 0 first.
 // A fill (fill_valid_i, fill_tag_i = the MSHR index, fill_data_i = the whole line) installs the
 // MSHR's line in the set's victim way (ascache_victim: first invalid way, else LRU) and frees the
 // MSHR; a fill of a free MSHR is ignored (Ascache::fill throws). Fill has no ready: it is always
@@ -21,20 +23,28 @@
 // the same cycle (hit, data through the write-first data array), not a line that fill evicted,
 // and may allocate the MSHR that fill freed; the LRU update of the access follows the fill's.
 //
-// Storage: tags, valid bits and LRU ranks in flip-flops (read combinationally, one set per side);
-// the data array is a 1R1W SRAM (ascache_ram, synchronous write-first read, SETS*WAYS lines of
-// 8*LINE_BYTES bits) read at the access edge. Latency: HIT_LATENCY >= 1 (1 = the SRAM's output
-// register; each further cycle adds a register of the response and its line).
+// Two response forms:
+//   HIT_LATENCY >= 1, PORTS = 1 (the pin-level twin of systemc/pins/ascache.h): the data array is
+//     a 1R1W SRAM (ascache_ram, synchronous write-first read) read at the access edge; 1 = the
+//     SRAM's output register, each further cycle adds a register of the response and its line.
+//   HIT_LATENCY 0, any PORTS (the frame's cache, systemc/ascache_rtl.h): the responses come in the
+//     access's own cycle, as Ascache::access answers the cycle model's requesters (which add the
+//     configured hit latency to their loop); the data array has PORTS asynchronous read ports.
+// Storage: tags, valid bits and LRU ranks in flip-flops (read combinationally); data SETS*WAYS
+// lines of 8*LINE_BYTES bits.
 //
-// Parameters: SETS and WAYS powers of two (SETS >= 2), MSHRS >= 2, LINE_W = line-index width
-// (address width - log2 LINE_BYTES; LINE_W > log2 SETS), TAG_BITS = the requester's sideband
-// acc_tag_i -> rsp_tag_o (e.g. a ray slot), CNT_BITS = width of the counters (wrap around).
+// Parameters: WAYS a power of two, SETS >= 2 (a power of two: the set is the line's low bits and
+// the tag the rest; otherwise the set is line % SETS and the tag the whole line, as Ascache's
+// line % sets), MSHRS >= 2, LINE_W = line-index width (address width - log2 LINE_BYTES; LINE_W >
+// log2 SETS), TAG_BITS = the requester's sideband acc_tag_i -> rsp_tag_o (e.g. a ray slot),
+// CNT_BITS = width of the counters (wrap around).
 module ascache #(
   parameter integer SETS        = 8,
   parameter integer WAYS        = 2,
   parameter integer LINE_BYTES  = 64,
   parameter integer MSHRS       = 4,
   parameter integer HIT_LATENCY = 1,
+  parameter integer PORTS       = 1,
   parameter integer LINE_W      = 26,
   parameter integer TAG_BITS    = 8,
   parameter integer CNT_BITS    = 32
@@ -42,16 +52,16 @@ module ascache #(
   input  wire                          clk_i,
   input  wire                          rst_ni,
   // Access (Ascache::access): one per cycle, always accepted.
-  input  wire                          acc_valid_i,
-  input  wire [LINE_W-1:0]             acc_line_i,
-  input  wire [TAG_BITS-1:0]           acc_tag_i,
-  // Its result, HIT_LATENCY cycles later (no back-pressure).
-  output wire                          rsp_valid_o,
-  output wire                          rsp_hit_o,
-  output wire                          rsp_merge_o,
-  output wire                          rsp_full_o,
-  output wire [TAG_BITS-1:0]           rsp_tag_o,
-  output wire [8*LINE_BYTES-1:0]       rsp_data_o,
+  input  wire [PORTS-1:0]              acc_valid_i,
+  input  wire [PORTS*LINE_W-1:0]       acc_line_i,
+  input  wire [PORTS*TAG_BITS-1:0]     acc_tag_i,
+  // Its result, HIT_LATENCY cycles later (no back-pressure; HIT_LATENCY 0: in the same cycle).
+  output wire [PORTS-1:0]              rsp_valid_o,
+  output wire [PORTS-1:0]              rsp_hit_o,
+  output wire [PORTS-1:0]              rsp_merge_o,
+  output wire [PORTS-1:0]              rsp_full_o,
+  output wire [PORTS*TAG_BITS-1:0]     rsp_tag_o,
+  output wire [PORTS*8*LINE_BYTES-1:0] rsp_data_o,
   // Line requests to memory (Ascache::req(): MemReq.addr = base + line * LINE_BYTES, tag).
   output wire                          req_valid_o,
   input  wire                          req_ready_i,
@@ -70,8 +80,9 @@ module ascache #(
   output wire [CNT_BITS-1:0]           cnt_fills_o
 );
 
+  localparam integer POW2 = (SETS & (SETS - 1)) == 0 ? 1 : 0;  // set = low line bits, else line % SETS
   localparam integer SW = $clog2(SETS);                   // set index bits
-  localparam integer TW = LINE_W - SW;                    // tag bits
+  localparam integer TW = POW2 != 0 ? LINE_W - SW : LINE_W;    // tag bits (the whole line if not POW2)
   localparam integer RW = WAYS > 1 ? $clog2(WAYS) : 1;    // way index / LRU rank bits
   localparam integer MW = $clog2(MSHRS);                  // MSHR index bits
   localparam integer CW = $clog2(MSHRS + 1);              // MSHR count bits
@@ -82,12 +93,38 @@ module ascache #(
   localparam [MW-1:0] LAST_MSHR = LAST[MW-1:0];
   localparam [CNT_BITS-1:0] CNT_ONE = 1;
 
+  // A line's set and its tag within the set.
+  localparam [LINE_W-1:0] NSETS = SETS[LINE_W-1:0];
+  /* verilator lint_off UNUSEDSIGNAL */  // the functions' locals are wider than their results
+  function automatic [SW-1:0] set_of(input [LINE_W-1:0] line);
+    reg [LINE_W-1:0] r;
+    begin
+      r = POW2 != 0 ? line & (NSETS - 1'b1) : line % NSETS;
+      set_of = r[SW-1:0];
+    end
+  endfunction
+  function automatic [TW-1:0] tag_of(input [LINE_W-1:0] line);
+    reg [LINE_W-1:0] t;
+    begin
+      t = POW2 != 0 ? line >> SW : line;
+      tag_of = t[TW-1:0];
+    end
+  endfunction
+  function automatic [AW-1:0] addr_of(input [SW-1:0] set, input [RW-1:0] way);
+    reg [SW+RW-1:0] a;
+    begin
+      a = WAYS > 1 ? {set, way} : {{RW{1'b0}}, set};
+      addr_of = a[AW-1:0];
+    end
+  endfunction
+  /* verilator lint_on UNUSEDSIGNAL */
+
   // ---------------------------------------------------------------------------------------------
   // State. The per-set arrays are flip-flops (yosys: mem2reg), read combinationally at the
   // access's and the fill's set; only the data array is an SRAM.
-  (* mem2reg *) reg [WAYS-1:0]    valid_q [0:SETS-1];   // way w of set s at valid_q[s][w]
+  reg [SETS*WAYS-1:0]             valid_q;              // way w of set s at [s*WAYS + w]
   (* mem2reg *) reg [WAYS*TW-1:0] tag_q   [0:SETS-1];   // way w at [w*TW +: TW]
-  (* mem2reg *) reg [WAYS*RW-1:0] rank_q  [0:SETS-1];   // LRU ranks, a permutation per set
+  reg [SETS*WAYS*RW-1:0]          rank_q;               // LRU ranks of set s at [s*WAYS*RW +: WAYS*RW]
   reg [MSHRS-1:0]        mv_q, mv_d;          // MSHR valid
   reg [MSHRS*LINE_W-1:0] ml_q, ml_d;          // MSHR line
   reg [MSHRS*MW-1:0]     fifo_q, fifo_d;      // request queue: MSHR indices, allocation order
@@ -102,10 +139,10 @@ module ascache #(
   reg [LINE_W-1:0] f_line;
   wire [RW-1:0]    f_way;
   wire [WAYS*RW-1:0] f_rank_new;
-  wire [SW-1:0]    f_set = f_line[SW-1:0];
-  wire [TW-1:0]    f_tag = f_line[LINE_W-1:SW];
+  wire [SW-1:0]    f_set = set_of(f_line);
+  wire [TW-1:0]    f_tag = tag_of(f_line);
 
-  integer i, s, w;
+  integer i, w, pk;
   always @* begin : p_fill
     fill_go = 1'b0;
     f_line  = {LINE_W{1'b0}};
@@ -116,8 +153,8 @@ module ascache #(
       end
   end
 
-  wire [WAYS-1:0]    f_valid = valid_q[f_set];
-  wire [WAYS*RW-1:0] f_rank  = rank_q[f_set];
+  wire [WAYS-1:0]    f_valid = valid_q[f_set*WAYS +: WAYS];
+  wire [WAYS*RW-1:0] f_rank  = rank_q[f_set*WAYS*RW +: WAYS*RW];
 
   ascache_victim #(.WAYS(WAYS), .RW(RW)) u_victim (
     .valid_i(f_valid), .rank_i(f_rank), .way_o(f_way));
@@ -125,53 +162,120 @@ module ascache #(
     .rank_i(f_rank), .way_i(f_way), .rank_o(f_rank_new));
 
   // ---------------------------------------------------------------------------------------------
-  // Access side: lookup in the set as the fill leaves it.
-  wire [SW-1:0]      a_set = acc_line_i[SW-1:0];
-  wire [TW-1:0]      a_tag = acc_line_i[LINE_W-1:SW];
-  wire               same_set = fill_go && f_set == a_set;
-  wire [WAYS-1:0]    a_valid = valid_q[a_set];
-  wire [WAYS*TW-1:0] a_tags  = tag_q[a_set];
-  wire [WAYS*RW-1:0] a_rank  = rank_q[a_set];
-  reg [WAYS-1:0]     a_match;
-  reg [WAYS*RW-1:0]  a_rank_pre;
-  wire [WAYS*RW-1:0] a_rank_new;
-  reg [RW-1:0]       a_way;
-  reg                a_hit;
-  reg [MSHRS-1:0]    mv_post;      // MSHRs valid after the fill
-  reg                a_inflight;   // an MSHR (after the fill) fetches the line
-  reg [MW-1:0]       a_free;       // lowest free MSHR after the fill
-  reg                acc_hit, acc_merge, acc_full, acc_alloc;
+  // Access side: PORTS lookups chained in port order. Port k sees the set as the fill leaves it,
+  // the LRU ranks as the hits of ports 0 .. k-1 leave them, and the MSHRs after the fill and the
+  // allocations of ports 0 .. k-1 (Ascache::access called k times in a cycle).
+  wire [PORTS-1:0]           a_hit_v;
+  wire [PORTS-1:0]           a_miss_v;
+  wire [PORTS-1:0]           a_merge_v;
+  wire [PORTS-1:0]           a_full_v;
+  wire [PORTS-1:0]           a_alloc_v;
+  wire [PORTS*SW-1:0]        a_set_v;
+  wire [PORTS*RW-1:0]        a_way_v;
+  wire [PORTS*WAYS*RW-1:0]   a_rank_new_v  /* verilator split_var */;
+  wire [PORTS*WAYS*RW-1:0]   a_rank_out = a_rank_new_v;  // read at a run-time index
+  wire [(PORTS+1)*MSHRS-1:0] mv_chain      /* verilator split_var */;   // MSHR valid after port k
+  wire [(PORTS+1)*MSHRS*LINE_W-1:0] ml_chain /* verilator split_var */; // MSHR lines after port k
+  wire [(PORTS+1)*MW-1:0]    tail_chain    /* verilator split_var */;   // queue tail after port k
+  wire [(PORTS+1)*MSHRS*MW-1:0] fifo_chain /* verilator split_var */;   // queue entries after k
 
+  // MSHRs before port 0: the fill frees its own first.
+  reg [MSHRS-1:0] mv_post;
   always @* begin
-    a_rank_pre = same_set ? f_rank_new : a_rank;
-    a_hit = 1'b0;
-    a_way = {RW{1'b0}};
-    for (w = 0; w < WAYS; w = w + 1) begin
-      if (same_set && f_way == w[RW-1:0]) a_match[w] = f_tag == a_tag;
-      else                                a_match[w] = a_valid[w] && a_tags[w*TW +: TW] == a_tag;
-      if (a_match[w]) begin
-        a_hit = 1'b1;
-        a_way = w[RW-1:0];
-      end
-    end
-    // MSHRs: the fill frees its own first.
     mv_post = mv_q;
     for (i = 0; i < MSHRS; i = i + 1)
       if (fill_go && fill_tag_i == i[MW-1:0]) mv_post[i] = 1'b0;
-    a_inflight = 1'b0;
-    a_free     = {MW{1'b0}};
-    for (i = MSHRS - 1; i >= 0; i = i - 1) begin
-      if (mv_post[i] && ml_q[i*LINE_W +: LINE_W] == acc_line_i) a_inflight = 1'b1;
-      if (!mv_post[i]) a_free = i[MW-1:0];
-    end
-    acc_hit   = acc_valid_i && a_hit;
-    acc_merge = acc_valid_i && !a_hit && a_inflight;
-    acc_full  = acc_valid_i && !a_hit && !a_inflight && (&mv_post);
-    acc_alloc = acc_valid_i && !a_hit && !a_inflight && !(&mv_post);
   end
+  assign mv_chain[MSHRS-1:0]          = mv_post;
+  assign ml_chain[MSHRS*LINE_W-1:0]   = ml_q;
+  assign tail_chain[MW-1:0]           = tail_q;
+  assign fifo_chain[MSHRS*MW-1:0]     = fifo_q;
 
-  ascache_touch #(.WAYS(WAYS), .RW(RW)) u_touch_acc (
-    .rank_i(a_rank_pre), .way_i(a_way), .rank_o(a_rank_new));
+  genvar gk, gj;
+  generate
+    for (gk = 0; gk < PORTS; gk = gk + 1) begin : g_port
+      wire [LINE_W-1:0] line = acc_line_i[gk*LINE_W +: LINE_W];
+      wire              av   = acc_valid_i[gk];
+      wire [SW-1:0]     set  = set_of(line);
+      wire [TW-1:0]     tag  = tag_of(line);
+      wire              same_fill = fill_go && f_set == set;
+      wire [WAYS-1:0]    valid = valid_q[set*WAYS +: WAYS];
+      wire [WAYS*TW-1:0] tags  = tag_q[set];
+      // The set's ranks: the fill's, then the latest earlier port that hit in the same set.
+      wire [WAYS*RW-1:0] rank_set = same_fill ? f_rank_new : rank_q[set*WAYS*RW +: WAYS*RW];
+      wire [WAYS*RW-1:0] rank_pre;
+      if (gk == 0) begin : g_first
+        assign rank_pre = rank_set;
+      end else begin : g_chain
+        wire [(gk+1)*WAYS*RW-1:0] rchain /* verilator split_var */;
+        assign rchain[WAYS*RW-1:0] = rank_set;
+        for (gj = 0; gj < gk; gj = gj + 1) begin : g_prev
+          assign rchain[(gj+1)*WAYS*RW +: WAYS*RW] =
+              (a_hit_v[gj] && a_set_v[gj*SW +: SW] == set) ? a_rank_new_v[gj*WAYS*RW +: WAYS*RW]
+                                                            : rchain[gj*WAYS*RW +: WAYS*RW];
+        end
+        assign rank_pre = rchain[gk*WAYS*RW +: WAYS*RW];
+      end
+      reg [RW-1:0] way;
+      reg          hit;
+      integer wk;
+      always @* begin
+        hit = 1'b0;
+        way = {RW{1'b0}};
+        for (wk = 0; wk < WAYS; wk = wk + 1)
+          if (same_fill && f_way == wk[RW-1:0] ? f_tag == tag
+                                               : valid[wk] && tags[wk*TW +: TW] == tag) begin
+            hit = 1'b1;
+            way = wk[RW-1:0];
+          end
+      end
+      ascache_touch #(.WAYS(WAYS), .RW(RW)) u_touch (
+        .rank_i(rank_pre), .way_i(way), .rank_o(a_rank_new_v[gk*WAYS*RW +: WAYS*RW]));
+      // MSHRs as ports 0 .. k-1 leave them: merge, or allocate the lowest free one.
+      wire [MSHRS-1:0]        mv = mv_chain[gk*MSHRS +: MSHRS];
+      wire [MSHRS*LINE_W-1:0] ml = ml_chain[gk*MSHRS*LINE_W +: MSHRS*LINE_W];
+      wire [MW-1:0]           tl = tail_chain[gk*MW +: MW];
+      wire [MSHRS*MW-1:0]     fq = fifo_chain[gk*MSHRS*MW +: MSHRS*MW];
+      reg          inflight;
+      reg [MW-1:0] free;
+      integer mk;
+      always @* begin
+        inflight = 1'b0;
+        free     = {MW{1'b0}};
+        for (mk = MSHRS - 1; mk >= 0; mk = mk - 1) begin
+          if (mv[mk] && ml[mk*LINE_W +: LINE_W] == line) inflight = 1'b1;
+          if (!mv[mk]) free = mk[MW-1:0];
+        end
+      end
+      wire alloc = av && !hit && !inflight && !(&mv);
+      assign a_hit_v[gk]   = av && hit;
+      assign a_miss_v[gk]  = av && !hit;
+      assign a_merge_v[gk] = av && !hit && inflight;
+      assign a_full_v[gk]  = av && !hit && !inflight && (&mv);
+      assign a_alloc_v[gk] = alloc;
+      assign a_set_v[gk*SW +: SW] = set;
+      assign a_way_v[gk*RW +: RW] = way;
+      reg [MSHRS-1:0]        mv_n;
+      reg [MSHRS*LINE_W-1:0] ml_n;
+      reg [MSHRS*MW-1:0]     fq_n;
+      always @* begin
+        mv_n = mv;
+        ml_n = ml;
+        fq_n = fq;
+        for (mk = 0; mk < MSHRS; mk = mk + 1) begin
+          if (alloc && free == mk[MW-1:0]) begin
+            mv_n[mk] = 1'b1;
+            ml_n[mk*LINE_W +: LINE_W] = line;
+          end
+          if (alloc && tl == mk[MW-1:0]) fq_n[mk*MW +: MW] = free;
+        end
+      end
+      assign mv_chain[(gk+1)*MSHRS +: MSHRS] = mv_n;
+      assign ml_chain[(gk+1)*MSHRS*LINE_W +: MSHRS*LINE_W] = ml_n;
+      assign fifo_chain[(gk+1)*MSHRS*MW +: MSHRS*MW] = fq_n;
+      assign tail_chain[(gk+1)*MW +: MW] = !alloc ? tl : (tl == LAST_MSHR ? {MW{1'b0}} : tl + 1'b1);
+    end
+  endgenerate
 
   // ---------------------------------------------------------------------------------------------
   // Next state.
@@ -190,27 +294,36 @@ module ascache #(
       end
   end
 
+  // How many of this cycle's accesses hit, missed, ...; how many requests were queued.
+  reg [CW-1:0] n_alloc;
+  reg [CNT_BITS-1:0] n_hit, n_miss, n_merge, n_full;
   always @* begin
-    mv_d = mv_post;
-    ml_d = ml_q;
-    fifo_d = fifo_q;
-    for (i = 0; i < MSHRS; i = i + 1) begin
-      if (acc_alloc && a_free == i[MW-1:0]) begin
-        mv_d[i] = 1'b1;
-        ml_d[i*LINE_W +: LINE_W] = acc_line_i;
-      end
-      if (acc_alloc && tail_q == i[MW-1:0]) fifo_d[i*MW +: MW] = a_free;
+    n_alloc = {CW{1'b0}};
+    n_hit = {CNT_BITS{1'b0}};
+    n_miss = {CNT_BITS{1'b0}};
+    n_merge = {CNT_BITS{1'b0}};
+    n_full = {CNT_BITS{1'b0}};
+    for (i = 0; i < PORTS; i = i + 1) begin
+      if (a_alloc_v[i]) n_alloc = n_alloc + 1'b1;
+      if (a_hit_v[i])   n_hit   = n_hit + CNT_ONE;
+      if (a_miss_v[i])  n_miss  = n_miss + CNT_ONE;
+      if (a_merge_v[i]) n_merge = n_merge + CNT_ONE;
+      if (a_full_v[i])  n_full  = n_full + CNT_ONE;
     end
-    head_d  = req_pop ? (head_q == LAST_MSHR ? {MW{1'b0}} : head_q + 1'b1) : head_q;
-    tail_d  = acc_alloc ? (tail_q == LAST_MSHR ? {MW{1'b0}} : tail_q + 1'b1) : tail_q;
-    count_d = count_q;
-    if (acc_alloc && !req_pop) count_d = count_q + 1'b1;
-    if (!acc_alloc && req_pop) count_d = count_q - 1'b1;
+  end
 
-    hits_d   = acc_hit ? hits_q + CNT_ONE : hits_q;
-    misses_d = (acc_valid_i && !a_hit) ? misses_q + CNT_ONE : misses_q;
-    merges_d = acc_merge ? merges_q + CNT_ONE : merges_q;
-    full_d   = acc_full ? full_q + CNT_ONE : full_q;
+  always @* begin
+    mv_d    = mv_chain[PORTS*MSHRS +: MSHRS];
+    ml_d    = ml_chain[PORTS*MSHRS*LINE_W +: MSHRS*LINE_W];
+    fifo_d  = fifo_chain[PORTS*MSHRS*MW +: MSHRS*MW];
+    tail_d  = tail_chain[PORTS*MW +: MW];
+    head_d  = req_pop ? (head_q == LAST_MSHR ? {MW{1'b0}} : head_q + 1'b1) : head_q;
+    count_d = count_q + n_alloc - {{(CW-1){1'b0}}, req_pop};
+
+    hits_d   = hits_q + n_hit;
+    misses_d = misses_q + n_miss;
+    merges_d = merges_q + n_merge;
+    full_d   = full_q + n_full;
     fills_d  = fill_go ? fills_q + CNT_ONE : fills_q;
   end
 
@@ -229,10 +342,8 @@ module ascache #(
 
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      for (s = 0; s < SETS; s = s + 1) begin
-        valid_q[s] <= {WAYS{1'b0}};
-        rank_q[s]  <= rank_reset;
-      end
+      valid_q  <= {SETS*WAYS{1'b0}};
+      rank_q   <= {SETS{rank_reset}};
       mv_q     <= {MSHRS{1'b0}};
       head_q   <= {MW{1'b0}};
       tail_q   <= {MW{1'b0}};
@@ -244,10 +355,11 @@ module ascache #(
       fills_q  <= {CNT_BITS{1'b0}};
     end else begin
       if (fill_go) begin
-        valid_q[f_set] <= f_valid_new;
-        rank_q[f_set]  <= f_rank_new;
+        valid_q[f_set*WAYS +: WAYS]       <= f_valid_new;
+        rank_q[f_set*WAYS*RW +: WAYS*RW]  <= f_rank_new;
       end
-      if (acc_hit) rank_q[a_set] <= a_rank_new;
+      for (pk = 0; pk < PORTS; pk = pk + 1)  // in port order: a later hit's ranks include earlier
+        if (a_hit_v[pk]) rank_q[a_set_v[pk*SW +: SW]*WAYS*RW +: WAYS*RW] <= a_rank_out[pk*WAYS*RW +: WAYS*RW];
       mv_q     <= mv_d;
       head_q   <= head_d;
       tail_q   <= tail_d;
@@ -267,68 +379,74 @@ module ascache #(
   end
 
   // ---------------------------------------------------------------------------------------------
-  // Data array: written by the fill, read by a hit at the same edge (write-first).
-  wire [AW-1:0] ram_waddr, ram_raddr;
-  generate
-    if (WAYS > 1) begin : g_addr_ways
-      assign ram_waddr = {f_set, f_way};
-      assign ram_raddr = {a_set, a_way};
-    end else begin : g_addr_direct
-      assign ram_waddr = f_set;
-      assign ram_raddr = a_set;
-      // Direct mapped: the way indices are always 0.
-      wire unused_ways = ^{f_way, a_way};
-    end
-  endgenerate
+  // Data array, written by the fill. HIT_LATENCY >= 1 (one port): an SRAM read by a hit at the
+  // same edge (write-first), then the response registers. HIT_LATENCY 0: PORTS asynchronous reads
+  // (a register file), the line of a way the fill writes in this cycle is the fill's data.
+  wire [AW-1:0] ram_waddr = addr_of(f_set, f_way);
 
-  wire [DW-1:0] ram_rdata;
-  ascache_ram #(.DEPTH(NL), .WIDTH(DW), .ADDR_W(AW)) u_ram (
-    .clk_i   (clk_i),
-    .we_i    (fill_go),
-    .waddr_i (ram_waddr),
-    .wdata_i (fill_data_i),
-    .re_i    (acc_hit),
-    .raddr_i (ram_raddr),
-    .rdata_o (ram_rdata)
-  );
-
-  // ---------------------------------------------------------------------------------------------
-  // Response: HIT_LATENCY registers of (valid, hit, merge, full, tag); the line comes from the
-  // SRAM's output register, then through HIT_LATENCY-1 further registers (loaded on hits only).
   localparam integer RSW = 3 + TAG_BITS;
-  reg [HIT_LATENCY-1:0]     rv_q;
-  reg [HIT_LATENCY*RSW-1:0] rs_q;
   generate
-    if (HIT_LATENCY > 1) begin : g_rsp_pipe
-      reg [(HIT_LATENCY-1)*DW-1:0] rd_q;
-      integer k;
-      always @(posedge clk_i or negedge rst_ni) begin
-        if (!rst_ni) rv_q <= {HIT_LATENCY{1'b0}};
-        else         rv_q <= {rv_q[HIT_LATENCY-2:0], acc_valid_i};
+    if (HIT_LATENCY == 0) begin : g_comb
+      reg [DW-1:0] data_q [0:NL-1];
+      always @(posedge clk_i) if (fill_go) data_q[ram_waddr] <= fill_data_i;
+      for (gk = 0; gk < PORTS; gk = gk + 1) begin : g_rsp
+        wire [AW-1:0] ra = addr_of(a_set_v[gk*SW +: SW], a_way_v[gk*RW +: RW]);
+        assign rsp_data_o[gk*DW +: DW] = fill_go && ra == ram_waddr ? fill_data_i : data_q[ra];
       end
-      always @(posedge clk_i) begin
-        if (acc_valid_i) rs_q[RSW-1:0] <= {acc_hit, acc_merge, acc_full, acc_tag_i};
-        for (k = 1; k < HIT_LATENCY; k = k + 1)
-          if (rv_q[k-1]) rs_q[k*RSW +: RSW] <= rs_q[(k-1)*RSW +: RSW];
-        if (rv_q[0] && rs_q[RSW-1]) rd_q[DW-1:0] <= ram_rdata;
-        for (k = 2; k < HIT_LATENCY; k = k + 1)
-          if (rv_q[k-1] && rs_q[k*RSW-1]) rd_q[(k-1)*DW +: DW] <= rd_q[(k-2)*DW +: DW];
+      assign rsp_valid_o = acc_valid_i;
+      assign rsp_hit_o   = a_hit_v;
+      assign rsp_merge_o = a_merge_v;
+      assign rsp_full_o  = a_full_v;
+      assign rsp_tag_o   = acc_tag_i;
+    end else begin : g_sram
+      if (PORTS != 1) begin : g_bad
+        ascache_error_registered_response_has_one_port u_error ();  // elaboration error
       end
-      assign rsp_data_o = rd_q[(HIT_LATENCY-2)*DW +: DW];
-    end else begin : g_rsp_one
-      always @(posedge clk_i or negedge rst_ni) begin
-        if (!rst_ni) rv_q <= 1'b0;
-        else         rv_q <= acc_valid_i;
+      wire [DW-1:0] ram_rdata;
+      ascache_ram #(.DEPTH(NL), .WIDTH(DW), .ADDR_W(AW)) u_ram (
+        .clk_i   (clk_i),
+        .we_i    (fill_go),
+        .waddr_i (ram_waddr),
+        .wdata_i (fill_data_i),
+        .re_i    (a_hit_v[0]),
+        .raddr_i (addr_of(a_set_v[SW-1:0], a_way_v[RW-1:0])),
+        .rdata_o (ram_rdata)
+      );
+      // Response: HIT_LATENCY registers of (valid, hit, merge, full, tag); the line comes from
+      // the SRAM's output register, then through HIT_LATENCY-1 further registers (hits only).
+      reg [HIT_LATENCY-1:0]     rv_q;
+      reg [HIT_LATENCY*RSW-1:0] rs_q;
+      if (HIT_LATENCY > 1) begin : g_rsp_pipe
+        reg [(HIT_LATENCY-1)*DW-1:0] rd_q;
+        integer k;
+        always @(posedge clk_i or negedge rst_ni) begin
+          if (!rst_ni) rv_q <= {HIT_LATENCY{1'b0}};
+          else         rv_q <= {rv_q[HIT_LATENCY-2:0], acc_valid_i[0]};
+        end
+        always @(posedge clk_i) begin
+          if (acc_valid_i[0]) rs_q[RSW-1:0] <= {a_hit_v[0], a_merge_v[0], a_full_v[0], acc_tag_i};
+          for (k = 1; k < HIT_LATENCY; k = k + 1)
+            if (rv_q[k-1]) rs_q[k*RSW +: RSW] <= rs_q[(k-1)*RSW +: RSW];
+          if (rv_q[0] && rs_q[RSW-1]) rd_q[DW-1:0] <= ram_rdata;
+          for (k = 2; k < HIT_LATENCY; k = k + 1)
+            if (rv_q[k-1] && rs_q[k*RSW-1]) rd_q[(k-1)*DW +: DW] <= rd_q[(k-2)*DW +: DW];
+        end
+        assign rsp_data_o = rd_q[(HIT_LATENCY-2)*DW +: DW];
+      end else begin : g_rsp_one
+        always @(posedge clk_i or negedge rst_ni) begin
+          if (!rst_ni) rv_q <= 1'b0;
+          else         rv_q <= acc_valid_i[0];
+        end
+        always @(posedge clk_i) begin
+          if (acc_valid_i[0]) rs_q <= {a_hit_v[0], a_merge_v[0], a_full_v[0], acc_tag_i};
+        end
+        assign rsp_data_o = ram_rdata;
       end
-      always @(posedge clk_i) begin
-        if (acc_valid_i) rs_q <= {acc_hit, acc_merge, acc_full, acc_tag_i};
-      end
-      assign rsp_data_o = ram_rdata;
+      assign rsp_valid_o = rv_q[HIT_LATENCY-1];
+      assign {rsp_hit_o, rsp_merge_o, rsp_full_o, rsp_tag_o} = rs_q[(HIT_LATENCY-1)*RSW +: RSW];
+      wire unused_ports = ^{a_miss_v, a_alloc_v};
     end
   endgenerate
-
-  assign rsp_valid_o = rv_q[HIT_LATENCY-1];
-  assign {rsp_hit_o, rsp_merge_o, rsp_full_o, rsp_tag_o} = rs_q[(HIT_LATENCY-1)*RSW +: RSW];
 
   // ---------------------------------------------------------------------------------------------
   // Outputs.
