@@ -103,13 +103,14 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
     auto list = std::make_shared<std::vector<std::string>>();
     c.add_option(name, *list, help)
         ->delimiter(',')
-        ->check(CLI::IsMember({"vtu", "ist", "trv", "hit", "rgu", "all"}))
+        ->check(CLI::IsMember({"vtu", "ist", "trv", "ascache", "hit", "rgu", "all"}))
         ->each([&o, list, view](const std::string& unit) {
           o.overrides.push_back([unit, view](SimConfig& s) {
             auto set = [&](const std::string& u) {
               UnitView& v = u == "vtu"   ? s.vtu_view
                             : u == "ist" ? s.ist_view
                             : u == "trv" ? s.trv_view
+                            : u == "ascache" ? s.ascache_view
                             : u == "hit" ? s.hit_view
                                          : s.rgu_view;
               if (v != UnitView::model && v != view)
@@ -117,16 +118,18 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
               v = view;
             };
             if (unit != "all") return set(unit);
-            // all: every unit with that view (trv has no pin-level twin)
-            for (const char* u : {"vtu", "ist", "trv", "hit", "rgu"})
-              if (view == UnitView::rtl || std::string(u) != "trv") set(u);
+            // all: every unit with that view (trv and the frame's caches have no pin-level twin)
+            for (const char* u : {"vtu", "ist", "trv", "ascache", "hit", "rgu"})
+              if (view == UnitView::rtl || (std::string(u) != "trv" && std::string(u) != "ascache"))
+                set(u);
           });
         });
   };
   views("--rtl", UnitView::rtl,
-        "units (vtu,ist,trv,hit,rgu, or all) simulated by their Verilated RTL in the frame (vtu, ist, hit, rgu "
-        "at their pins; rgu: the primary rays, shadow rays are forwarded by the model; trv: "
-        "rtl/units/trv_unit.v stepped from C++)");
+        "units (vtu,ist,trv,ascache,hit,rgu, or all) simulated by their Verilated RTL in the frame (vtu, ist, "
+        "hit, rgu at their pins; rgu: the primary rays, shadow rays are forwarded by the model; trv: "
+        "rtl/units/trv_unit.v stepped from C++; ascache: the node, list and triangle caches, "
+        "rtl/units/ascache.v stepped from C++)");
   views("--pins", UnitView::twin,
         "units (vtu,ist,hit,rgu, or all) simulated by their pin-level SystemC twin (same ports as the RTL; trv "
         "has none)");

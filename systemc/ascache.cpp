@@ -24,6 +24,7 @@ Ascache::Ascache(sc_core::sc_module_name name, const CacheConfig& cfg, uint64_t 
 }
 
 bool Ascache::present(uint64_t line) const {
+  if (rtl_) throw std::logic_error(std::string(name()) + ": present() with the RTL bound");
   const size_t set = size_t(line % sets_) * ways_;
   for (uint32_t w = 0; w < ways_; ++w)
     if (tag_[set + w] == line + 1) return true;
@@ -31,6 +32,7 @@ bool Ascache::present(uint64_t line) const {
 }
 
 const uint8_t* Ascache::access(uint64_t line) {
+  if (rtl_) return access_rtl(line);
   ++st_.accesses;
   const size_t set = size_t(line % sets_) * ways_;
   for (uint32_t w = 0; w < ways_; ++w)
@@ -64,6 +66,14 @@ const uint8_t* Ascache::access(uint64_t line) {
 void Ascache::fill(uint32_t tag) {
   Mshr& m = mshr_[tag];
   if (!m.valid) throw std::logic_error(std::string(name()) + ": fill of a free MSHR");
+  if (rtl_) {
+    sync_pops();
+    rtl_->fill(tag, m.buf.data());
+    m.valid = false;
+    --busy_;
+    ++st_.fills;
+    return;
+  }
   const size_t set = size_t(m.line % sets_) * ways_;
   size_t victim = set;
   for (uint32_t w = 0; w < ways_; ++w) {
@@ -79,6 +89,64 @@ void Ascache::fill(uint32_t tag) {
   m.valid = false;
   --busy_;
   ++st_.fills;
+}
+
+}  // namespace raycore::sc
+
+namespace raycore::sc {
+
+const CacheStats& Ascache::stats() const {
+  if (rtl_) rtl_->check(st_.hits, st_.misses, st_.mshr_merges, st_.mshr_full, st_.fills);
+  return st_;
+}
+
+void Ascache::sync_pops() {
+  while (queued_.size() > req_.size()) {  // the bus took the oldest requests
+    rtl_->pop(queued_.front().first, queued_.front().second);
+    queued_.pop_front();
+  }
+}
+
+// The RTL decides; the MSHR bookkeeping here must agree with it (the same rules as access()).
+const uint8_t* Ascache::access_rtl(uint64_t line) {
+  sync_pops();
+  ++st_.accesses;
+  const uint8_t* data = nullptr;
+  const AscacheRtl::Kind kind = rtl_->access(line, &data);
+  if (kind == AscacheRtl::Kind::hit) {
+    ++st_.hits;
+    return data;
+  }
+  ++st_.misses;
+  ++st_.cycles_lost;
+  bool inflight = false;
+  for (const auto& m : mshr_) inflight |= m.valid && m.line == line;
+  const bool full = busy_ == mshr_.size();
+  auto differs = [&](const char* rtl_says) {
+    return std::logic_error(std::string(name()) + ": the RTL answers line " +
+                            std::to_string(line) + " with " + rtl_says + ", but " +
+                            (inflight ? "an MSHR fetches it" : full ? "every MSHR is busy"
+                                                                    : "an MSHR is free"));
+  };
+  if (kind == AscacheRtl::Kind::merge) {
+    if (!inflight) throw differs("a merge");
+    ++st_.mshr_merges;
+  } else if (kind == AscacheRtl::Kind::full) {
+    if (inflight || !full) throw differs("MSHRs full");
+    ++st_.mshr_full;
+  } else {
+    if (inflight || full) throw differs("a new MSHR");
+    for (uint32_t i = 0; i < mshr_.size(); ++i)
+      if (!mshr_[i].valid) {  // the lowest free one, as the RTL (checked when the bus takes it)
+        mshr_[i].valid = true;
+        mshr_[i].line = line;
+        ++busy_;
+        req_.push({base_ + line * line_, line_, i, mshr_[i].buf.data()}, now + 1);
+        queued_.emplace_back(line, i);
+        break;
+      }
+  }
+  return nullptr;
 }
 
 }  // namespace raycore::sc

@@ -9,8 +9,12 @@
 #include <systemc>
 
 #include <cstdint>
+#include <deque>
+#include <memory>
+#include <utility>
 #include <vector>
 
+#include "systemc/ascache_rtl.h"
 #include "systemc/config.h"
 #include "systemc/fifo.h"
 #include "systemc/membus.h"
@@ -25,8 +29,14 @@ class Ascache : public sc_core::sc_module {
   // The line's bytes on a hit, nullptr on a miss (then the line is being fetched, or will be once
   // an MSHR is free).
   const uint8_t* access(uint64_t line);
-  // Whether the line is present, without touching LRU or counters (tests).
+  // Whether the line is present, without touching LRU or counters (tests; the model's arrays:
+  // throws with the RTL bound).
   bool present(uint64_t line) const;
+  // Binds the Verilated cache (systemc/ascache_rtl.h, raycore simulate --rtl ascache): from now on
+  // it decides every access and holds the lines; this class keeps the MSHR buffers, the request
+  // channel and the counters, and checks the RTL against them.
+  void bind_rtl(std::unique_ptr<AscacheRtl> rtl) { rtl_ = std::move(rtl); }
+  const AscacheRtl* rtl() const { return rtl_.get(); }
 
   // The fill path: the MSHR buffer the membus writes and the vtu transforms, then the install.
   uint8_t* mshr_data(uint32_t tag) { return mshr_[tag].buf.data(); }
@@ -40,7 +50,8 @@ class Ascache : public sc_core::sc_module {
   uint32_t mshrs_busy() const { return busy_; }
   uint32_t mshrs_total() const { return uint32_t(mshr_.size()); }
   CacheStats& stats() { return st_; }
-  const CacheStats& stats() const { return st_; }
+  // With the RTL bound: clocks its pending edge and checks its counters against these first.
+  const CacheStats& stats() const;
   Cycle now = 0;  // set by the owner each cycle (request timestamps)
   uint32_t hit_latency = 1;
 
@@ -60,6 +71,12 @@ class Ascache : public sc_core::sc_module {
   uint32_t busy_ = 0;
   TimedFifo<MemReq> req_;
   CacheStats st_;
+  // RTL view: the Verilated cache, and the requests queued in it (line, MSHR) that the bus has not
+  // taken as far as it knows (the bus pops req_ itself; sync_pops() passes those pops on).
+  const uint8_t* access_rtl(uint64_t line);
+  void sync_pops();
+  std::unique_ptr<AscacheRtl> rtl_;
+  std::deque<std::pair<uint64_t, uint32_t>> queued_;
 };
 
 }  // namespace raycore::sc

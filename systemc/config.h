@@ -56,6 +56,10 @@ struct SimConfig {
   CacheConfig node_cache{16 * 1024, 4, 64, 8, 1};
   CacheConfig list_cache{8 * 1024, 4, 64, 8, 1};
   CacheConfig tri_cache{32 * 1024, 4, 64, 8, 1};
+  // The three caches: the model (systemc/ascache.h) or rtl/units/ascache.v Verilated at the
+  // cache's geometry (systemc/ascache_rtl.h; no pin-level twin in the frame: the frame's caches
+  // answer within the cycle, the twin at ascache.v's registered pins does not).
+  UnitView ascache_view = UnitView::model;
   // rgu / trv / ist / hit.
   // Defaults of the levers below chosen by the numbers of `make throughput` (docs/results.md: the
   // least RTU area that reaches 0.08 rays/cycle per RTU at <= 1.1 GB/s on sponza-paper); the

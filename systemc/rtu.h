@@ -58,6 +58,21 @@ class Rtu : public sc_core::sc_module {
 
   // The pin-level units of this RTU (SystemC twins or Verilated RTL in the units' places).
   void bind_pins(FrameCtx& fc, const SimConfig& cfg, pins::PinClock* clock) {
+    if (cfg.ascache_view == UnitView::twin)
+      throw ConfigError("ascache has no pin-level twin in the frame (the frame's caches answer "
+                        "within the cycle; ascache.v's pin twin answers a cycle later): use "
+                        "--rtl ascache");
+    if (cfg.ascache_view == UnitView::rtl)
+      for (Ascache* c : {&node, &list, &tri}) {
+        auto r = make_rtl_ascache(c->sets(), c->ways(), c->line_bytes(), c->mshrs_total());
+        if (!r)
+          throw ConfigError(std::string("no Verilated ascache for the ") + c->basename() + " (" +
+                            std::to_string(c->sets()) + " sets x " + std::to_string(c->ways()) +
+                            " ways x " + std::to_string(c->line_bytes()) + " B, " +
+                            std::to_string(c->mshrs_total()) + " MSHRs) in this build; built: " +
+                            rtl_ascache_built());
+        c->bind_rtl(std::move(r));
+      }
     if (cfg.trv_view == UnitView::twin)
       throw ConfigError("trv has no pin-level SystemC twin (its transaction model is the twin of "
                         "rtl/units/trv_unit.v): use --rtl trv");

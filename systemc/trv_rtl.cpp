@@ -12,35 +12,13 @@
 #include <systemc.h>
 
 #include "rtl_trv_unit_models.h"
+#include "systemc/vl_bits.h"
 
 namespace raycore::sc {
 namespace {
 
-// Bits [lo, lo + n) of a Verilated port (an integer type or a VlWide), n <= 32.
-template <class T>
-uint32_t get_bits(const T& s, unsigned lo, unsigned n) {
-  if constexpr (std::is_integral_v<T>) {
-    return uint32_t((uint64_t(s) >> lo) & ((uint64_t(1) << n) - 1));
-  } else {
-    uint64_t w = s[lo / 32];
-    if (lo % 32 + n > 32) w |= uint64_t(s[lo / 32 + 1]) << 32;
-    return uint32_t((w >> (lo % 32)) & ((uint64_t(1) << n) - 1));
-  }
-}
-template <class T>
-void set_bits(T& s, unsigned lo, unsigned n, uint32_t v) {
-  const uint64_t mask = ((uint64_t(1) << n) - 1);
-  if constexpr (std::is_integral_v<T>) {
-    s = T((uint64_t(s) & ~(mask << lo)) | ((uint64_t(v) & mask) << lo));
-  } else {
-    for (unsigned b = 0; b < n;) {  // word by word
-      const unsigned i = (lo + b) / 32, o = (lo + b) % 32, k = std::min(n - b, 32 - o);
-      const uint32_t m = k == 32 ? ~0u : ((1u << k) - 1) << o;
-      s[i] = (s[i] & ~m) | ((uint32_t(v >> b) << o) & m);
-      b += k;
-    }
-  }
-}
+using vl::get_bits;
+using vl::set_bits;
 
 template <class M, unsigned W, unsigned SLOT_BITS, unsigned PIPES, unsigned IST, unsigned WORDS>
 class TrvRtlT final : public TrvRtl {
@@ -60,11 +38,7 @@ class TrvRtlT final : public TrvRtl {
           std::to_string(1u << SLOT_BITS) + " --rays-in-flight and " + std::to_string(4 * WORDS) +
           "-byte list cache lines (rtl/units/trv_unit.cmake)");
     ch_.ist_results = &results_;
-    m_.clk_i = 0;
-    m_.rst_ni = 0;
-    m_.eval();
-    m_.rst_ni = 1;
-    m_.eval();
+    vl::async_reset(m_);
   }
   ~TrvRtlT() override {
     ch_.ist_results = nullptr;

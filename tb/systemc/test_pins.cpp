@@ -23,12 +23,15 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <functional>
 #include <random>
 #include <sstream>
 #include <string>
 #include <utility>
 
+#include "systemc/ascache.h"
+#include "systemc/ascache_rtl.h"
 #include "systemc/pins/clock.h"
 #include "systemc/pins/ist.h"
 #include "systemc/pins/rgu.h"
@@ -430,6 +433,145 @@ TEST(TrvRtlFrame, RefusesWhatTheModelCannotRun) {
   const Summary r = expect_refused(tiny_scene(), config(FormatId::fp24, Rounding::raycore, false, 8, 8),
                                    cfg, "no Verilated trv_unit for fp24 raycore");
   EXPECT_NE(std::string(r.error).find("trv_unit FP32 rne"), std::string::npos) << r.error;
+}
+
+// ---- the caches in RTL (rtl/units/ascache.v, HIT_LATENCY 0, --rtl ascache) --------------------
+// The frame with the node, list and triangle caches of every RTU Verilated: the transaction
+// model's cycles, bus bytes, frame and work counters, with every cache counter (hits, merges,
+// MSHRs full, fills) equal; the binding itself checks each merge, full and new MSHR against its
+// bookkeeping, the request queue's head whenever the bus takes it, and the RTL's counters.
+void expect_ascache_rtl(const scenes::Scene& s, const sim::TraceConfig& tc, sc::SimConfig cfg,
+                        const char* what) {
+  const Summary model = expect_match(s, tc, cfg);
+  cfg.ascache_view = UnitView::rtl;
+  const Summary p = expect_match(s, tc, cfg);
+  EXPECT_EQ(p.cycles, model.cycles) << what;
+  EXPECT_EQ(p.hash, model.hash) << what;
+  EXPECT_EQ(p.bus_bytes, model.bus_bytes) << what;
+  EXPECT_EQ(p.tri_tests, model.tri_tests) << what;
+  for (int i = 0; i < Summary::kWork; ++i)
+    EXPECT_EQ(p.work[i], model.work[i]) << what << ": " << kWorkNames[i];
+}
+// The frame's cache alone: Ascache as the model and Ascache with the Verilated cache bound, driven
+// by the same random calls: cycles of 0..12 accesses (more than the RTL's 8 ports: a second edge)
+// on a line stream with locality (the next line, a recent one, a window that drifts, a far one),
+// the bus taking requests at random, fills of taken requests after a random delay, out of order,
+// up to two a cycle. Every answer (a line and its bytes, or none), every request taken, the MSHRs
+// busy and the counters are equal.
+void ascache_lockstep(const sc::CacheConfig& cc, uint32_t line_bytes, uint64_t cycles,
+                      uint64_t seed) {
+  sc::Ascache a("model", cc, 0, line_bytes), b("rtl", cc, 0, line_bytes);
+  auto r = sc::make_rtl_ascache(b.sets(), b.ways(), b.line_bytes(), b.mshrs_total());
+  ASSERT_TRUE(r) << sc::rtl_ascache_built();
+  b.bind_rtl(std::move(r));
+  std::mt19937_64 rng(seed);
+  struct Taken {
+    sc::Cycle at;
+    uint32_t tag;
+    uint64_t line;
+  };
+  std::vector<Taken> taken;
+  std::vector<uint64_t> recent(16, 0);
+  const uint64_t window = 4ull * a.sets() * a.ways();
+  uint64_t base = 0, next = 0, fills = 0;
+  for (sc::Cycle now = 0; now < cycles; ++now) {
+    a.now = b.now = now;
+    if (now % 64 == 0) base += rng() % 8;
+    ASSERT_EQ(a.req().can_pop(now), b.req().can_pop(now)) << "cycle " << now;
+    if (a.req().can_pop(now) && rng() % 3 != 0) {
+      const sc::MemReq x = a.req().pop(), y = b.req().pop();
+      ASSERT_EQ(x.addr, y.addr) << "cycle " << now;
+      ASSERT_EQ(x.tag, y.tag) << "cycle " << now;
+      taken.push_back({now + 1 + rng() % (rng() % 8 == 0 ? 150 : 40), x.tag, x.addr / line_bytes});
+    }
+    for (int f = 0; f < 2 && !taken.empty(); ++f) {
+      const size_t i = rng() % taken.size();
+      if (taken[i].at > now) continue;
+      uint8_t* pa = a.mshr_data(taken[i].tag);
+      uint8_t* pb = b.mshr_data(taken[i].tag);
+      ++fills;
+      for (uint32_t k = 0; k < line_bytes; ++k)
+        pa[k] = pb[k] = uint8_t((taken[i].line * 131 + fills * 7 + k * 29) >> (k % 3));
+      a.fill(taken[i].tag);
+      b.fill(taken[i].tag);
+      taken.erase(taken.begin() + long(i));
+    }
+    const int n = int(rng() % 13);
+    for (int k = 0; k < n; ++k) {
+      const uint64_t c = rng() % 10;
+      const uint64_t line = c < 4   ? next + 1
+                            : c < 7 ? recent[rng() % recent.size()]
+                            : c < 9 ? base + rng() % window
+                                    : rng() % (1u << 20);
+      next = line;
+      recent[rng() % recent.size()] = line;
+      const uint8_t* pa = a.access(line);
+      const uint8_t* pb = b.access(line);
+      ASSERT_EQ(pa == nullptr, pb == nullptr) << "cycle " << now << " access " << k << " line " << line;
+      if (pa) {
+        ASSERT_EQ(std::memcmp(pa, pb, line_bytes), 0) << "cycle " << now << " line " << line;
+      }
+    }
+    ASSERT_EQ(a.mshrs_busy(), b.mshrs_busy()) << "cycle " << now;
+  }
+  const sc::CacheStats &sa = a.stats(), &sb = b.stats();
+  EXPECT_EQ(sa.hits, sb.hits);
+  EXPECT_EQ(sa.misses, sb.misses);
+  EXPECT_EQ(sa.mshr_merges, sb.mshr_merges);
+  EXPECT_EQ(sa.mshr_full, sb.mshr_full);
+  EXPECT_EQ(sa.fills, sb.fills);
+  EXPECT_GT(sa.hits, cycles / 2);  // the stream exercises hits, evictions, merges and full MSHRs
+  EXPECT_GT(sa.fills, cycles / 100);
+  EXPECT_GT(sa.mshr_merges, 0u);
+  EXPECT_GT(sa.mshr_full, 0u);
+}
+TEST(AscacheRtlLockstep, Node16k) { ascache_lockstep({16 * 1024, 4, 64, 8, 1}, 64, 200000, 1); }
+TEST(AscacheRtlLockstep, Node1k) { ascache_lockstep({1024, 2, 64, 2, 1}, 64, 200000, 2); }
+TEST(AscacheRtlLockstep, List512Lines32) { ascache_lockstep({512, 2, 32, 2, 1}, 32, 200000, 3); }
+TEST(AscacheRtlLockstep, Tri32kFp32Sets170) { ascache_lockstep({32 * 1024, 4, 48, 8, 1}, 48, 200000, 4); }
+
+TEST(AscacheRtlFrame, DefaultsFp24Rtz) {
+  expect_ascache_rtl(corridor(), config(FormatId::fp24, Rounding::rtz, true, 48, 30), {},
+                     "defaults");
+}
+TEST(AscacheRtlFrame, SmallCachesNoL2RandomLatencyWithTrvRtl) {
+  sc::SimConfig cfg;  // misses, merges, MSHRs full, evictions; more accesses than ports a cycle
+  cfg.node_cache = {1024, 2, 64, 2, 1};
+  cfg.list_cache = {512, 2, 32, 2, 2};
+  cfg.trv_pipes = 4;
+  cfg.l2.size_bytes = 0;
+  cfg.rtus = 2;
+  cfg.seed = 5;
+  expect_ascache_rtl(corridor(), margins_config(Rounding::rne, true), cfg, "small caches");
+  cfg.trv_view = UnitView::rtl;
+  expect_ascache_rtl(corridor(), margins_config(Rounding::rne, true), cfg, "small caches, trv rtl");
+}
+TEST(AscacheRtlFrame, Fp32TriangleCacheOf170Sets) {
+  expect_ascache_rtl(tiny_scene(), config(FormatId::fp32, Rounding::rne, true, 32, 24), {},
+                     "fp32: 48-byte triangle lines, 170 sets");
+}
+// Every unit with RTL in the frame (--rtl all: vtu, ist, trv, ascache, hit, rgu), 3 RTUs,
+// randomised memory latency, skip-back shadow rays.
+TEST(AscacheRtlFrame, AllUnitsRtlThreeRtusRandomLatency) {
+  sc::SimConfig cfg;
+  cfg.rtus = 3;
+  cfg.seed = 13;
+  cfg.vtu_view = cfg.ist_view = cfg.trv_view = cfg.hit_view = cfg.rgu_view = UnitView::rtl;
+  auto tc = config(FormatId::fp24, Rounding::rne, true, 40, 24);
+  tc.spawn.spawn = raycore::hls::Spawn::skip_back;
+  expect_ascache_rtl(corridor(), tc, cfg, "all units rtl");
+}
+TEST(AscacheRtlFrame, RefusesWhatIsNotBuilt) {
+  const auto tc = config(FormatId::fp24, Rounding::rtz, false, 8, 8);
+  sc::SimConfig cfg;
+  cfg.ascache_view = UnitView::twin;
+  expect_refused(tiny_scene(), tc, cfg, "ascache has no pin-level twin in the frame");
+  cfg.ascache_view = UnitView::rtl;
+  cfg.node_cache.size_bytes = 2048;  // 8 sets x 4 ways: not built; the message lists what is
+  const Summary r = expect_refused(tiny_scene(), tc, cfg,
+                                   "no Verilated ascache for the node_cache (8 sets x 4 ways");
+  EXPECT_NE(std::string(r.error).find("64 sets x 4 ways x 64 B, 8 MSHRs"), std::string::npos)
+      << r.error;
 }
 
 // ---- lockstep: twin vs Verilated model --------------------------------------------------------

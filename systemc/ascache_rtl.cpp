@@ -1,0 +1,138 @@
+// systemc/ascache_rtl.cpp - the Verilated AS cache bound into the frame (see ascache_rtl.h). Built
+// with the Verilated models (RAYCORE_RTL=ON); the geometries are rtl/units/ascache.cmake's frame
+// list.
+#include "systemc/ascache_rtl.h"
+
+#include <stdexcept>
+
+// The models are built into the frame library with the SystemC ones (VM_SC=1): Verilator's
+// runtime then names sc_time_stamp unqualified, as systemc.h declares it.
+#include <systemc.h>
+
+#include "rtl_ascache_frame_models.h"
+#include "systemc/vl_bits.h"
+
+namespace raycore::sc {
+namespace {
+
+using vl::get_bits;
+using vl::set_bits;
+
+constexpr unsigned kLineW = 26;  // ascache.cmake's LINE_W: line indices below 2^26
+
+template <class M, unsigned SETS, unsigned WAYS, unsigned LB, unsigned MSHRS, unsigned PORTS>
+class AscacheRtlT final : public AscacheRtl {
+  static_assert(LB % 4 == 0, "lines of whole 32-bit words");
+
+ public:
+  AscacheRtlT() { vl::async_reset(m_); }
+  ~AscacheRtlT() override { m_.final(); }
+
+  std::string name() const override {
+    return "Verilated ascache " + std::to_string(SETS) + "x" + std::to_string(WAYS) + "x" +
+           std::to_string(LB) + "B, " + std::to_string(MSHRS) + " MSHRs, " +
+           std::to_string(PORTS) + " ports";
+  }
+
+  Kind access(uint64_t line, const uint8_t** data) override {
+    if (line >> kLineW)
+      throw std::runtime_error(name() + ": line index " + std::to_string(line) +
+                               " beyond the RTL's 26 bits (an image over 4 GB)");
+    if (n_acc_ == PORTS) edge();
+    const unsigned k = n_acc_++;
+    set_bits(m_.acc_valid_i, k, 1, 1);
+    set_bits(m_.acc_line_i, k * kLineW, kLineW, uint32_t(line));
+    m_.eval();
+    if (get_bits(m_.rsp_hit_o, k, 1)) {
+      for (unsigned w = 0; w < LB / 4; ++w) {
+        const uint32_t v = get_bits(m_.rsp_data_o, (k * LB + 4 * w) * 8, 32);
+        for (unsigned b = 0; b < 4; ++b) line_[4 * w + b] = uint8_t(v >> (8 * b));
+      }
+      *data = line_;
+      return Kind::hit;
+    }
+    *data = nullptr;
+    if (get_bits(m_.rsp_merge_o, k, 1)) return Kind::merge;
+    if (get_bits(m_.rsp_full_o, k, 1)) return Kind::full;
+    return Kind::alloc;
+  }
+
+  void fill(uint32_t tag, const uint8_t* data) override {
+    if (fill_ || n_acc_) edge();
+    m_.fill_valid_i = 1;
+    m_.fill_tag_i = static_cast<std::remove_reference_t<decltype(m_.fill_tag_i)>>(tag);
+    for (unsigned w = 0; w < LB / 4; ++w)
+      set_bits(m_.fill_data_i, 32 * w, 32,
+               uint32_t(data[4 * w]) | uint32_t(data[4 * w + 1]) << 8 |
+                   uint32_t(data[4 * w + 2]) << 16 | uint32_t(data[4 * w + 3]) << 24);
+    m_.eval();
+    fill_ = true;
+  }
+
+  void pop(uint64_t line, uint32_t tag) override {
+    if (pop_ || fill_ || n_acc_) edge();
+    if (!m_.req_valid_o || m_.req_line_o != line || m_.req_tag_o != tag)
+      throw std::logic_error(name() + ": the bus took line " + std::to_string(line) + " (MSHR " +
+                             std::to_string(tag) + "), the RTL's request queue holds " +
+                             (m_.req_valid_o ? "line " + std::to_string(m_.req_line_o) +
+                                                   " (MSHR " + std::to_string(m_.req_tag_o) + ")"
+                                             : std::string("nothing")));
+    m_.req_ready_i = 1;
+    pop_ = true;
+  }
+
+  void check(uint64_t hits, uint64_t misses, uint64_t merges, uint64_t full,
+             uint64_t fills) override {
+    if (pop_ || fill_ || n_acc_) edge();
+    const uint64_t rtl[5] = {m_.cnt_hits_o, m_.cnt_misses_o, m_.cnt_merges_o, m_.cnt_full_o,
+                             m_.cnt_fills_o};
+    const uint64_t model[5] = {hits, misses, merges, full, fills};
+    const char* names[5] = {"hits", "misses", "merges", "full", "fills"};
+    for (int i = 0; i < 5; ++i)
+      if (rtl[i] != model[i])
+        throw std::logic_error(name() + ": " + names[i] + " " + std::to_string(rtl[i]) +
+                               " in the RTL, " + std::to_string(model[i]) + " counted");
+  }
+
+ private:
+  // The pending edge: the pop, the fill and the accesses driven since the last one.
+  void edge() {
+    m_.clk_i = 1;
+    m_.eval();
+    m_.acc_valid_i = 0;
+    m_.fill_valid_i = 0;
+    m_.req_ready_i = 0;
+    m_.clk_i = 0;
+    m_.eval();
+    n_acc_ = 0;
+    fill_ = pop_ = false;
+  }
+
+  M m_;
+  unsigned n_acc_ = 0;
+  bool fill_ = false, pop_ = false;
+  uint8_t line_[LB] = {};
+};
+
+}  // namespace
+
+std::unique_ptr<AscacheRtl> make_rtl_ascache(uint32_t sets, uint32_t ways, uint32_t line_bytes,
+                                             uint32_t mshrs) {
+#define RAYCORE_RTL_ASCF_VARIANT(prefix, s, w, lb, m, p)                   \
+  if (sets == s && ways == w && line_bytes == lb && mshrs == m)           \
+    return std::make_unique<AscacheRtlT<prefix, s, w, lb, m, p>>();
+#include "rtl_ascache_frame_variants.h"
+#undef RAYCORE_RTL_ASCF_VARIANT
+  return nullptr;
+}
+
+std::string rtl_ascache_built() {
+  std::string s;
+#define RAYCORE_RTL_ASCF_VARIANT(prefix, s_, w, lb, m, p) \
+  s += std::string(s.empty() ? "" : ", ") + #s_ " sets x " #w " ways x " #lb " B, " #m " MSHRs";
+#include "rtl_ascache_frame_variants.h"
+#undef RAYCORE_RTL_ASCF_VARIANT
+  return s.empty() ? "none" : s;
+}
+
+}  // namespace raycore::sc

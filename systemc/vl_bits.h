@@ -1,0 +1,52 @@
+// systemc/vl_bits.h - bit fields of Verilated --cc ports (an integer type or a VlWide), for the
+// C++ bindings that step a Verilated model from the cycle model (trv_rtl.cpp, ascache_rtl.cpp).
+#pragma once
+
+#include <algorithm>
+#include <cstdint>
+#include <type_traits>
+
+namespace raycore::sc::vl {
+
+// Bits [lo, lo + n) of a port, n <= 32.
+template <class T>
+uint32_t get_bits(const T& s, unsigned lo, unsigned n) {
+  if constexpr (std::is_integral_v<T>) {
+    return uint32_t((uint64_t(s) >> lo) & ((uint64_t(1) << n) - 1));
+  } else {
+    uint64_t w = s[lo / 32];
+    if (lo % 32 + n > 32) w |= uint64_t(s[lo / 32 + 1]) << 32;
+    return uint32_t((w >> (lo % 32)) & ((uint64_t(1) << n) - 1));
+  }
+}
+// Sets bits [lo, lo + n) of a port to v, n <= 32.
+template <class T>
+void set_bits(T& s, unsigned lo, unsigned n, uint32_t v) {
+  const uint64_t mask = ((uint64_t(1) << n) - 1);
+  if constexpr (std::is_integral_v<T>) {
+    s = T((uint64_t(s) & ~(mask << lo)) | ((uint64_t(v) & mask) << lo));
+  } else {
+    for (unsigned b = 0; b < n;) {  // word by word
+      const unsigned i = (lo + b) / 32, o = (lo + b) % 32, k = std::min(n - b, 32 - o);
+      const uint32_t m = k == 32 ? ~0u : ((1u << k) - 1) << o;
+      s[i] = (s[i] & ~m) | ((uint32_t(v >> b) << o) & m);
+      b += k;
+    }
+  }
+}
+
+// The asynchronous reset of a model with clk_i and rst_ni (active low): a falling edge of rst_ni
+// (Verilator's inputs start at 0, so driving 0 first would be no edge and reset nothing), then
+// released, the clock low.
+template <class M>
+void async_reset(M& m) {
+  m.clk_i = 0;
+  m.rst_ni = 1;
+  m.eval();
+  m.rst_ni = 0;
+  m.eval();
+  m.rst_ni = 1;
+  m.eval();
+}
+
+}  // namespace raycore::sc::vl
