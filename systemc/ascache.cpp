@@ -32,12 +32,14 @@ bool Ascache::present(uint64_t line) const {
 }
 
 const uint8_t* Ascache::access(uint64_t line) {
+  ++probe_now().accesses;
   if (rtl_) return access_rtl(line);
   ++st_.accesses;
   const size_t set = size_t(line % sets_) * ways_;
   for (uint32_t w = 0; w < ways_; ++w)
     if (tag_[set + w] == line + 1) {
       ++st_.hits;
+      ++probe_.hits;
       stamp_[set + w] = ++clock_;
       return data_.data() + (set + w) * line_;
     }
@@ -66,6 +68,7 @@ const uint8_t* Ascache::access(uint64_t line) {
 void Ascache::fill(uint32_t tag) {
   Mshr& m = mshr_[tag];
   if (!m.valid) throw std::logic_error(std::string(name()) + ": fill of a free MSHR");
+  ++probe_now().fills;
   if (rtl_) {
     sync_pops();
     rtl_->fill(tag, m.buf.data());
@@ -115,6 +118,7 @@ const uint8_t* Ascache::access_rtl(uint64_t line) {
   const AscacheRtl::Kind kind = rtl_->access(line, &data);
   if (kind == AscacheRtl::Kind::hit) {
     ++st_.hits;
+    ++probe_.hits;
     return data;
   }
   ++st_.misses;

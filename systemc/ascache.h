@@ -43,6 +43,13 @@ class Ascache : public sc_core::sc_module {
   uint64_t mshr_line(uint32_t tag) const { return mshr_[tag].line; }
   void fill(uint32_t tag);
 
+  // This cycle's activity (the waveform, --trace): accesses, hits and fills with now as set.
+  struct Probe {
+    Cycle cycle = kNever;
+    uint32_t accesses = 0, hits = 0, fills = 0;
+  };
+  Probe probe(Cycle at) const { return probe_.cycle == at ? probe_ : Probe{at, 0, 0, 0}; }
+
   TimedFifo<MemReq>& req() { return req_; }  // req_valid_o / req_ready_i / req_addr_o ...
   uint32_t line_bytes() const { return line_; }
   uint32_t sets() const { return sets_; }
@@ -77,6 +84,11 @@ class Ascache : public sc_core::sc_module {
   void sync_pops();
   std::unique_ptr<AscacheRtl> rtl_;
   std::deque<std::pair<uint64_t, uint32_t>> queued_;
+  Probe probe_;
+  Probe& probe_now() {
+    if (probe_.cycle != now) probe_ = Probe{now, 0, 0, 0};
+    return probe_;
+  }
 };
 
 }  // namespace raycore::sc

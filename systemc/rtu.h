@@ -151,6 +151,7 @@ class Rtu : public sc_core::sc_module {
   pins::IstPort* ist_port() { return ist_ports_.empty() ? nullptr : ist_ports_[0].get(); }
   pins::HitPort* hit_port() { return hit_port_.get(); }
   pins::RguPort* rgu_port() { return rgu_port_.get(); }
+  const TrvRtl* trv_rtl() const { return trv_rtl_.get(); }
   bool wants_edge() const {
     return vtu_unit.wants_edge() || ist.wants_edge() || hit.wants_edge() || rgu.wants_edge();
   }

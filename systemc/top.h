@@ -70,6 +70,25 @@ class Top : public sc_core::sc_module {
         sc_core::sc_trace(tf_, p->tri_miss, n + "tri_misses");
         rsig_.push_back(std::move(p));
       }
+      // RTU 0's caches (any view; with --rtl ascache the RTL's answers) and, with --rtl trv,
+      // trv_unit's ports: per cycle, as the C++ binding drove and read them.
+      for (int c = 0; c < 3; ++c) {
+        const std::string n = std::string("rtu0_") + (c == 0 ? "node" : c == 1 ? "list" : "tri");
+        sc_core::sc_trace(tf_, cache_sig_[c][0], n + "_accesses");
+        sc_core::sc_trace(tf_, cache_sig_[c][1], n + "_hits");
+        sc_core::sc_trace(tf_, cache_sig_[c][2], n + "_fills");
+      }
+      if (rtus[0]->trv_rtl()) {
+        sc_core::sc_trace(tf_, trv_sig_.in_valid, "rtu0_trv_in_valid_i");
+        sc_core::sc_trace(tf_, trv_sig_.in_slot, "rtu0_trv_in_slot_i");
+        sc_core::sc_trace(tf_, trv_sig_.res_valid, "rtu0_trv_res_valid_i");
+        sc_core::sc_trace(tf_, trv_sig_.go, "rtu0_trv_go_o");
+        sc_core::sc_trace(tf_, trv_sig_.fin, "rtu0_trv_fin_o");
+        sc_core::sc_trace(tf_, trv_sig_.acc_valid, "rtu0_trv_acc_valid_o");
+        sc_core::sc_trace(tf_, trv_sig_.rsp_hit, "rtu0_trv_rsp_hit_i");
+        sc_core::sc_trace(tf_, trv_sig_.ist_entries, "rtu0_trv_ist_n_o");
+        sc_core::sc_trace(tf_, trv_sig_.head_valid, "rtu0_trv_head_valid_o");
+      }
       // RTU 0's pin-level units: their clock and handshakes (the signals the RTL sees).
       if (clock_) {
         sc_core::sc_trace(tf_, clock_->clk, "clk_i");
@@ -121,6 +140,10 @@ class Top : public sc_core::sc_module {
   std::string error;       // why the frame stopped early ("" = it ran to its end)
 
  private:
+  struct TrvSignals {
+    sc_core::sc_signal<bool> in_valid, head_valid;
+    sc_core::sc_signal<uint32_t> in_slot, res_valid, go, fin, acc_valid, rsp_hit, ist_entries;
+  };
   struct RtuSignals {
     sc_core::sc_signal<bool> busy;
     sc_core::sc_signal<uint32_t> in_flight;
@@ -287,6 +310,25 @@ class Top : public sc_core::sc_module {
       rsig_[i]->node_miss.write(s.node.misses);
       rsig_[i]->tri_miss.write(s.tri.misses);
     }
+    const Ascache* caches[3] = {&rtus[0]->node, &rtus[0]->list, &rtus[0]->tri};
+    for (int c = 0; c < 3; ++c) {
+      const Ascache::Probe p = caches[c]->probe(now);
+      cache_sig_[c][0].write(p.accesses);
+      cache_sig_[c][1].write(p.hits);
+      cache_sig_[c][2].write(p.fills);
+    }
+    if (const TrvRtl* t = rtus[0]->trv_rtl()) {
+      const TrvProbe p = t->probe(now);
+      trv_sig_.in_valid.write(p.in_valid);
+      trv_sig_.in_slot.write(p.in_slot);
+      trv_sig_.res_valid.write(p.res_valid);
+      trv_sig_.go.write(p.go);
+      trv_sig_.fin.write(p.fin);
+      trv_sig_.acc_valid.write(p.acc_valid);
+      trv_sig_.rsp_hit.write(p.rsp_hit);
+      trv_sig_.ist_entries.write(p.ist_entries);
+      trv_sig_.head_valid.write(p.head_valid);
+    }
   }
 
   sc_core::sc_time period_;
@@ -294,6 +336,8 @@ class Top : public sc_core::sc_module {
   sc_core::sc_signal<uint64_t> sig_cycle_, sig_retired_, sig_bus_bytes_;
   sc_core::sc_signal<uint32_t> sig_bus_outstanding_;
   std::vector<std::unique_ptr<RtuSignals>> rsig_;
+  sc_core::sc_signal<uint32_t> cache_sig_[3][3];  // RTU 0: node, list, tri x accesses, hits, fills
+  TrvSignals trv_sig_;
 };
 
 }  // namespace raycore::sc

@@ -52,6 +52,9 @@ class TrvRtlT final : public TrvRtl {
     // A cycle in which no pipe can take a ray and no result comes changes nothing in the RTL
     // (every register holds): neither evaluate nor clock it (edge() clocks only with a ray in).
     stepped_ = !results_.empty() || (m_.head_valid_o && at(now, m_.head_ready_o) <= now);
+    probe_ = TrvProbe{};
+    probe_.cycle = now;
+    probe_.head_valid = m_.head_valid_o;
     if (!stepped_) return false;
     m_.clk_i = 0;  // the falling edge: nothing is sensitive to it
     m_.now_i = uint32_t(now);
@@ -98,6 +101,13 @@ class TrvRtlT final : public TrvRtl {
                  uint32_t(hls::detail::get_le(line + off + 4 * i, 4)));
       m_.eval();
     }
+    probe_.res_valid = m_.res_valid_i;
+    probe_.go = m_.go_o;
+    probe_.fin = m_.fin_o;
+    probe_.acc_valid = m_.acc_valid_o;
+    probe_.rsp_hit = m_.rsp_hit_i;
+    for (unsigned p = 0; p < PIPES; ++p)
+      if (get_bits(m_.go_o, p, 1)) probe_.ist_entries += get_bits(m_.ist_n_o, p * 6, 6);
     if (m_.err_o)
       throw std::runtime_error("trv: a ray needs more than the " + std::to_string(fc_.stack_depth) +
                                " stack entries of --stack-depth (at most 64, the deepest tree)");
@@ -148,6 +158,12 @@ class TrvRtlT final : public TrvRtl {
                               r.ray.d[2], r.ray.d[1],  r.ray.d[0],   r.ray.o[2],   r.ray.o[1],
                               r.ray.o[0]};
       for (unsigned i = 0; i < 11; ++i) set_bits(m_.in_ray_i, i * W, W, f[i]);
+      if (probe_.cycle != now) {
+        probe_ = TrvProbe{};
+        probe_.cycle = now;
+      }
+      probe_.in_valid = true;
+      probe_.in_slot = s;
     }
     if (!stepped_ && !m_.in_valid_i) return;  // nothing happened: the registers hold
     if (!stepped_) {  // only the rgu's ray: the cycle's inputs as tick() would drive them
@@ -160,6 +176,14 @@ class TrvRtlT final : public TrvRtl {
     }
     m_.clk_i = 1;  // the inputs and the rising edge in one evaluation (Verilator settles the
     m_.eval();     // input-driven logic first)
+  }
+
+  TrvProbe probe(Cycle now) const override {
+    if (probe_.cycle == now) return probe_;
+    TrvProbe p;
+    p.cycle = now;
+    p.head_valid = m_.head_valid_o;
+    return p;
   }
 
   Cycle next_event(Cycle now) const override {
@@ -210,6 +234,7 @@ class TrvRtlT final : public TrvRtl {
   std::vector<IstRes> results_;
   bool configured_ = false;
   bool stepped_ = false;  // this cycle's tick evaluated the model
+  TrvProbe probe_;
 };
 
 bool matches(const char* fmt, const char* mode, hls::FormatId f, hls::Rounding r) {

@@ -20,9 +20,22 @@
 #include "hls/fp.h"
 #include "hls/image.h"
 #include "systemc/config.h"
+#include "systemc/fifo.h"
 #include "systemc/slot.h"
 
 namespace raycore::sc {
+
+// One cycle of trv_unit's ports (the waveform, --trace): masks by pipe / ist port.
+struct TrvProbe {
+  Cycle cycle = kNever;
+  bool in_valid = false;            // in_valid_i: a ray from the rgu
+  uint32_t in_slot = 0;             // in_slot_i
+  uint32_t res_valid = 0;           // res_valid_i: ist results
+  uint32_t go = 0, fin = 0;         // go_o: pipes that took a ray; fin_o: rays finished
+  uint32_t acc_valid = 0, rsp_hit = 0;  // acc_valid_o / rsp_hit_i: cache accesses A0 B0 A1 ..
+  uint32_t ist_entries = 0;         // list entries handed to the ist (ist_n_o summed)
+  bool head_valid = false;          // head_valid_o: the ready queue is not empty
+};
 
 class TrvRtl {
  public:
@@ -32,6 +45,7 @@ class TrvRtl {
   virtual Cycle next_event(Cycle now) const = 0;  // the ready queue's head
   virtual void stats(RtuStats& s) const = 0;      // the traversal counters
   virtual std::string name() const = 0;           // "Verilated trv_unit FP24 rtz"
+  virtual TrvProbe probe(Cycle now) const = 0;    // this cycle's ports (zero if it did nothing)
 };
 
 // The Verilated trv_unit of that format and rounding bound to an RTU's frame context, channels and
