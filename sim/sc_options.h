@@ -103,7 +103,7 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
     auto list = std::make_shared<std::vector<std::string>>();
     c.add_option(name, *list, help)
         ->delimiter(',')
-        ->check(CLI::IsMember({"vtu", "ist", "trv", "ascache", "hit", "rgu", "all"}))
+        ->check(CLI::IsMember({"vtu", "ist", "trv", "ascache", "hit", "rgu", "membus", "all"}))
         ->each([&o, list, view](const std::string& unit) {
           o.overrides.push_back([unit, view](SimConfig& s) {
             auto set = [&](const std::string& u) {
@@ -111,6 +111,7 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
                             : u == "ist" ? s.ist_view
                             : u == "trv" ? s.trv_view
                             : u == "ascache" ? s.ascache_view
+                            : u == "membus" ? s.membus_view
                             : u == "hit" ? s.hit_view
                                          : s.rgu_view;
               if (v != UnitView::model && v != view)
@@ -126,10 +127,11 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
         });
   };
   views("--rtl", UnitView::rtl,
-        "units (vtu,ist,trv,ascache,hit,rgu, or all) simulated by their Verilated RTL in the frame (vtu, ist, "
-        "hit, rgu at their pins; rgu: the primary rays, shadow rays are forwarded by the model; trv: "
-        "rtl/units/trv_unit.v stepped from C++; ascache: the node, list and triangle caches, "
-        "rtl/units/ascache.v stepped from C++)");
+        "units (vtu,ist,trv,ascache,hit,rgu, or all: every unit of the RTUs; and membus) simulated by their "
+        "Verilated RTL in the frame (vtu, ist, hit, rgu at their pins; rgu: the primary rays, shadow rays "
+        "are forwarded by the model; trv: rtl/units/trv_unit.v stepped from C++; ascache: the node, list "
+        "and triangle caches, rtl/units/ascache.v stepped from C++; membus: the chip's bus interface "
+        "rtl/units/membus_if.v, without the L2: --l2-kb 0)");
   views("--pins", UnitView::twin,
         "units (vtu,ist,hit,rgu, or all) simulated by their pin-level SystemC twin (same ports as the RTL; trv "
         "has none)");

@@ -48,6 +48,9 @@ struct SimConfig {
   uint32_t mem_queue_depth = 32;  // requests accepted and not yet returned
   uint64_t seed = 0;              // 0: fixed latency; else latency uniform in [L, 2L] per request
   L2Config l2{256 * 1024};        // shared L2 in front of the memory (size 0: none)
+  // The bus interface: the model (systemc/membus.h) or rtl/units/membus_if.v Verilated
+  // (systemc/membus_rtl.h; without the L2, which has no RTL).
+  UnitView membus_view = UnitView::model;
   // vtu: pipeline depth (one 8-byte node or one triangle record per cycle); rtl/units/vtu.v has
   // 3 operator levels of STAGES registers: 6 = STAGES 2, as in docs/area.md.
   uint32_t vtu_depth = 6;

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cstring>
 #include <stdexcept>
+#include <string>
 
 namespace raycore::sc {
 
@@ -108,6 +109,7 @@ void Membus::copy_line(const MemReq& q) const {
 }
 
 bool Membus::tick(Cycle now) {
+  if (rtl_) return tick_rtl(now);
   bool active = false;
   // Responses whose last beat has arrived go to the requester's vtu port.
   while (!resp_.empty() && resp_.top().arrival <= now) {
@@ -167,7 +169,124 @@ bool Membus::tick(Cycle now) {
 }
 
 Cycle Membus::next_event(Cycle now) const {
+  if (rtl_) return next_event_rtl(now);
   Cycle t = resp_.empty() ? kNever : resp_.top().arrival;
+  for (const auto& r : reqs_)
+    if (!r.req->empty()) t = std::min(t, std::max(now + 1, r.req->head_ready()));
+  return t;
+}
+
+// ---- RTL view ----------------------------------------------------------------------------------
+
+void Membus::bind_rtl(std::unique_ptr<MembusRtl> rtl) {
+  const std::string n = rtl->name();
+  if (l2_sets_ != 0)
+    throw ConfigError("--rtl membus: the L2 has no RTL (membus_if is the bus without it): use "
+                      "--l2-kb 0");
+  if (latency_ == 0)
+    throw ConfigError("--rtl membus: membus_if takes a line's first beat a cycle after the request "
+                      "at the earliest (--mem-latency >= 1)");
+  if (reqs_.size() > rtl->ports())
+    throw ConfigError("--rtl membus: " + n + " has " + std::to_string(rtl->ports()) +
+                      " request ports, the frame has " + std::to_string(reqs_.size()) +
+                      " requesters (3 per RTU)");
+  if (depth_ != rtl->depth() || bandwidth_ != rtl->beat_bytes())
+    throw ConfigError("--rtl membus: " + n + " is built for --mem-queue-depth " +
+                      std::to_string(rtl->depth()) + " and --mem-bandwidth " +
+                      std::to_string(rtl->beat_bytes()));
+  rtl_ = std::move(rtl);
+}
+
+bool Membus::tick_rtl(Cycle now) {
+  bool active = false;
+  // Lines whose last beat came back at the previous edge go to the requester's vtu port.
+  while (!done_.empty() && done_.front().arrival <= now) {
+    const Resp r = done_.front();
+    done_.pop_front();
+    --dram_out_;
+    reqs_[r.requester].client->mem_resp(reqs_[r.requester].port, r.tag, now);
+    active = true;
+  }
+  // The requests (the RTL arbitrates).
+  bool any = false;
+  for (size_t i = 0; i < reqs_.size(); ++i) {
+    if (!reqs_[i].req->can_pop(now)) continue;
+    const MemReq& f = reqs_[i].req->front();
+    if (f.addr + f.bytes > (uint64_t(1) << 32) || f.bytes >= (1u << 12) || f.tag >= 256)
+      throw std::runtime_error("--rtl membus: a request beyond membus_if's 32-bit addresses, "
+                               "12-bit lengths or 8-bit tags");
+    rtl_->request(unsigned(i), true, uint32_t(f.addr), f.bytes, f.tag);
+    any = true;
+  }
+  // The memory: the next beat of the data bus, if this is its cycle.
+  const uint8_t* beat = nullptr;
+  if (drive_ < lines_.size()) {
+    Line& l = lines_[drive_];
+    const Cycle at = l.first + l.driven;
+    if (at < now) throw std::logic_error("--rtl membus: a beat's cycle was skipped");
+    if (at == now) {
+      beat = l.bytes.data() + size_t(l.driven) * bandwidth_;
+      if (++l.driven == l.beats) ++drive_;
+    }
+  }
+  rtl_->beat(beat);
+  const int g = rtl_->accept();
+  if (g >= 0) {  // as tick(): the memory times the line
+    const size_t i = size_t(g);
+    if (i >= reqs_.size() || !reqs_[i].req->can_pop(now))
+      throw std::logic_error("--rtl membus: the RTL granted requester " + std::to_string(g) +
+                             ", which has no request");
+    const MemReq q = reqs_[i].req->pop();
+    Line l{uint32_t(i), q, 0, 0, (q.bytes + bandwidth_ - 1) / bandwidth_, 0, 0, {}};
+    l.first = std::max<Cycle>(now + draw_latency(), data_free_);
+    l.arrival = l.first + l.beats;
+    data_free_ = l.arrival;
+    l.bytes.assign(size_t(l.beats) * bandwidth_, 0);
+    MemReq staged = q;
+    staged.data = l.bytes.data();
+    copy_line(staged);
+    ++dram_out_;
+    ++st_.requests;
+    st_.bytes += q.bytes;
+    st_.busy_cycles += l.beats;
+    st_.latency_sum += l.arrival - now;
+    lines_.push_back(std::move(l));
+    active = true;
+  } else if (any && rtl_->full()) {
+    ++st_.queue_full_cycles;
+    active = true;
+  }
+  if (!any && !beat) return active;
+  const MembusRtl::Rsp r = rtl_->edge();
+  if (beat) {  // its beat comes back routed, in the next cycle
+    if (!r.valid || lines_.empty())
+      throw std::logic_error("--rtl membus: a beat driven did not come back");
+    Line& f = lines_.front();
+    if (r.port != f.requester || r.tag != f.q.tag || r.beat != f.got)
+      throw std::logic_error("--rtl membus: beat " + std::to_string(r.beat) + " of requester " +
+                             std::to_string(r.port) + " (tag " + std::to_string(r.tag) +
+                             ") came back; expected beat " + std::to_string(f.got) + " of " +
+                             std::to_string(f.requester) + " (tag " + std::to_string(f.q.tag) +
+                             ")");
+    const uint32_t off = f.got * bandwidth_;
+    std::memcpy(f.q.data + off, r.data, std::min<uint32_t>(bandwidth_, f.q.bytes - off));
+    ++f.got;
+    if (r.last != (f.got == f.beats) || (r.last && now + 1 != f.arrival))
+      throw std::logic_error("--rtl membus: the line's last beat came back in cycle " +
+                             std::to_string(now + 1) + ", the memory's timing says " +
+                             std::to_string(f.arrival));
+    if (r.last) {
+      done_.push_back({f.arrival, seq_++, f.requester, f.q.tag, true});
+      lines_.pop_front();
+      --drive_;
+    }
+  }
+  return active;
+}
+
+Cycle Membus::next_event_rtl(Cycle now) const {
+  Cycle t = done_.empty() ? kNever : done_.front().arrival;
+  if (drive_ < lines_.size()) t = std::min(t, lines_[drive_].first + lines_[drive_].driven);
   for (const auto& r : reqs_)
     if (!r.req->empty()) t = std::min(t, std::max(now + 1, r.req->head_ready()));
   return t;

@@ -9,12 +9,15 @@
 #include <systemc>
 
 #include <cstdint>
+#include <deque>
+#include <memory>
 #include <queue>
 #include <utility>
 #include <vector>
 
 #include "systemc/config.h"
 #include "systemc/fifo.h"
+#include "systemc/membus_rtl.h"
 
 namespace raycore::sc {
 
@@ -50,6 +53,11 @@ class Membus : public sc_core::sc_module {
   // Binding: a requester's request channel and where its responses go.
   void add_requester(TimedFifo<MemReq>* req, MemClient* client, uint32_t port);
   void set_l2(const L2Config& c);
+  // Binds the Verilated bus interface (systemc/membus_rtl.h, raycore simulate --rtl membus): from
+  // now on it arbitrates the requests and routes the beats; this class is the memory behind it.
+  // Throws ConfigError if it cannot run this bus (L2, more requesters than its ports, another
+  // queue depth or bandwidth).
+  void bind_rtl(std::unique_ptr<MembusRtl> rtl);
 
   bool tick(Cycle now);        // true if anything happened
   Cycle next_event(Cycle now) const;
@@ -86,6 +94,23 @@ class Membus : public sc_core::sc_module {
   void l2_install(uint64_t addr, uint32_t bytes, Cycle ready);
   L2Line* l2_find(uint64_t line);
   const L2Line* l2_find(uint64_t line) const;
+
+  // RTL view (bind_rtl): the lines accepted, in acceptance order (the order the memory's data bus
+  // serves them): the beats of lines_[drive_] are driven next; lines_.front() is the line whose
+  // beats come back; a line whose last beat came back waits in done_ for its cycle.
+  struct Line {
+    uint32_t requester;
+    MemReq q;
+    Cycle first, arrival;
+    uint32_t beats, driven = 0, got = 0;
+    std::vector<uint8_t> bytes;  // the memory's data, beats x beat bytes
+  };
+  bool tick_rtl(Cycle now);
+  Cycle next_event_rtl(Cycle now) const;
+  std::unique_ptr<MembusRtl> rtl_;
+  std::deque<Line> lines_;
+  size_t drive_ = 0;
+  std::deque<Resp> done_;
 
   const std::vector<uint8_t>& mem_;
   uint32_t latency_, bandwidth_, depth_;

@@ -305,6 +305,7 @@ nlohmann::json config_json(const SimConfig& c) {
           {"ist_view", unit_view_name(c.ist_view)},
           {"trv_view", unit_view_name(c.trv_view)},
           {"ascache_view", unit_view_name(c.ascache_view)},
+          {"membus_view", unit_view_name(c.membus_view)},
           {"ist_queue", c.ist_queue},
           {"hit_latency", c.hit_latency},
           {"hit_view", unit_view_name(c.hit_view)},
@@ -386,6 +387,7 @@ void config_from_json(const nlohmann::json& j, SimConfig& c) {
     else if (k == "ist_view") c.ist_view = unit_view(*it, k);
     else if (k == "trv_view") c.trv_view = unit_view(*it, k);
     else if (k == "ascache_view") c.ascache_view = unit_view(*it, k);
+    else if (k == "membus_view") c.membus_view = unit_view(*it, k);
     else if (k == "hit_view") c.hit_view = unit_view(*it, k);
     else throw std::runtime_error("config: unknown key '" + k + "'");
   }

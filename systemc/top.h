@@ -49,6 +49,17 @@ class Top : public sc_core::sc_module {
     for (int i = 0; i < cfg.rtus; ++i)
       rtus.push_back(std::make_unique<Rtu<A>>(("rtu" + std::to_string(i)).c_str(), fc, cfg, i,
                                               vtu_on, vtu, bus, clock_.get()));
+    if (cfg.membus_view == UnitView::twin)
+      throw ConfigError("membus has no pin-level twin in the frame: use --rtl membus");
+    if (cfg.membus_view == UnitView::rtl) {  // after the RTUs: their caches are its requesters
+      auto r = make_rtl_membus(unsigned(3 * cfg.rtus), cfg.mem_queue_depth, cfg.mem_bandwidth);
+      if (!r)
+        throw ConfigError("no Verilated membus_if for " + std::to_string(cfg.rtus) +
+                          " RTUs, --mem-queue-depth " + std::to_string(cfg.mem_queue_depth) +
+                          " and --mem-bandwidth " + std::to_string(cfg.mem_bandwidth) +
+                          " in this build; built: " + rtl_membus_built());
+      bus.bind_rtl(std::move(r));
+    }
     if (!cfg.trace_file.empty()) {
       std::string base = cfg.trace_file;
       if (base.size() > 4 && base.substr(base.size() - 4) == ".vcd") base.resize(base.size() - 4);

@@ -574,6 +574,64 @@ TEST(AscacheRtlFrame, RefusesWhatIsNotBuilt) {
       << r.error;
 }
 
+// ---- the bus interface in RTL (rtl/units/membus_if.v, --rtl membus, no L2) --------------------
+// The frame with membus_if arbitrating the caches' requests and routing the memory's beats (the
+// memory's timing stays in Membus): the transaction model's cycles, bus bytes, frame and work
+// counters; the binding checks every grant, every beat routed back and each line's last beat
+// against the cycle the transaction model answers in.
+void expect_membus_rtl(const scenes::Scene& s, const sim::TraceConfig& tc, sc::SimConfig cfg,
+                       const char* what) {
+  cfg.l2.size_bytes = 0;
+  const Summary model = expect_match(s, tc, cfg);
+  cfg.membus_view = UnitView::rtl;
+  const Summary p = expect_match(s, tc, cfg);
+  EXPECT_EQ(p.cycles, model.cycles) << what;
+  EXPECT_EQ(p.hash, model.hash) << what;
+  EXPECT_EQ(p.bus_bytes, model.bus_bytes) << what;
+  EXPECT_EQ(p.tri_tests, model.tri_tests) << what;
+  for (int i = 0; i < Summary::kWork; ++i)
+    EXPECT_EQ(p.work[i], model.work[i]) << what << ": " << kWorkNames[i];
+}
+TEST(MembusRtlFrame, DefaultsSixRtus) {
+  expect_membus_rtl(corridor(), config(FormatId::fp24, Rounding::rtz, true, 48, 30), {},
+                    "6 RTUs, 18 requesters");
+}
+TEST(MembusRtlFrame, RandomLatencySmallCachesSixteenRtus) {
+  sc::SimConfig cfg;  // queue full (32 outstanding), 48 requesters: every port of the model
+  cfg.rtus = 16;
+  cfg.seed = 3;
+  cfg.node_cache = {1024, 2, 64, 2, 1};
+  cfg.list_cache = {512, 2, 32, 2, 2};
+  expect_membus_rtl(corridor(), margins_config(Rounding::rne, true), cfg, "16 RTUs, random latency");
+}
+// Every unit of the RTUs and the bus interface in RTL (--rtl all,membus --l2-kb 0), 3 RTUs,
+// randomised latency.
+TEST(MembusRtlFrame, WithEveryUnitRtl) {
+  sc::SimConfig cfg;
+  cfg.rtus = 3;
+  cfg.seed = 17;
+  cfg.vtu_view = cfg.ist_view = cfg.trv_view = cfg.ascache_view = cfg.hit_view = cfg.rgu_view =
+      UnitView::rtl;
+  expect_membus_rtl(corridor(), config(FormatId::fp24, Rounding::rne, true, 40, 24), cfg,
+                    "every unit rtl");
+}
+TEST(MembusRtlFrame, RefusesWhatItCannotRun) {
+  const auto tc = config(FormatId::fp24, Rounding::rtz, false, 8, 8);
+  sc::SimConfig cfg;
+  cfg.membus_view = UnitView::rtl;  // the default L2
+  expect_refused(tiny_scene(), tc, cfg, "the L2 has no RTL");
+  cfg.l2.size_bytes = 0;
+  cfg.mem_bandwidth = 8;
+  const Summary r = expect_refused(tiny_scene(), tc, cfg, "no Verilated membus_if");
+  EXPECT_NE(std::string(r.error).find("32 outstanding, 16-byte beats"), std::string::npos) << r.error;
+  cfg.mem_bandwidth = 16;
+  cfg.rtus = 17;
+  expect_refused(tiny_scene(), tc, cfg, "no Verilated membus_if for 17 RTUs");
+  cfg.rtus = 2;
+  cfg.membus_view = UnitView::twin;
+  expect_refused(tiny_scene(), tc, cfg, "membus has no pin-level twin in the frame");
+}
+
 // ---- lockstep: twin vs Verilated model --------------------------------------------------------
 
 uint64_t lockstep_count() {
