@@ -24,12 +24,14 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
 #include <functional>
 #include <random>
 #include <sstream>
 #include <string>
 #include <utility>
 
+#include "scenes/gltf.h"
 #include "systemc/ascache.h"
 #include "systemc/ascache_rtl.h"
 #include "systemc/pins/clock.h"
@@ -630,6 +632,23 @@ TEST(MembusRtlFrame, RefusesWhatItCannotRun) {
   cfg.rtus = 2;
   cfg.membus_view = UnitView::twin;
   expect_refused(tiny_scene(), tc, cfg, "membus has no pin-level twin in the frame");
+}
+
+// ---- the paper's scene with every unit in RTL -------------------------------------------------
+// sponza-paper (../shared/scenes) in a small frame of the paper's view (the whole kd-tree; the crop
+// is in pixels), VTU on, every unit of the RTUs and the bus interface in RTL, randomised memory
+// latency: the transaction model's cycles, bus bytes, frame and work counters.
+TEST(AllRtlFrame, SponzaPaperSmallFrameWithBus) {
+  const std::string path = std::string(RAYCORE_SHARED_SCENES_DIR) + "/sponza-paper.glb";
+  if (!std::ifstream(path).good()) GTEST_SKIP() << path << " not found (../shared/scenes)";
+  static const scenes::Scene s = scenes::load_gltf(path, false);
+  sc::SimConfig cfg;
+  cfg.rtus = 2;
+  cfg.seed = 23;
+  cfg.vtu_view = cfg.ist_view = cfg.trv_view = cfg.ascache_view = cfg.hit_view = cfg.rgu_view =
+      UnitView::rtl;
+  expect_membus_rtl(s, config(FormatId::fp24, Rounding::rtz, true, 64, 40), cfg,
+                    "sponza-paper 64x40, every unit and the bus rtl");
 }
 
 // ---- lockstep: twin vs Verilated model --------------------------------------------------------
