@@ -71,6 +71,17 @@ for src in "${SRCS[@]}"; do
     done
   done
   unset seen
+  # Further parameter sets a module names in its header ("// lint: also P=V ..."), e.g. ascache's
+  # frame form (HIT_LATENCY 0, several ports, sets not a power of two): verilator -Wall each.
+  while read -r extra; do
+    [ -n "$extra" ] || continue
+    g=$(params_for "$src" G $extra)
+    runs=$((runs + 1))
+    if ! verilator --lint-only -Wall --default-language 1364-2005 --top-module "$top" \
+         $g "$WAIVERS" "${SRCS[@]}" >"$LOG/v.txt" 2>&1; then
+      echo "lint: FAIL verilator $top $g" >&2; cat "$LOG/v.txt" >&2; fail=1
+    fi
+  done < <(sed -n 's|^// lint: also ||p' "$src")
   # ---- yosys synthesis: no latches ----
   for fmt in $fmts; do
     set_args=$(params_for "$src" set ${FMT[$fmt]})

@@ -38,6 +38,9 @@
 // line % sets), MSHRS >= 2, LINE_W = line-index width (address width - log2 LINE_BYTES; LINE_W >
 // log2 SETS), TAG_BITS = the requester's sideband acc_tag_i -> rsp_tag_o (e.g. a ray slot),
 // CNT_BITS = width of the counters (wrap around).
+// lint: also PORTS=8 HIT_LATENCY=0 SETS=64 WAYS=4 MSHRS=8
+// lint: also PORTS=8 HIT_LATENCY=0 SETS=170 WAYS=4 LINE_BYTES=48 MSHRS=8
+// lint: also PORTS=2 HIT_LATENCY=0 SETS=6 WAYS=1 LINE_BYTES=32 MSHRS=2
 module ascache #(
   parameter integer SETS        = 8,
   parameter integer WAYS        = 2,
