@@ -8,80 +8,29 @@
 # estimate (each generic cell weighted by the area of the matching NanGate 45 nm Open Cell Library
 # X1 cell divided by NAND2_X1's, see the table in the output), and the logic depth (`ltp -noff`:
 # the longest path in cells between registers or ports). Fails on an unknown cell type (so the
-# estimate never silently leaves cells out) and on any yosys error.
+# estimate never silently leaves cells out) and on any yosys error; a run longer than
+# RAYCORE_AREA_TIMEOUT seconds (default 1200) gets a "did not finish" row. The measurement itself
+# (unit list, sources, weights, one yosys run, its cache) is scripts/area_lib.sh. Then
+# scripts/area_rtu.sh appends the section "One RTU at the cycle model's defaults".
 set -euo pipefail
 cd "$(dirname "$0")/.."
 command -v yosys >/dev/null || { echo "area: yosys is needed (make deps)" >&2; exit 1; }
 
+# shellcheck source=scripts/area_lib.sh
+. scripts/area_lib.sh
+
 STAGES=${RAYCORE_AREA_STAGES:-2}
 OUT=${1:-docs/area.md}
-# Units: every rtl/units/<unit>.v whose name is not <another unit>_* (those are its helpers).
-UNITS=()
-for f in rtl/units/*.v; do
-  n=$(basename "$f" .v) helper=0
-  for g in rtl/units/*.v; do
-    p=$(basename "$g" .v)
-    [ "$p" != "$n" ] && [[ "$n" == "${p}_"* ]] && helper=1
-  done
-  [ $helper -eq 0 ] && UNITS+=("$n")
-done
-MODULES=(fp_add fp_add3 fp_mul fp_div fp_sqrt fp_rcp fp_cmp "${UNITS[@]}")
-# The sources a module is read from: rtl/fp/*.v, plus for a unit rtl/units/<unit>.v and its
-# helpers rtl/units/<unit>_*.v (so an unfinished file of another unit cannot break this one).
-srcs_for() {
-  local f=(rtl/fp/*.v)
-  if [ -f "rtl/units/$1.v" ]; then f+=("rtl/units/$1.v"); f+=($(ls rtl/units/"$1"_*.v 2>/dev/null || true)); fi
-  # and another unit's helper it instantiates (hit.v: spawn_ops.v)
-  local g
-  for g in rtl/units/*_*.v; do
-    [[ " ${f[*]} " == *" $g "* ]] && continue
-    grep -Eq "^\s*$(basename "$g" .v)\s+#" "rtl/units/$1.v" 2>/dev/null && f+=("$g")
-  done
-  echo "${f[@]}"
-}
-file_of() { [ -f "rtl/fp/$1.v" ] && echo "rtl/fp/$1.v" || echo "rtl/units/$1.v"; }
-TMP=$(mktemp -d "${TMPDIR:-/tmp}/raycore-area.XXXXXX")
-trap 'rm -rf "$TMP"' EXIT
-
-# Cell weights in NAND2 equivalents (NanGate45 X1 cell area / NAND2_X1 area 0.798 um^2).
-# Flip-flops: DFF_X1 5.67, DFFR_X1 (async reset) 6.67, plus MUX2_X1 2.33 for an enable and
-# AND2_X1 1.33 for a synchronous reset/set.
-WEIGHTS_AWK='
-function ff_weight(t,   w) {
-  w = (t ~ /^\$_DFF_[PN][NP][01]_$/ || t ~ /^\$_DFFE_[PN][NP][01][PN]_$/ || t ~ /^\$_DFFSR/) ? 6.67 : 5.67
-  if (t ~ /^\$_(DFFE|SDFFE|SDFFCE|DFFSRE)_/) w += 2.33
-  if (t ~ /^\$_SDFF/) w += 1.33
-  return w
-}
-BEGIN {
-  g["$_NOT_"] = 0.67; g["$_BUF_"] = 1.00; g["$_NAND_"] = 1.00; g["$_NOR_"] = 1.00
-  g["$_AND_"] = 1.33; g["$_OR_"] = 1.33; g["$_ANDNOT_"] = 1.33; g["$_ORNOT_"] = 1.33
-  g["$_XOR_"] = 2.00; g["$_XNOR_"] = 2.00; g["$_MUX_"] = 2.33; g["$_NMUX_"] = 2.33
-  g["$_AOI3_"] = 1.33; g["$_OAI3_"] = 1.33; g["$_AOI4_"] = 1.67; g["$_OAI4_"] = 1.67
-}
-$1 == "Number" && $3 == "cells:" { cells = $4 }
-$1 ~ /^\$_/ && NF == 2 {
-  t = $1; n = $2
-  if (t ~ /DFF/) { ffs += n; ge += n * ff_weight(t) }
-  else if (t in g) ge += n * g[t]
-  else { print "area: unknown cell type " t > "/dev/stderr"; bad = 1 }
-}
-END { if (bad) exit 1; printf "%d %d %.0f\n", cells, ffs, ge }
-'
+area_check_units
+MODULES=(fp_add fp_add3 fp_mul fp_div fp_sqrt fp_rcp fp_cmp "${AREA_UNITS[@]}")
+AREA_TMP=$(mktemp -d "${TMPDIR:-/tmp}/raycore-area.XXXXXX")
+trap 'rm -rf "$AREA_TMP"' EXIT
 
 fmt_params() { [ "$1" = FP24 ] && echo "7 16" || echo "8 23"; }
 # Parameters of a unit without a number format, for its row: ascache = the cycle model's node
-# cache (16 KB: 64 sets x 4 ways x 64 B lines, 8 MSHRs; the module's defaults are a 1 KB cache).
+# cache (16 KB: 64 sets x 4 ways x 64 B lines, 8 MSHRs; the module's defaults are a 1 KB cache),
+# the pin-level twin's form (HIT_LATENCY 1, one port).
 declare -A UNIT_PARAMS=([ascache]="-set SETS 64 -set WAYS 4 -set LINE_BYTES 64 -set MSHRS 8")
-# Memories (the $mem_v2 cells of `memory -nomap`) are SRAM macros: not mapped to flip-flops, not
-# in cells/FFs/NAND2 eq.; their bits (SIZE x WIDTH) are listed in their own column.
-MEM_AWK='
-/^ *cell /          { w = 0; s = 0 }
-/parameter .WIDTH / { w = $3 }
-/parameter .SIZE /  { s = $3 }
-/^ *end/            { if (w && s) bits += w * s; w = s = 0 }
-END { printf "%d\n", bits }
-'
 
 rows=()
 for mod in "${MODULES[@]}"; do
@@ -99,19 +48,24 @@ for mod in "${MODULES[@]}"; do
       [ "$mode" = rtz ] && set_rne="-set RNE 0"
       [ "$mode" = rne ] && set_rne="-set RNE 1"
       [ "$mode" = raycore ] && [ "$mod" != fp_rcp ] && set_rne="-set RNE 0 -set RAYCORE 1"
-      log="$TMP/$mod-$fmt-$mode"
-      yosys -q -l "$log.log" -p "read_verilog $(srcs_for "$mod"); \
-        $(grep -Eq "parameter +integer +EXP_BITS" "$(file_of "$mod")" && echo "chparam -set EXP_BITS $e -set MAN_BITS $m -set STAGES $STAGES $set_rne $mod;") \
-        $([ -n "${UNIT_PARAMS[$mod]:-}" ] && echo "chparam ${UNIT_PARAMS[$mod]} $mod;") \
-        synth -flatten -top $mod -run :fine; tee -q -o $log.mem dump t:\$mem_v2; \
-        opt -fast -full; opt -full; techmap; opt -fast; abc -fast; opt -fast; hierarchy -check; check; \
-        tee -q -o $log.stat stat; tee -q -o $log.ltp ltp -noff" >/dev/null ||
-        { echo "area: yosys failed for $mod $fmt $mode, see:" >&2; tail -20 "$log.log" >&2; exit 1; }
-      read -r cells ffs ge < <(awk "$WEIGHTS_AWK" "$log.stat")
-      depth=$(sed -n 's/.*length=\([0-9]*\).*/\1/p' "$log.ltp" | head -1)
-      sram=$(awk "$MEM_AWK" "$log.mem")
-      rows+=("| $mod | $fmt | $mode | $cells | $ffs | $ge | $depth | $sram |")
-      echo "area: $mod $fmt $mode: cells=$cells ffs=$ffs nand2_eq=$ge depth=$depth sram_bits=$sram"
+      chp=""
+      grep -Eq "parameter +integer +EXP_BITS" "$(file_of "$mod")" && chp="-set EXP_BITS $e -set MAN_BITS $m $set_rne"
+      # trv_unit has no STAGES (its passes are one cycle each)
+      grep -Eq "parameter +integer +STAGES" "$(file_of "$mod")" && chp+=" -set STAGES $STAGES"
+      chp+="${UNIT_PARAMS[$mod]:+ ${UNIT_PARAMS[$mod]}}"
+      # SAT-based resource sharing (`share`) for the FP operators; not for the units, where it
+      # runs for hours (hit, trv_unit) and changes little where it finishes (vtu: 0.2%).
+      share=share
+      [ -f "rtl/units/$mod.v" ] && share=noshare
+      area_synth "$mod-$fmt-$mode" "$mod" "$share" "$chp"
+      if [ "$A_STATUS" != ok ]; then
+        rows+=("| $mod | $fmt | $mode | did not finish in $((AREA_TIMEOUT / 60)) min | | | | | ${A_SECS} |")
+        echo "area: $mod $fmt $mode: did not finish in ${AREA_TIMEOUT}s" >&2
+        continue
+      fi
+      cells=$A_CELLS ffs=$A_FFS ge=$A_GE depth=$A_DEPTH sram=$A_SRAM
+      rows+=("| $mod | $fmt | $mode | $cells | $ffs | $ge | $depth | $sram | $A_SECS |")
+      echo "area: $mod $fmt $mode: cells=$cells ffs=$ffs nand2_eq=$ge depth=$depth sram_bits=$sram ${A_SECS}s"
     done
   done
 done
@@ -122,11 +76,19 @@ done
   echo "Generated by \`make area\` (\`./scripts/area.sh\`; STAGES=$STAGES, \`RAYCORE_AREA_STAGES=N\` to change) with"
   echo "$(yosys -V | head -1) on $(date -u +%Y-%m-%d). Do not edit by hand."
   echo
-  echo "Each module is synthesised alone: \`read_verilog rtl/fp/*.v [rtl/units/<unit>*.v]; chparam -set EXP_BITS E -set MAN_BITS M"
-  echo "-set STAGES $STAGES [-set RNE 0|1] [-set RAYCORE 1] <module>; synth -flatten -top <module>; stat; ltp -noff\`."
+  echo "Each module is synthesised alone: \`read_verilog rtl/fp/*.v [rtl/units/<unit>.v and the rtl/units files it"
+  echo "instantiates]; chparam -set EXP_BITS E -set MAN_BITS M -set STAGES $STAGES [-set RNE 0|1] [-set RAYCORE 1]"
+  echo "<module>; synth [-noshare] -flatten -top <module>; stat; ltp -noff\`: \`synth\` with its SAT-based resource"
+  echo "sharing (\`share\`) for the rtl/fp operators, \`-noshare\` for the units of rtl/units (with \`share\`, hit"
+  echo "and trv_unit do not finish in an hour; where it finishes, e.g. vtu, it changes the cells by 0.2%)."
   echo "Rounding raycore (FP24 only): RAYCORE = 1 (RNE = 0); fp_rcp is raycore's reciprocal alone."
-  echo "TAG_BITS = each module's default (fp_* and vtu 1; ist 16: its ray/slot tag). A unit's STAGES"
-  echo "is per FP operator (vtu: 3 operator levels, latency 3 x STAGES, flattened with its operators)."
+  echo "Every unit at its module's default parameters (toy sizes for some: see the next section for the"
+  echo "cycle model's): TAG_BITS fp_* and vtu 1, ist, hit and trv 16; trv_unit 8 slots, 8 stack entries,"
+  echo "2 pipes, 2 ist results, 4 list words (trv_unit has no STAGES: each pass is one cycle, its trv.v"
+  echo "datapath at STAGES 0); ascache the node cache (below); rgu 16-bit coordinates, 8 x 8 tiles;"
+  echo "membus_if 3 requesters. trv is the traversal datapath alone (the pin-level twin's), trv_unit the"
+  echo "whole traversal unit (slots, stacks, ready queue, passes, ist result reduction). A unit's STAGES is"
+  echo "per FP operator (vtu: 3 operator levels, latency 3 x STAGES, flattened with its operators)."
   echo
   echo "- **cells**: yosys generic gates and flip-flops after \`synth\` (\`stat\`)."
   echo "- **FFs**: flip-flops among them (pipeline registers: valid bits with asynchronous reset, data"
@@ -142,26 +104,20 @@ done
   echo "- **SRAM bits**: memories yosys infers (\`memory -nomap\`: \`\$mem\` cells, e.g. ascache's data array),"
   echo "  SIZE x WIDTH, kept as macros: not in FFs or NAND2 eq. (\`synth\` runs up to \`fine\`, then its"
   echo "  \`fine\` script without \`memory_map\`; modules without memories come out as before)."
+  echo "  ascache: the cycle model's node cache (16 KB: SETS 64, WAYS 4, LINE_BYTES 64, MSHRS 8) in the"
+  echo "  pin-level twin's form (HIT_LATENCY 1, one port): the data array one 1R1W SRAM."
+  echo "- **yosys s**: wall seconds of the run (recorded when it ran: results are cached in out/area-cache)."
   echo
-  echo "| module | format | rounding | cells | FFs | NAND2 eq. | depth | SRAM bits |"
-  echo "|---|---|---|---:|---:|---:|---:|---:|"
+  echo "| module | format | rounding | cells | FFs | NAND2 eq. | depth | SRAM bits | yosys s |"
+  echo "|---|---|---|---:|---:|---:|---:|---:|---:|"
   printf '%s\n' "${rows[@]}"
   echo
   echo "Weights (NAND2 equivalents):"
   echo
-  echo "| yosys cell | NanGate45 cell | weight |"
-  echo "|---|---|---:|"
-  echo "| \$_NOT_ | INV_X1 (0.532 um^2) | 0.67 |"
-  echo "| \$_BUF_ | BUF_X1 (0.798) | 1.00 |"
-  echo "| \$_NAND_, \$_NOR_ | NAND2_X1, NOR2_X1 (0.798) | 1.00 |"
-  echo "| \$_AND_, \$_OR_ | AND2_X1, OR2_X1 (1.064) | 1.33 |"
-  echo "| \$_ANDNOT_, \$_ORNOT_ | as AND2/OR2 (no single NanGate cell) | 1.33 |"
-  echo "| \$_AOI3_, \$_OAI3_ / \$_AOI4_, \$_OAI4_ | AOI21/OAI21 (1.064) / AOI22/OAI22 (1.330) | 1.33 / 1.67 |"
-  echo "| \$_XOR_, \$_XNOR_ | XOR2_X1, XNOR2_X1 (1.596) | 2.00 |"
-  echo "| \$_MUX_ | MUX2_X1 (1.862) | 2.33 |"
-  echo "| \$_DFF_P_ | DFF_X1 (4.522) | 5.67 |"
-  echo "| \$_DFF_PN0_ (async reset) | DFFR_X1 (5.320) | 6.67 |"
-  echo "| ...E_ (enable) | + MUX2_X1 | + 2.33 |"
-  echo "| \$_SDFF*_ (sync reset) | + AND2_X1 | + 1.33 |"
+  area_weights_table
 } > "$OUT"
 echo "area: wrote $OUT"
+# The section "One RTU at the cycle model's defaults" (RAYCORE_AREA_RTU=0: leave it out).
+if [ "${RAYCORE_AREA_RTU:-1}" != 0 ]; then
+  ./scripts/area_rtu.sh "$OUT"
+fi
