@@ -22,7 +22,6 @@ constexpr unsigned kLineW = 26;  // ascache.cmake's LINE_W: line indices below 2
 
 template <class M, unsigned SETS, unsigned WAYS, unsigned LB, unsigned MSHRS, unsigned PORTS>
 class AscacheRtlT final : public AscacheRtl {
-  static_assert(LB % 4 == 0, "lines of whole 32-bit words");
 
  public:
   AscacheRtlT() { vl::async_reset(m_); }
@@ -44,10 +43,7 @@ class AscacheRtlT final : public AscacheRtl {
     set_bits(m_.acc_line_i, k * kLineW, kLineW, uint32_t(line));
     m_.eval();
     if (get_bits(m_.rsp_hit_o, k, 1)) {
-      for (unsigned w = 0; w < LB / 4; ++w) {
-        const uint32_t v = get_bits(m_.rsp_data_o, (k * LB + 4 * w) * 8, 32);
-        for (unsigned b = 0; b < 4; ++b) line_[4 * w + b] = uint8_t(v >> (8 * b));
-      }
+      vl::get_bytes(m_.rsp_data_o, k * LB * 8, LB, line_);
       *data = line_;
       return Kind::hit;
     }
@@ -61,10 +57,7 @@ class AscacheRtlT final : public AscacheRtl {
     if (fill_ || n_acc_) edge();
     m_.fill_valid_i = 1;
     m_.fill_tag_i = static_cast<std::remove_reference_t<decltype(m_.fill_tag_i)>>(tag);
-    for (unsigned w = 0; w < LB / 4; ++w)
-      set_bits(m_.fill_data_i, 32 * w, 32,
-               uint32_t(data[4 * w]) | uint32_t(data[4 * w + 1]) << 8 |
-                   uint32_t(data[4 * w + 2]) << 16 | uint32_t(data[4 * w + 3]) << 24);
+    vl::set_bytes(m_.fill_data_i, 0, LB, data);
     m_.eval();
     fill_ = true;
   }

@@ -21,7 +21,6 @@ using vl::set_bits;
 template <class M, unsigned N, unsigned DEPTH, unsigned BEAT>
 class MembusRtlT final : public MembusRtl {
   static constexpr unsigned kAddr = 32, kLen = 12, kTag = 8;
-  static_assert(BEAT % 4 == 0, "beats of whole 32-bit words");
 
  public:
   MembusRtlT() { vl::async_reset(m_); }
@@ -44,10 +43,7 @@ class MembusRtlT final : public MembusRtl {
   void beat(const uint8_t* data) override {
     m_.beat_valid_i = data != nullptr;
     if (!data) return;
-    for (unsigned w = 0; w < BEAT / 4; ++w)
-      set_bits(m_.beat_data_i, 32 * w, 32,
-               uint32_t(data[4 * w]) | uint32_t(data[4 * w + 1]) << 8 |
-                   uint32_t(data[4 * w + 2]) << 16 | uint32_t(data[4 * w + 3]) << 24);
+    vl::set_bytes(m_.beat_data_i, 0, BEAT, data);
   }
   int accept() override {
     m_.mem_ready_i = 1;
@@ -69,10 +65,7 @@ class MembusRtlT final : public MembusRtl {
       r.port = m_.rsp_port_o;
       r.tag = m_.rsp_tag_o;
       r.beat = m_.rsp_beat_o;
-      for (unsigned w = 0; w < BEAT / 4; ++w) {
-        const uint32_t v = get_bits(m_.rsp_data_o, 32 * w, 32);
-        for (unsigned b = 0; b < 4; ++b) data_[4 * w + b] = uint8_t(v >> (8 * b));
-      }
+      vl::get_bytes(m_.rsp_data_o, 0, BEAT, data_);
       r.data = data_;
     }
     m_.beat_valid_i = 0;  // the next cycle's inputs start idle

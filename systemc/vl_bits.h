@@ -35,6 +35,26 @@ void set_bits(T& s, unsigned lo, unsigned n, uint32_t v) {
   }
 }
 
+// n bytes of a port from bit lo on (byte i at bits [lo + 8i, lo + 8i + 8)), into out.
+template <class T>
+void get_bytes(const T& s, unsigned lo, unsigned n, uint8_t* out) {
+  for (unsigned i = 0; i < n; i += 4) {
+    const unsigned k = std::min(4u, n - i);
+    const uint32_t v = get_bits(s, lo + 8 * i, 8 * k);
+    for (unsigned b = 0; b < k; ++b) out[i + b] = uint8_t(v >> (8 * b));
+  }
+}
+// n bytes from in into a port from bit lo on.
+template <class T>
+void set_bytes(T& s, unsigned lo, unsigned n, const uint8_t* in) {
+  for (unsigned i = 0; i < n; i += 4) {
+    const unsigned k = std::min(4u, n - i);
+    uint32_t v = 0;
+    for (unsigned b = 0; b < k; ++b) v |= uint32_t(in[i + b]) << (8 * b);
+    set_bits(s, lo + 8 * i, 8 * k, v);
+  }
+}
+
 // The asynchronous reset of a model with clk_i and rst_ni (active low): a falling edge of rst_ni
 // (Verilator's inputs start at 0, so driving 0 first would be no edge and reset nothing), then
 // released, the clock low.
