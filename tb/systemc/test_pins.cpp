@@ -52,6 +52,17 @@ using namespace raycore::tb;  // NOLINT: the frame-check helpers
 namespace pins = raycore::sc::pins;
 using raycore::sc::UnitView;
 
+// The same frame twice (the transaction model's, then another view's): equal cycles, image, bus
+// bytes, tests and every work counter.
+void expect_same_counts(const Summary& model, const Summary& p, const std::string& what) {
+  EXPECT_EQ(p.cycles, model.cycles) << what;
+  EXPECT_EQ(p.hash, model.hash) << what;
+  EXPECT_EQ(p.bus_bytes, model.bus_bytes) << what;
+  EXPECT_EQ(p.tri_tests, model.tri_tests) << what;
+  for (int i = 0; i < Summary::kWork; ++i)
+    EXPECT_EQ(p.work[i], model.work[i]) << what << ": " << kWorkNames[i];
+}
+
 // The transaction model's frame, then the same configuration with the given views: equal.
 void expect_same_frame(const scenes::Scene& s, const sim::TraceConfig& tc, sc::SimConfig cfg,
                        UnitView vtu, UnitView ist, UnitView rgu = UnitView::model) {
@@ -63,11 +74,7 @@ void expect_same_frame(const scenes::Scene& s, const sim::TraceConfig& tc, sc::S
   const std::string what = std::string("vtu ") + sc::unit_view_name(vtu) + ", ist " +
                            sc::unit_view_name(ist) + ", rgu " + sc::unit_view_name(rgu) +
                            ", rtus " + std::to_string(cfg.rtus);
-  EXPECT_EQ(p.cycles, model.cycles) << what;
-  EXPECT_EQ(p.hash, model.hash) << what;
-  EXPECT_EQ(p.bus_bytes, model.bus_bytes) << what;
-  EXPECT_EQ(p.tri_tests, model.tri_tests) << what;
-  for (int i = 0; i < Summary::kWork; ++i) EXPECT_EQ(p.work[i], model.work[i]) << what << ": " << kWorkNames[i];
+  expect_same_counts(model, p, what);
   EXPECT_EQ(p.shadow, model.shadow) << what;
   EXPECT_EQ(p.issued, model.issued) << what;
 }
@@ -126,10 +133,7 @@ void expect_hit_view(UnitView view, Rounding r, std::initializer_list<hls::Spawn
       const std::string what = std::string("hit ") + sc::unit_view_name(view) + " " +
                                sim::to_string(sp.spawn) + (sp.segment ? " segment" : "") +
                                (sp.spawn_all ? " all" : "") + " rtus " + std::to_string(rtus);
-      EXPECT_EQ(p.cycles, model.cycles) << what;
-      EXPECT_EQ(p.hash, model.hash) << what;
-      EXPECT_EQ(p.bus_bytes, model.bus_bytes) << what;
-      EXPECT_EQ(p.tri_tests, model.tri_tests) << what;
+      expect_same_counts(model, p, what);
       EXPECT_EQ(p.issued, model.issued) << what;
       EXPECT_EQ(p.shadow, model.shadow) << what;
       EXPECT_EQ(p.retired, model.retired) << what;
@@ -288,10 +292,7 @@ TEST(PinsFrameRtl, VtuIstHitFp24Raycore) {
   const Summary model = expect_match(corridor(), tc, cfg);
   cfg.vtu_view = cfg.ist_view = cfg.hit_view = UnitView::rtl;
   const Summary p = expect_match(corridor(), tc, cfg);
-  EXPECT_EQ(p.cycles, model.cycles);
-  EXPECT_EQ(p.hash, model.hash);
-  EXPECT_EQ(p.bus_bytes, model.bus_bytes);
-  EXPECT_EQ(p.tri_tests, model.tri_tests);
+  expect_same_counts(model, p, "vtu, ist, hit rtl");
 }
 TEST(PinsFrameRtl, HitMissingVariantIsNamed) {
   sc::SimConfig cfg;
@@ -348,12 +349,7 @@ void expect_trv_rtl(const scenes::Scene& s, const sim::TraceConfig& tc, sc::SimC
                            sc::unit_view_name(ist) + ", rgu " + sc::unit_view_name(rgu) +
                            ", pipes " + std::to_string(cfg.trv_pipes) +
                            (cfg.trv_fuse ? " fused" : "");
-  EXPECT_EQ(p.cycles, model.cycles) << what;
-  EXPECT_EQ(p.hash, model.hash) << what;
-  EXPECT_EQ(p.bus_bytes, model.bus_bytes) << what;
-  EXPECT_EQ(p.tri_tests, model.tri_tests) << what;
-  for (int i = 0; i < Summary::kWork; ++i)
-    EXPECT_EQ(p.work[i], model.work[i]) << what << ": " << kWorkNames[i];
+  expect_same_counts(model, p, what);
 }
 TEST(TrvRtlFrame, DefaultsFp24Rtz) {
   expect_trv_rtl(corridor(), config(FormatId::fp24, Rounding::rtz, true, 48, 30), {});
@@ -414,10 +410,7 @@ TEST(TrvRtlFrame, AllUnitsRtlThreeRtusRandomLatency) {
   const Summary model = expect_match(corridor(), tc, cfg);
   cfg.vtu_view = cfg.ist_view = cfg.trv_view = cfg.hit_view = cfg.rgu_view = UnitView::rtl;
   const Summary p = expect_match(corridor(), tc, cfg);
-  EXPECT_EQ(p.cycles, model.cycles);
-  EXPECT_EQ(p.hash, model.hash);
-  EXPECT_EQ(p.bus_bytes, model.bus_bytes);
-  for (int i = 0; i < Summary::kWork; ++i) EXPECT_EQ(p.work[i], model.work[i]) << kWorkNames[i];
+  expect_same_counts(model, p, "all units rtl");
 }
 TEST(TrvRtlFrame, RefusesWhatTheModelCannotRun) {
   const auto tc = config(FormatId::fp24, Rounding::rtz, false, 8, 8);
@@ -447,12 +440,7 @@ void expect_ascache_rtl(const scenes::Scene& s, const sim::TraceConfig& tc, sc::
   const Summary model = expect_match(s, tc, cfg);
   cfg.ascache_view = UnitView::rtl;
   const Summary p = expect_match(s, tc, cfg);
-  EXPECT_EQ(p.cycles, model.cycles) << what;
-  EXPECT_EQ(p.hash, model.hash) << what;
-  EXPECT_EQ(p.bus_bytes, model.bus_bytes) << what;
-  EXPECT_EQ(p.tri_tests, model.tri_tests) << what;
-  for (int i = 0; i < Summary::kWork; ++i)
-    EXPECT_EQ(p.work[i], model.work[i]) << what << ": " << kWorkNames[i];
+  expect_same_counts(model, p, what);
 }
 // The frame's cache alone: Ascache as the model and Ascache with the Verilated cache bound, driven
 // by the same random calls: cycles of 0..12 accesses (more than the RTL's 8 ports: a second edge)
@@ -587,12 +575,7 @@ void expect_membus_rtl(const scenes::Scene& s, const sim::TraceConfig& tc, sc::S
   const Summary model = expect_match(s, tc, cfg);
   cfg.membus_view = UnitView::rtl;
   const Summary p = expect_match(s, tc, cfg);
-  EXPECT_EQ(p.cycles, model.cycles) << what;
-  EXPECT_EQ(p.hash, model.hash) << what;
-  EXPECT_EQ(p.bus_bytes, model.bus_bytes) << what;
-  EXPECT_EQ(p.tri_tests, model.tri_tests) << what;
-  for (int i = 0; i < Summary::kWork; ++i)
-    EXPECT_EQ(p.work[i], model.work[i]) << what << ": " << kWorkNames[i];
+  expect_same_counts(model, p, what);
 }
 TEST(MembusRtlFrame, DefaultsSixRtus) {
   expect_membus_rtl(corridor(), config(FormatId::fp24, Rounding::rtz, true, 48, 30), {},
