@@ -54,7 +54,8 @@ for mod in "${MODULES[@]}"; do
       grep -Eq "parameter +integer +STAGES" "$(file_of "$mod")" && chp+=" -set STAGES $STAGES"
       chp+="${UNIT_PARAMS[$mod]:+ ${UNIT_PARAMS[$mod]}}"
       # SAT-based resource sharing (`share`) for the FP operators; not for the units, where it
-      # runs for hours (hit, trv_unit) and changes little where it finishes (vtu: 0.2%).
+      # runs for 50+ minutes without finishing (hit, trv_unit); vtu and ist FP24 rtz come out
+      # identical with and without it.
       share=share
       [ -f "rtl/units/$mod.v" ] && share=noshare
       area_synth "$mod-$fmt-$mode" "$mod" "$share" "$chp"
@@ -80,7 +81,8 @@ done
   echo "instantiates]; chparam -set EXP_BITS E -set MAN_BITS M -set STAGES $STAGES [-set RNE 0|1] [-set RAYCORE 1]"
   echo "<module>; synth [-noshare] -flatten -top <module>; stat; ltp -noff\`: \`synth\` with its SAT-based resource"
   echo "sharing (\`share\`) for the rtl/fp operators, \`-noshare\` for the units of rtl/units (with \`share\`, hit"
-  echo "and trv_unit do not finish in an hour; where it finishes, e.g. vtu, it changes the cells by 0.2%)."
+  echo "and trv_unit run for 50+ minutes without finishing; vtu and ist FP24 rtz come out identical with"
+  echo "and without it)."
   echo "Rounding raycore (FP24 only): RAYCORE = 1 (RNE = 0); fp_rcp is raycore's reciprocal alone."
   echo "Every unit at its module's default parameters (toy sizes for some: see the next section for the"
   echo "cycle model's): TAG_BITS fp_* and vtu 1, ist, hit and trv 16; trv_unit 8 slots, 8 stack entries,"
