@@ -35,16 +35,16 @@ area_children() {
 # it instantiates, transitively (trv_unit: trv_pass.v, trv.v; hit: spawn_ops.v). Only those, so an
 # unfinished file of another unit cannot break this one.
 srcs_for() {
-  local f=(rtl/fp/*.v) todo=() n c
-  [ -f "rtl/units/$1.v" ] && todo=("$1")
+  local f=(rtl/fp/*.v) queue=() n c
+  [ -f "rtl/units/$1.v" ] && queue=("$1")
   local seen=" "
-  while [ ${#todo[@]} -gt 0 ]; do
-    n=${todo[0]}
-    todo=("${todo[@]:1}")
+  while [ ${#queue[@]} -gt 0 ]; do
+    n=${queue[0]}
+    queue=("${queue[@]:1}")
     [[ "$seen" == *" $n "* ]] && continue
     seen+="$n "
     f+=("rtl/units/$n.v")
-    for c in $(area_children "$n"); do todo+=("$c"); done
+    for c in $(area_children "$n"); do queue+=("$c"); done
   done
   echo "${f[@]}"
 }

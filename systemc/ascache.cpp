@@ -54,15 +54,20 @@ const uint8_t* Ascache::access(uint64_t line) {
     ++st_.mshr_full;
     return nullptr;
   }
+  allocate(line);
+  return nullptr;
+}
+
+uint32_t Ascache::allocate(uint64_t line) {
   for (uint32_t i = 0; i < mshr_.size(); ++i)
     if (!mshr_[i].valid) {
       mshr_[i].valid = true;
       mshr_[i].line = line;
       ++busy_;
       req_.push({base_ + line * line_, line_, i, mshr_[i].buf.data()}, now + 1);
-      break;
+      return i;
     }
-  return nullptr;
+  throw std::logic_error(std::string(name()) + ": no free MSHR");
 }
 
 void Ascache::fill(uint32_t tag) {
@@ -93,10 +98,6 @@ void Ascache::fill(uint32_t tag) {
   --busy_;
   ++st_.fills;
 }
-
-}  // namespace raycore::sc
-
-namespace raycore::sc {
 
 const CacheStats& Ascache::stats() const {
   if (rtl_) rtl_->check(st_.hits, st_.misses, st_.mshr_merges, st_.mshr_full, st_.fills);
@@ -140,15 +141,8 @@ const uint8_t* Ascache::access_rtl(uint64_t line) {
     ++st_.mshr_full;
   } else {
     if (inflight || full) throw differs("a new MSHR");
-    for (uint32_t i = 0; i < mshr_.size(); ++i)
-      if (!mshr_[i].valid) {  // the lowest free one, as the RTL (checked when the bus takes it)
-        mshr_[i].valid = true;
-        mshr_[i].line = line;
-        ++busy_;
-        req_.push({base_ + line * line_, line_, i, mshr_[i].buf.data()}, now + 1);
-        queued_.emplace_back(line, i);
-        break;
-      }
+    // The lowest free one, as the RTL's (checked when the bus takes the request).
+    queued_.emplace_back(line, allocate(line));
   }
   return nullptr;
 }

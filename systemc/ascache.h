@@ -81,6 +81,7 @@ class Ascache : public sc_core::sc_module {
   // RTL view: the Verilated cache, and the requests queued in it (line, MSHR) that the bus has not
   // taken as far as it knows (the bus pops req_ itself; sync_pops() passes those pops on).
   const uint8_t* access_rtl(uint64_t line);
+  uint32_t allocate(uint64_t line);  // the lowest free MSHR takes the line, its request queued
   void sync_pops();
   std::unique_ptr<AscacheRtl> rtl_;
   std::deque<std::pair<uint64_t, uint32_t>> queued_;

@@ -148,24 +148,29 @@ bool Membus::tick(Cycle now) {
     }
     const MemReq q = reqs_[i].req->pop();
     copy_line(q);
-    const Cycle beats = (q.bytes + bandwidth_ - 1) / bandwidth_;
-    const Cycle first = std::max<Cycle>(now + draw_latency(), data_free_);
-    const Cycle arrival = first + beats;
-    data_free_ = arrival;
+    const Cycle arrival = dram_accept(q.bytes, now).second;
     resp_.push({arrival, seq_++, uint32_t(i), q.tag, true});
-    ++dram_out_;
     if (l2_sets_ != 0) {
       ++st_.l2_accesses;
       l2_install(q.addr, q.bytes, arrival);
     }
-    ++st_.requests;
-    st_.bytes += q.bytes;
-    st_.busy_cycles += beats;
-    st_.latency_sum += arrival - now;
     rr_ = i + 1;
     return true;
   }
   return active;
+}
+
+std::pair<Cycle, Cycle> Membus::dram_accept(uint32_t bytes, Cycle now) {
+  const Cycle beats = (bytes + bandwidth_ - 1) / bandwidth_;
+  const Cycle first = std::max<Cycle>(now + draw_latency(), data_free_);
+  const Cycle arrival = first + beats;
+  data_free_ = arrival;
+  ++dram_out_;
+  ++st_.requests;
+  st_.bytes += bytes;
+  st_.busy_cycles += beats;
+  st_.latency_sum += arrival - now;
+  return {first, arrival};
 }
 
 Cycle Membus::next_event(Cycle now) const {
@@ -237,19 +242,12 @@ bool Membus::tick_rtl(Cycle now) {
       throw std::logic_error("--rtl membus: the RTL granted requester " + std::to_string(g) +
                              ", which has no request");
     const MemReq q = reqs_[i].req->pop();
-    Line l{uint32_t(i), q, 0, 0, (q.bytes + bandwidth_ - 1) / bandwidth_, 0, 0, {}};
-    l.first = std::max<Cycle>(now + draw_latency(), data_free_);
-    l.arrival = l.first + l.beats;
-    data_free_ = l.arrival;
+    const auto [first, arrival] = dram_accept(q.bytes, now);
+    Line l{uint32_t(i), q, first, arrival, uint32_t(arrival - first), 0, 0, {}};
     l.bytes.assign(size_t(l.beats) * bandwidth_, 0);
     MemReq staged = q;
     staged.data = l.bytes.data();
     copy_line(staged);
-    ++dram_out_;
-    ++st_.requests;
-    st_.bytes += q.bytes;
-    st_.busy_cycles += l.beats;
-    st_.latency_sum += l.arrival - now;
     lines_.push_back(std::move(l));
     active = true;
   } else if (any && rtl_->full()) {

@@ -80,6 +80,9 @@ class Membus : public sc_core::sc_module {
     }
   };
   uint32_t draw_latency();
+  // A line of bytes accepted for the memory now: its first beat and its arrival (the data bus is
+  // busy until then); the memory queue place and the counters.
+  std::pair<Cycle, Cycle> dram_accept(uint32_t bytes, Cycle now);
   void copy_line(const MemReq& q) const;
   struct L2Line {
     uint64_t tag = 0, stamp = 0;
