@@ -21,11 +21,18 @@ class TimedFifo {
     if (capacity == 0) throw std::invalid_argument("TimedFifo: capacity 0");
     buf_.assign(capacity, Entry{});
     head_ = size_ = 0;
+    cap_ = capacity;
+  }
+  // Lowers the capacity to n (at most the storage's): a channel that stands for the room left in
+  // a queue held elsewhere (the ist's queue in RTL, systemc/ist_rtl.h).
+  void limit(size_t n) {
+    if (n > buf_.size() || n < size_) throw std::logic_error("TimedFifo: limit out of range");
+    cap_ = n;
   }
   size_t size() const { return size_; }
-  size_t capacity() const { return buf_.size(); }
+  size_t capacity() const { return cap_; }
   bool empty() const { return size_ == 0; }
-  bool can_push() const { return size_ < buf_.size(); }  // ready
+  bool can_push() const { return size_ < cap_; }  // ready
   bool can_pop(Cycle now) const { return size_ != 0 && buf_[head_].ready <= now; }  // valid
   Cycle head_ready() const { return size_ ? buf_[head_].ready : kNever; }
   void push(const T& v, Cycle ready) {
@@ -49,7 +56,7 @@ class TimedFifo {
     Cycle ready = 0;
   };
   std::vector<Entry> buf_;
-  size_t head_ = 0, size_ = 0;
+  size_t head_ = 0, size_ = 0, cap_ = 1;
 };
 
 }  // namespace raycore::sc

@@ -6,21 +6,25 @@
 // outcome equals the golden tracer's sequential tests with tmax updated after each hit. A record
 // whose id is the ray's skip_id (skip-origin) is not tested (as the golden tracer).
 //
-// Two views (SimConfig::ist_view): the transaction model (hls::ist_wald at issue, the result
-// delayed by the latency; default) or a pin-level unit with rtl/units/ist.v's ports
-// (systemc/pins/ist.h: the SystemC twin or the Verilated RTL), driven one test per cycle; its
-// result, latency cycles later, joins the same result queue. A skipped record still occupies its
-// issue slot (its result is ignored). Same cycles and bits.
+// Three views (SimConfig::ist_view): the transaction model (hls::ist_wald at issue, the result
+// delayed by the latency; default); the pin-level SystemC twin of rtl/units/ist.v
+// (systemc/pins/ist.h, --pins ist), one per unit, driven one test per cycle, its result, latency
+// cycles later, joining the same result queue (a skipped record still occupies its issue slot, its
+// result ignored); or the whole unit in RTL (--rtl ist: rtl/units/ist_unit.v, the queue, the
+// triangle-cache accesses, the ist.v pipelines and the result delay, systemc/ist_rtl.h), whose
+// results leaving are reduced here (or by trv_unit.v). Same cycles and bits.
 #pragma once
 
 #include <systemc>
 
 #include "hls/ist.h"
 #include "hls/wald.h"
+#include "systemc/ist_rtl.h"
 #include "systemc/pins/ist.h"
 #include "systemc/slot.h"
 
 #include <array>
+#include <vector>
 
 namespace raycore::sc {
 
@@ -41,9 +45,18 @@ class Ist : public sc_core::sc_module {
     ports_ = ports;
     for (pins::IstPort* p : ports_) p->config(fc_.margins);  // the per-frame margin registers
   }
+  // The whole unit in RTL (--rtl ist): it holds the queue, issues the tests and delays the results.
+  void bind_rtl(IstRtl* r) { rtl_ = r; }
+  const IstRtl* rtl() const { return rtl_; }
   bool wants_edge() const { return edge_; }
 
   bool tick(Cycle now) {
+    if (rtl_) {
+      left_.clear();
+      const bool active = rtl_->tick(now, left_);
+      for (const IstRes& o : left_) leave(o, now);
+      return active;
+    }
     bool active = false;
     edge_ = false;
     for (pins::IstPort* p : ports_) {
@@ -69,22 +82,8 @@ class Ist : public sc_core::sc_module {
     }
     // Results leaving the pipeline.
     while (ch_.ist_pipe.can_pop(now)) {
-      const IstRes o = ch_.ist_pipe.pop();
+      leave(ch_.ist_pipe.pop(), now);
       active = true;
-      if (ch_.ist_results) {  // the trv in RTL reduces them (systemc/trv_rtl.h)
-        ch_.ist_results->push_back(o);
-        continue;
-      }
-      Slot& r = ch_.slots[o.slot];
-      if (o.hit) {
-        Best& b = r.leaf;
-        if (!b.found || A::lt(o.t, b.t) || (A::eq(o.t, b.t) && o.pos < b.pos))
-          b = Best{true, o.t, o.den, o.pos, o.id, o.k, o.nu, o.nv, o.nd};
-      }
-      if (++r.results == r.list_count) {
-        r.state = SlotState::leaf_done;
-        ch_.trv_q.push(o.slot, now + 1);
-      }
     }
     // Issue one test per unit (they share the triangle cache: one access per unit and cycle). A
     // miss takes its unit's issue slot.
@@ -100,12 +99,37 @@ class Ist : public sc_core::sc_module {
     return active || edge_;
   }
 
+  // The RTL's clock edge, after the trv's hand-offs of this cycle (RtuChannels::ist_q).
+  void edge(Cycle now) {
+    if (rtl_) rtl_->edge(now);
+  }
+
   Cycle next_event(Cycle now) const {
+    if (rtl_) return rtl_->next_event(now);
     if (!ports_.empty() && in_flight_ != 0) return now + 1;
     return std::min(ch_.ist_pipe.head_ready(), ch_.ist_q.head_ready());
   }
 
  private:
+  // A result leaving the unit: into its ray's leaf record (the closest, ties to the earliest list
+  // position), the leaf's last result puts the ray back in the trv's queue.
+  void leave(const IstRes& o, Cycle now) {
+    if (ch_.ist_results) {  // the trv in RTL reduces them (systemc/trv_rtl.h)
+      ch_.ist_results->push_back(o);
+      return;
+    }
+    Slot& r = ch_.slots[o.slot];
+    if (o.hit) {
+      Best& b = r.leaf;
+      if (!b.found || A::lt(o.t, b.t) || (A::eq(o.t, b.t) && o.pos < b.pos))
+        b = Best{true, o.t, o.den, o.pos, o.id, o.k, o.nu, o.nv, o.nd};
+    }
+    if (++r.results == r.list_count) {
+      r.state = SlotState::leaf_done;
+      ch_.trv_q.push(o.slot, now + 1);
+    }
+  }
+
   // Unit u issues the test at the head of the queue (false: none ready).
   bool issue(Cycle now, uint32_t u) {
     if (!ch_.ist_q.can_pop(now)) return false;
@@ -189,6 +213,8 @@ class Ist : public sc_core::sc_module {
   uint32_t lat_;
   uint32_t units_;
   std::vector<pins::IstPort*> ports_;  // pin-level view: one per unit (empty: the model)
+  IstRtl* rtl_ = nullptr;              // the whole unit in RTL (--rtl ist)
+  std::vector<IstRes> left_;           // its results leaving this cycle
   std::array<Side, 1024> side_{};
   uint32_t next_tag_ = 0, in_flight_ = 0;
   bool edge_ = false;

@@ -14,6 +14,7 @@
 #include "systemc/config.h"
 #include "systemc/hit.h"
 #include "systemc/ist.h"
+#include "systemc/ist_rtl.h"
 #include "systemc/membus.h"
 #include "systemc/pins/clock.h"
 #include "systemc/pins/rgu.h"
@@ -94,18 +95,23 @@ class Rtu : public sc_core::sc_module {
       if (!vtu_port_) no_rtl("vtu", stages);
       vtu_unit.bind(vtu_port_.get());
     }
-    if (cfg.ist_view != UnitView::model) {
+    if (cfg.ist_view == UnitView::rtl) {  // the whole unit: rtl/units/ist_unit.v
+      const unsigned stages = pin_stages("ist", cfg.ist_latency, 10, "--ist-latency");
+      ist_rtl_ = make_rtl_ist_unit(hls::format_id<F>(), R, stages, fc, ch_, cfg);
+      if (!ist_rtl_)
+        throw ConfigError(std::string("no Verilated ist_unit for ") +
+                          hls::format_name(hls::format_id<F>()) + " " + hls::rounding_name(R) +
+                          " STAGES=" + std::to_string(stages) + " in this build; built: " +
+                          rtl_ist_unit_built());
+      ist.bind_rtl(ist_rtl_.get());
+    }
+    if (cfg.ist_view == UnitView::twin) {  // one SystemC twin of rtl/units/ist.v per ist unit
       const unsigned stages = pin_stages("ist", cfg.ist_latency, 10, "--ist-latency");
       std::vector<pins::IstPort*> ports;
-      for (uint32_t u = 0; u < cfg.ist_units; ++u) {  // one ist.v per ist unit
+      for (uint32_t u = 0; u < cfg.ist_units; ++u) {
         const std::string n = u == 0 ? std::string("ist") : "ist" + std::to_string(u);
-        if (cfg.ist_view == UnitView::twin)
-          ist_ports_.push_back(std::make_unique<pins::IstPortT<pins::IstTwin<A>>>(
-              (n + "_pins").c_str(), "SystemC twin", clock->clk, clock->rst_n, stages));
-        else
-          ist_ports_.push_back(pins::make_rtl_ist(hls::format_id<F>(), R, stages, (n + "_rtl").c_str(),
-                                                  clock->clk, clock->rst_n));
-        if (!ist_ports_.back()) no_rtl("ist", stages);
+        ist_ports_.push_back(std::make_unique<pins::IstPortT<pins::IstTwin<A>>>(
+            (n + "_pins").c_str(), "SystemC twin", clock->clk, clock->rst_n, stages));
         ports.push_back(ist_ports_.back().get());
       }
       ist.bind(ports);
@@ -152,6 +158,7 @@ class Rtu : public sc_core::sc_module {
   pins::HitPort* hit_port() { return hit_port_.get(); }
   pins::RguPort* rgu_port() { return rgu_port_.get(); }
   const TrvRtl* trv_rtl() const { return trv_rtl_.get(); }
+  const IstRtl* ist_rtl() const { return ist_rtl_.get(); }
   bool wants_edge() const {
     return vtu_unit.wants_edge() || ist.wants_edge() || hit.wants_edge() || rgu.wants_edge();
   }
@@ -165,10 +172,12 @@ class Rtu : public sc_core::sc_module {
       a |= trv_rtl_->tick(now);
       a |= rgu.tick(now);
       trv_rtl_->edge(now);
+      ist.edge(now);  // the trv's hand-offs of this cycle into the ist's RTL
       return a;
     }
     a |= trv.tick(now);
     a |= rgu.tick(now);
+    ist.edge(now);
     return a;
   }
   Cycle next_event(Cycle now) const {
@@ -185,6 +194,7 @@ class Rtu : public sc_core::sc_module {
     s.tri = tri.stats();
     s.vtu_busy = vtu_unit.busy();
     if (trv_rtl_) trv_rtl_->stats(s);
+    if (ist_rtl_) ist_rtl_->stats(s);
     return s;
   }
   size_t in_flight() const { return slots_ - ch_.free_slots.size(); }
@@ -229,6 +239,7 @@ class Rtu : public sc_core::sc_module {
   RtuChannels ch_;
   std::unique_ptr<pins::VtuPort> vtu_port_;
   std::vector<std::unique_ptr<pins::IstPort>> ist_ports_;
+  std::unique_ptr<IstRtl> ist_rtl_;  // --rtl ist: rtl/units/ist_unit.v in the ist's place
   std::unique_ptr<TrvRtl> trv_rtl_;  // --rtl trv: rtl/units/trv_unit.v in trv's (and the ist
                                      // reduction's) place
   std::unique_ptr<pins::HitPort> hit_port_;

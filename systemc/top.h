@@ -42,7 +42,7 @@ class Top : public sc_core::sc_module {
         period_(1000.0 / cfg.clock_mhz, sc_core::SC_NS) {
     bus.set_l2(cfg.l2);
     if (cfg.rtus < 1 || cfg.rtus > 64) throw std::invalid_argument("rtus must be 1..64");
-    if (cfg.vtu_view != UnitView::model || cfg.ist_view != UnitView::model ||
+    if (cfg.vtu_view != UnitView::model || cfg.ist_view == UnitView::twin ||
         cfg.hit_view != UnitView::model ||
         cfg.rgu_view != UnitView::model)
       clock_ = std::make_unique<pins::PinClock>(period_);
@@ -100,6 +100,14 @@ class Top : public sc_core::sc_module {
         sc_core::sc_trace(tf_, trv_sig_.ist_entries, "rtu0_trv_ist_n_o");
         sc_core::sc_trace(tf_, trv_sig_.head_valid, "rtu0_trv_head_valid_o");
       }
+      if (rtus[0]->ist_rtl()) {
+        sc_core::sc_trace(tf_, ist_sig_.hin, "rtu0_ist_hin_n_i");
+        sc_core::sc_trace(tf_, ist_sig_.acc_valid, "rtu0_ist_acc_valid_o");
+        sc_core::sc_trace(tf_, ist_sig_.rsp_hit, "rtu0_ist_rsp_hit_i");
+        sc_core::sc_trace(tf_, ist_sig_.res_valid, "rtu0_ist_res_valid_o");
+        sc_core::sc_trace(tf_, ist_sig_.head_valid, "rtu0_ist_head_valid_o");
+        sc_core::sc_trace(tf_, ist_sig_.busy, "rtu0_ist_busy_o");
+      }
       // RTU 0's pin-level units: their clock and handshakes (the signals the RTL sees).
       if (clock_) {
         sc_core::sc_trace(tf_, clock_->clk, "clk_i");
@@ -154,6 +162,10 @@ class Top : public sc_core::sc_module {
   struct TrvSignals {
     sc_core::sc_signal<bool> in_valid, head_valid;
     sc_core::sc_signal<uint32_t> in_slot, res_valid, go, fin, acc_valid, rsp_hit, ist_entries;
+  };
+  struct IstSignals {
+    sc_core::sc_signal<bool> head_valid, busy;
+    sc_core::sc_signal<uint32_t> hin, acc_valid, rsp_hit, res_valid;
   };
   struct RtuSignals {
     sc_core::sc_signal<bool> busy;
@@ -340,6 +352,15 @@ class Top : public sc_core::sc_module {
       trv_sig_.ist_entries.write(p.ist_entries);
       trv_sig_.head_valid.write(p.head_valid);
     }
+    if (const IstRtl* t = rtus[0]->ist_rtl()) {
+      const IstProbe p = t->probe(now);
+      ist_sig_.hin.write(p.hin);
+      ist_sig_.acc_valid.write(p.acc_valid);
+      ist_sig_.rsp_hit.write(p.rsp_hit);
+      ist_sig_.res_valid.write(p.res_valid);
+      ist_sig_.head_valid.write(p.head_valid);
+      ist_sig_.busy.write(p.busy);
+    }
   }
 
   sc_core::sc_time period_;
@@ -349,6 +370,7 @@ class Top : public sc_core::sc_module {
   std::vector<std::unique_ptr<RtuSignals>> rsig_;
   sc_core::sc_signal<uint32_t> cache_sig_[3][3];  // RTU 0: node, list, tri x accesses, hits, fills
   TrvSignals trv_sig_;
+  IstSignals ist_sig_;
 };
 
 }  // namespace raycore::sc

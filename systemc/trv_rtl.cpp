@@ -3,7 +3,6 @@
 #include "systemc/trv_rtl.h"
 
 #include <algorithm>
-#include <cstring>
 #include <stdexcept>
 #include <type_traits>
 
@@ -206,8 +205,7 @@ class TrvRtlT final : public TrvRtl {
   }
 
  private:
-  // A 32-bit cycle number of the RTL as a cycle of the model (within 2^31 of now).
-  static Cycle at(Cycle now, uint32_t c) { return Cycle(int64_t(now) + int32_t(c - uint32_t(now))); }
+  static Cycle at(Cycle now, uint32_t c) { return vl::cycle_at(now, c); }
 
   void configure() {  // the per-frame registers (set after the VTU's set-up)
     m_.lat_i = uint16_t(cfg_.trv_latency);
@@ -237,20 +235,12 @@ class TrvRtlT final : public TrvRtl {
   TrvProbe probe_;
 };
 
-bool matches(const char* fmt, const char* mode, hls::FormatId f, hls::Rounding r) {
-  const hls::FormatId mf = std::strcmp(fmt, "FP24") == 0 ? hls::FormatId::fp24 : hls::FormatId::fp32;
-  const hls::Rounding mr = std::strcmp(mode, "rne") == 0       ? hls::Rounding::rne
-                           : std::strcmp(mode, "raycore") == 0 ? hls::Rounding::raycore
-                                                               : hls::Rounding::rtz;
-  return mf == f && mr == r;
-}
-
 }  // namespace
 
 std::unique_ptr<TrvRtl> make_rtl_trv(hls::FormatId f, hls::Rounding r, FrameCtx& fc, RtuChannels& ch,
                                      const SimConfig& cfg) {
 #define RAYCORE_RTL_TRVU_VARIANT(prefix, fmt, mode, width, slot_bits, depth, pipes, ist, words)    \
-  if (matches(#fmt, #mode, f, r))                                                                 \
+  if (vl::variant_is(#fmt, #mode, f, r))                                                              \
     return std::make_unique<TrvRtlT<prefix, width, slot_bits, pipes, ist, words>>(                \
         "Verilated trv_unit " #fmt " " #mode, fc, ch, cfg);
 #include "rtl_trv_unit_variants.h"

@@ -4,7 +4,11 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <type_traits>
+
+#include "hls/fp.h"
+#include "hls/image.h"
 
 namespace raycore::sc::vl {
 
@@ -67,6 +71,22 @@ void async_reset(M& m) {
   m.eval();
   m.rst_ni = 1;
   m.eval();
+}
+
+// A 32-bit cycle number of an RTL model (its ready cycles, compared with now_i as a signed
+// difference) as a cycle of the model, within 2^31 of now.
+inline uint64_t cycle_at(uint64_t now, uint32_t c) {
+  return uint64_t(int64_t(now) + int32_t(c - uint32_t(now)));
+}
+
+// A built model's format and rounding as its variant line spells them ("FP24", "rtz" | "rne" |
+// "raycore") against the frame's.
+inline bool variant_is(const char* fmt, const char* mode, hls::FormatId f, hls::Rounding r) {
+  const hls::FormatId mf = std::strcmp(fmt, "FP24") == 0 ? hls::FormatId::fp24 : hls::FormatId::fp32;
+  const hls::Rounding mr = std::strcmp(mode, "rne") == 0       ? hls::Rounding::rne
+                           : std::strcmp(mode, "raycore") == 0 ? hls::Rounding::raycore
+                                                               : hls::Rounding::rtz;
+  return mf == f && mr == r;
 }
 
 }  // namespace raycore::sc::vl

@@ -325,9 +325,83 @@ TEST(PinsFrameRtl, RguMissingVariantIsNamed) {
 TEST(PinsFrameRtl, MissingVariantIsNamed) {
   sc::SimConfig cfg;
   cfg.ist_view = UnitView::rtl;
-  const auto tc = config(FormatId::fp32, Rounding::rne, false, 8, 8);
-  const Summary r = expect_refused(tiny_scene(), tc, cfg, "no Verilated ist for fp32 rne STAGES=2");
-  EXPECT_NE(std::string(r.error).find("built: "), std::string::npos) << r.error;
+  const auto tc = config(FormatId::fp32, Rounding::rtz, false, 8, 8);
+  const Summary r = expect_refused(tiny_scene(), tc, cfg, "no Verilated ist_unit for fp32 rtz STAGES=2");
+  EXPECT_NE(std::string(r.error).find("built: ist_unit FP24 rtz S=2"), std::string::npos) << r.error;
+}
+
+// ---- the intersection unit whole in RTL (rtl/units/ist_unit.v, --rtl ist) ---------------------
+// The queue with looping on a triangle-cache miss, the triangle-cache accesses, the ist.v
+// pipelines and the result delay: the transaction model's frame, cycles and counters, with the
+// trv as the model (the ist's results reduced in C++) and as RTL (reduced by trv_unit.v).
+void expect_ist_rtl(const scenes::Scene& s, const sim::TraceConfig& tc, sc::SimConfig cfg,
+                    const std::string& what) {
+  const Summary model = expect_match(s, tc, cfg);
+  cfg.ist_view = UnitView::rtl;
+  const Summary p = expect_match(s, tc, cfg);
+  expect_same_counts(model, p, "ist rtl, " + what);
+  EXPECT_EQ(p.shadow, model.shadow) << what;
+  cfg.trv_view = UnitView::rtl;
+  const Summary q = expect_match(s, tc, cfg);
+  expect_same_counts(model, q, "ist and trv rtl, " + what);
+}
+// Small caches and a 3-entry ist queue: triangle misses (looping), MSHRs full, the queue full for
+// the trv, three ist units taking entries behind each other; 2 RTUs, randomised memory latency.
+TEST(IstRtlFrame, SmallCachesQueueOfThreeRandomLatency) {
+  sc::SimConfig cfg;
+  cfg.node_cache = {1024, 2, 64, 2, 1};
+  cfg.list_cache = {512, 2, 32, 2, 2};
+  cfg.tri_cache = {1024, 2, 64, 2, 1};
+  cfg.ist_queue = 3;
+  cfg.ist_units = 3;
+  cfg.trv_pipes = 2;
+  cfg.rtus = 2;
+  cfg.seed = 5;
+  expect_ist_rtl(corridor(), config(FormatId::fp24, Rounding::rtz, true, 40, 24), cfg,
+                 "small caches, queue 3");
+}
+// The result delay: a triangle-cache hit latency of 0 (results leave with the ist.v's output) and
+// of 5 (through the delay ring), skip-origin shadow rays (the skip id read with the ray).
+TEST(IstRtlFrame, TriangleHitLatencyZeroAndFiveSkipOrigin) {
+  auto tc = config(FormatId::fp24, Rounding::rne, true, 32, 20);
+  tc.spawn = spawn(hls::Spawn::skip_origin, true);
+  for (const uint32_t hl : {0u, 5u}) {
+    sc::SimConfig cfg;
+    cfg.tri_cache.hit_latency = hl;
+    expect_ist_rtl(corridor(), tc, cfg, "triangle hit latency " + std::to_string(hl));
+  }
+}
+TEST(IstRtlFrame, Fp32RneAndFp24RaycoreOneUnit) {
+  sc::SimConfig cfg;
+  expect_ist_rtl(tiny_scene(), config(FormatId::fp32, Rounding::rne, true, 32, 24), cfg, "fp32");
+  cfg.ist_units = 1;
+  cfg.ist_view = UnitView::model;
+  const auto tc = config(FormatId::fp24, Rounding::raycore, true, 32, 20);
+  const Summary model = expect_match(corridor(), tc, cfg);
+  cfg.ist_view = UnitView::rtl;
+  expect_same_counts(model, expect_match(corridor(), tc, cfg), "raycore, 1 ist unit");
+}
+TEST(IstRtlFrame, RefusesWhatItCannotRun) {
+  const auto tc = config(FormatId::fp24, Rounding::rtz, false, 8, 8);
+  sc::SimConfig cfg;
+  cfg.ist_view = UnitView::rtl;
+  cfg.ist_queue = 65;
+  expect_refused(tiny_scene(), tc, cfg, "an ist queue of at most 64 entries");
+  cfg.ist_queue = 32;
+  cfg.ist_units = 5;
+  expect_refused(tiny_scene(), tc, cfg, "at most 4 --ist-units");
+  cfg.ist_units = 2;
+  cfg.tri_cache.line_bytes = 128;
+  expect_refused(tiny_scene(), tc, cfg, "64-byte triangle cache lines");
+  cfg.tri_cache.line_bytes = 64;
+  cfg.tri_cache.hit_latency = 16;
+  expect_refused(tiny_scene(), tc, cfg, "a triangle-cache hit latency below 16");
+  cfg.tri_cache.hit_latency = 1;
+  cfg.mailbox = 2;
+  expect_refused(tiny_scene(), tc, cfg, "no mailbox");
+  cfg.mailbox = 0;
+  cfg.ist_latency = 30;
+  expect_refused(tiny_scene(), tc, cfg, "no Verilated ist_unit for fp24 rtz STAGES=3");
 }
 
 // ---- the traversal unit in RTL (rtl/units/trv_unit.v, --rtl trv) ------------------------------

@@ -1,0 +1,293 @@
+// ist_unit - the intersection unit whole: the ist input queue with looping on a triangle-cache
+// miss, the triangle-cache accesses and the record decode, IST ist.v pipelines, and the result
+// delay of the triangle cache's hit latency. The RTL view of systemc/ist.h's control (its pin-level
+// view) with its datapaths: bound into the running frame by systemc/ist_rtl.h (raycore simulate
+// --rtl ist), cycle for cycle and bit for bit the transaction model's.
+//
+// Per cycle, in the model's order (systemc/ist.h, Ist::tick):
+//   1. the results the ist.v pipelines put out at the last edge enter the delay ring, due hl_i
+//      cycles later (hl_i = 0: this cycle); the results due now leave on res_* (lane u = unit u's
+//      result of cycle now - hl_i), in the model's order: the trv reduces them (trv_unit's res_*);
+//   2. unit u (u < units_i) takes the queue's entry u if units 0 .. u-1 took theirs and its ready
+//      cycle has come: it reads the triangle cache (acc_* / rsp_*, same-cycle response) and the
+//      ray of the entry's slot (ray_slot_o / ray_i, same cycle); on a hit the test enters its
+//      ist.v (a record whose id is the ray's skip id too: its result reads as no hit), on a miss
+//      the entry goes to the back of the queue, ready at now + 1;
+//   3. the trv's hand-offs of this cycle (hin_*, one run of consecutive list positions of one
+//      slot per trv pipe, with its ready cycle) are appended behind the misses, in pipe order.
+// room_o is the queue's room after 1-2, for the trv's hand-offs of the same cycle. The queue is a
+// FIFO whose head blocks the entries behind it until its ready cycle (the cycle model's
+// TimedFifo); ready cycles are 32-bit cycle numbers compared with now_i as a signed difference.
+// Since a miss goes behind every entry present, unit u's access depends only on the queue's
+// registers, not on the responses to units 0 .. u-1: the caller answers the accesses in unit order.
+//
+// Storage (register arrays here; an SRAM in a chip): the queue, 2^QBITS entries of {slot, list
+// position, triangle index, ready cycle} (qcap_i <= 2^QBITS at run time); the delay ring,
+// 2^HLBITS x IST results (hl_i < 2^HLBITS). Each ist.v carries its test's side data (slot, skip,
+// list position, the record's id, k and plane) as its tag. Parameters: SLOT_BITS, IST, PIPES and
+// WORDS (the hand-off: trv_unit's), RPL (triangle records per cache line, a power of two).
+// lint: also SLOT_BITS=7 IST=4 PIPES=4 WORDS=16 QBITS=6 RPL=2 HLBITS=4 STAGES=2
+// lint: also EXP_BITS=8 MAN_BITS=23 RNE=1 SLOT_BITS=7 IST=4 PIPES=4 WORDS=16 QBITS=6 RPL=1 HLBITS=4 STAGES=2
+// lint: also IST=1 PIPES=1 WORDS=1 RPL=1 HLBITS=1 STAGES=0
+module ist_unit #(
+  parameter integer EXP_BITS  = 7,
+  parameter integer MAN_BITS  = 16,
+  parameter integer RNE       = 0,
+  parameter integer RAYCORE   = 0,
+  parameter integer STAGES    = 2,
+  parameter integer SLOT_BITS = 3,
+  parameter integer IST       = 2,
+  parameter integer PIPES     = 2,
+  parameter integer WORDS     = 4,
+  parameter integer QBITS     = 3,
+  parameter integer RPL       = 2,
+  parameter integer HLBITS    = 2,
+  // Derived (not to be overridden): the record layout of hls/wald.h and the widths.
+  parameter integer W_        = 1 + EXP_BITS + MAN_BITS,
+  parameter integer CB_       = (W_ <= 24) ? 3 : 4,               // bytes per constant
+  parameter integer IDOFF_    = ((9 * CB_ + 1 + 3) / 4) * 4,      // the id's byte offset
+  parameter integer RB_       = ((IDOFF_ + 4 + 15) / 16) * 16,    // bytes per record
+  parameter integer LINE_W_   = 8 * RPL * RB_                     // bits per cache line
+) (
+  input  wire                            clk_i,
+  input  wire                            rst_ni,
+  input  wire [31:0]                     now_i,
+  // Configuration, static per frame.
+  input  wire [W_-1:0]                   eps_i,       // ist.v's margin registers
+  input  wire [W_-1:0]                   one_eps_i,
+  input  wire [15:0]                     qcap_i,      // the queue's capacity (<= 2^QBITS)
+  input  wire [7:0]                      hl_i,        // the triangle cache's hit latency
+  input  wire [4:0]                      units_i,     // ist units in use (1 .. IST)
+  // The trv's hand-offs (pipe p in bits [p*w +: w]): n entries, list positions pos .. pos+n-1.
+  input  wire [PIPES*6-1:0]              hin_n_i,
+  input  wire [PIPES*SLOT_BITS-1:0]      hin_slot_i,
+  input  wire [PIPES*32-1:0]             hin_pos_i,
+  input  wire [PIPES*32-1:0]             hin_ready_i,
+  input  wire [PIPES*32*WORDS-1:0]       hin_words_i,
+  output wire [15:0]                     room_o,
+  // The ray of unit u's entry: {skip_id[31:0], tmax, tmin, d z y x, o z y x} (o x lowest).
+  output wire [IST*SLOT_BITS-1:0]        ray_slot_o,
+  input  wire [IST*(32+8*W_)-1:0]        ray_i,
+  // Triangle-cache accesses, one per unit (line index), same-cycle responses (the whole line).
+  output wire [IST-1:0]                  acc_valid_o,
+  output wire [IST*32-1:0]               acc_line_o,
+  input  wire [IST-1:0]                  rsp_hit_i,
+  input  wire [IST*LINE_W_-1:0]          rsp_data_i,
+  // Results leaving (trv_unit's res_*): {1, t, den, pos, id, k, nu, nv, nd}, zero but pos and
+  // the top bit when not a hit.
+  output wire [IST-1:0]                  res_valid_o,
+  output wire [IST*SLOT_BITS-1:0]        res_slot_o,
+  output wire [IST-1:0]                  res_hit_o,
+  output wire [IST*(67+5*W_)-1:0]        res_rec_o,
+  // The queue's head (the cycle model's next event) and tests or results inside.
+  output wire                            head_valid_o,
+  output wire [31:0]                     head_ready_o,
+  output wire                            busy_o,
+  output wire [15:0]                     count_o,     // entries in the queue
+  // Counters (systemc/config.h RtuStats: ist_busy, ist_tri_miss, tri_tests).
+  output reg  [63:0]                     cnt_busy_o,
+  output reg  [63:0]                     cnt_miss_o,
+  output reg  [63:0]                     cnt_tests_o
+);
+
+  localparam integer W   = W_;
+  localparam integer BW  = 67 + 5 * W;
+  localparam integer QN  = 1 << QBITS;
+  localparam integer HN  = 1 << HLBITS;
+  localparam integer RW  = 32 + 8 * W;
+  localparam integer TW  = SLOT_BITS + 1 + 32 + 32 + 2 + 3 * W;  // ist.v's tag: the side data
+  localparam integer RESW = 1 + SLOT_BITS + BW;                  // a result: {hit, slot, rec}
+  localparam integer RPLB = (RPL > 1) ? $clog2(RPL) : 1;
+
+  // ---- the queue --------------------------------------------------------------------------------
+  reg [SLOT_BITS-1:0] q_slot  [0:QN-1];
+  reg [31:0]          q_pos   [0:QN-1];
+  reg [31:0]          q_tri   [0:QN-1];
+  reg [31:0]          q_ready [0:QN-1];
+  reg [QBITS-1:0]     head_q;
+  reg [QBITS:0]       cnt_q;
+
+  assign head_valid_o = (cnt_q != {(QBITS+1){1'b0}});
+  assign head_ready_o = q_ready[head_q];
+  assign count_o      = {{(15-QBITS){1'b0}}, cnt_q};
+
+  // ---- 2. issue: unit u takes entry u while every unit before it took its entry -----------------
+  wire [IST-1:0]      take, hit, miss, test;
+  wire [IST-1:0]      rdy;       // entry u present, ready and unit u in use
+  wire [IST-1:0]      g_out_v;   // unit u's ist.v result of this cycle
+  wire [IST*RESW-1:0] g_out_r;
+  genvar u;
+  generate
+    for (u = 0; u < IST; u = u + 1) begin : g_issue
+      localparam [QBITS-1:0] UQ = u;
+      localparam [4:0] U5 = u;
+      wire [QBITS-1:0] e = head_q + UQ;
+      wire [31:0] dt = q_ready[e] - now_i;
+      assign rdy[u] = ({{(31-QBITS){1'b0}}, cnt_q} > u) && ($signed(dt) <= 0) && (U5 < units_i);
+      assign take[u] = &rdy[u:0];
+      assign hit[u]   = take[u] && rsp_hit_i[u];
+      assign miss[u]  = take[u] && !rsp_hit_i[u];
+      assign acc_valid_o[u] = take[u];
+      assign ray_slot_o[u*SLOT_BITS +: SLOT_BITS] = q_slot[e];
+      // The record: line q_tri / RPL, record q_tri % RPL of it.
+      wire [31:0] tidx = q_tri[e];
+      if (RPL > 1) begin : g_line
+        assign acc_line_o[u*32 +: 32] = tidx >> RPLB;
+      end else begin : g_line1
+        assign acc_line_o[u*32 +: 32] = tidx;
+      end
+      wire [LINE_W_-1:0] line = rsp_data_i[u*LINE_W_ +: LINE_W_];
+      reg  [8*RB_-1:0]   rec;
+      integer r;
+      always @* begin
+        rec = line[0 +: 8*RB_];
+        for (r = 1; r < RPL; r = r + 1)
+          if (RPL > 1 && tidx[RPLB-1:0] == r[RPLB-1:0]) rec = line[r*8*RB_ +: 8*RB_];
+      end
+      wire          unused_rec = ^rec;  // flags and padding
+      wire [W-1:0]  c0 = rec[0*8*CB_ +: W], c1 = rec[1*8*CB_ +: W], c2 = rec[2*8*CB_ +: W];
+      wire [W-1:0]  c3 = rec[3*8*CB_ +: W], c4 = rec[4*8*CB_ +: W], c5 = rec[5*8*CB_ +: W];
+      wire [W-1:0]  c6 = rec[6*8*CB_ +: W], c7 = rec[7*8*CB_ +: W], c8 = rec[8*8*CB_ +: W];
+      wire [1:0]    k  = rec[9*8*CB_ +: 2];
+      wire [31:0]   id = rec[8*IDOFF_ +: 32];
+      wire [RW-1:0] ray = ray_i[u*RW +: RW];
+      wire          skip = (id == ray[8*W +: 32]);
+      assign test[u] = hit[u] && !skip;
+      // The datapath; the side data rides as its tag.
+      wire          o_valid, o_ready_unused;
+      wire [2:0]    o_exit;
+      wire [W-1:0]  o_t, o_den;
+      wire [TW-1:0] o_tag;
+      ist #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
+            .TAG_BITS(TW)) u_ist (
+        .clk_i(clk_i), .rst_ni(rst_ni), .eps_i(eps_i), .one_eps_i(one_eps_i),
+        .in_valid_i(hit[u]), .in_ready_o(o_ready_unused), .in_k_i(k),
+        .in_c0_i(c0), .in_c1_i(c1), .in_c2_i(c2), .in_c3_i(c3), .in_c4_i(c4), .in_c5_i(c5),
+        .in_c6_i(c6), .in_c7_i(c7), .in_c8_i(c8),
+        .in_o_x_i(ray[0 +: W]), .in_o_y_i(ray[W +: W]), .in_o_z_i(ray[2*W +: W]),
+        .in_d_x_i(ray[3*W +: W]), .in_d_y_i(ray[4*W +: W]), .in_d_z_i(ray[5*W +: W]),
+        .in_tmin_i(ray[6*W +: W]), .in_tmax_i(ray[7*W +: W]),
+        .in_tag_i({q_slot[e], skip, q_pos[e], id, k, c0, c1, c2}),
+        .out_valid_o(o_valid), .out_ready_i(1'b1), .out_exit_o(o_exit), .out_t_o(o_t),
+        .out_den_o(o_den), .out_tag_o(o_tag));
+      // The result as the trv takes it: {hit, slot, {1, t, den, pos, id, k, nu, nv, nd}}.
+      wire [SLOT_BITS-1:0] t_slot = o_tag[TW-1 -: SLOT_BITS];
+      wire          t_skip = o_tag[TW-1-SLOT_BITS];
+      wire [31:0]   t_pos  = o_tag[3*W+2+32 +: 32];
+      wire          t_hit  = !t_skip && (o_exit == 3'd0);
+      wire [BW-1:0] t_rec  = t_hit ? {1'b1, o_t, o_den, t_pos, o_tag[3*W +: 34], o_tag[0 +: 3*W]}
+                                   : {1'b1, {(2*W){1'b0}}, t_pos, {(34+3*W){1'b0}}};
+      assign g_out_v[u] = o_valid;
+      assign g_out_r[u*RESW +: RESW] = {t_hit, t_slot, t_rec};
+    end
+  endgenerate
+
+  // Counts of this cycle's pops (a prefix of the units), misses, hits and tests.
+  reg [5:0] npop, nmiss, nhit, ntest;
+  integer a;
+  always @* begin
+    npop = 6'd0; nmiss = 6'd0; nhit = 6'd0; ntest = 6'd0;
+    for (a = 0; a < IST; a = a + 1) begin
+      npop  = npop + {5'd0, take[a]};
+      nmiss = nmiss + {5'd0, miss[a]};
+      nhit  = nhit + {5'd0, hit[a]};
+      ntest = ntest + {5'd0, test[a]};
+    end
+  end
+  wire [15:0] npop16 = {10'd0, npop};
+  wire [15:0] left = {{(15-QBITS){1'b0}}, cnt_q} - npop16 + {10'd0, nmiss};
+  assign room_o = qcap_i - left;
+
+  // ---- 3. pushes: the misses in unit order, then each pipe's run --------------------------------
+  wire [QBITS-1:0] tail = head_q + cnt_q[QBITS-1:0];
+  reg  [(PIPES+1)*QBITS-1:0] base;   // where pipe p's run starts: [p*QBITS +: QBITS]
+  reg  [IST*QBITS-1:0]       mpos;   // where unit u's missed entry goes
+  reg  [QBITS-1:0]           at;
+  reg  [15:0]                pushes, nb;
+  integer p, m;
+  always @* begin
+    at = tail;
+    mpos = {(IST*QBITS){1'b0}};
+    for (m = 0; m < IST; m = m + 1) begin
+      mpos[m*QBITS +: QBITS] = at;
+      if (miss[m]) at = at + 1'b1;
+    end
+    base = {((PIPES+1)*QBITS){1'b0}};
+    base[0 +: QBITS] = at;
+    pushes = {10'd0, nmiss};
+    for (p = 0; p < PIPES; p = p + 1) begin
+      nb = {10'd0, hin_n_i[p*6 +: 6]};
+      base[(p+1)*QBITS +: QBITS] = base[p*QBITS +: QBITS] + nb[QBITS-1:0];
+      pushes = pushes + nb;
+    end
+  end
+
+  wire [15:0] cnt_next = left + pushes - {10'd0, nmiss};  // pushes counts the misses too
+  wire        unused_cnt = ^cnt_next[15:QBITS+1];             // < 2^QBITS entries
+
+  // ---- 1. the delay ring: results due hl_i cycles after they leave ist.v ------------------------
+  reg  [IST-1:0]      ring_v [0:HN-1];
+  reg  [IST*RESW-1:0] ring_r [0:HN-1];
+  wire [HLBITS-1:0]   rd = now_i[HLBITS-1:0];
+  wire [HLBITS-1:0]   wr = now_i[HLBITS-1:0] + hl_i[HLBITS-1:0];
+  wire                bypass = (hl_i == 8'd0);
+  wire [IST-1:0]      out_v = bypass ? g_out_v : ring_v[rd];
+  wire [IST*RESW-1:0] out_r = bypass ? g_out_r : ring_r[rd];
+  generate
+    for (u = 0; u < IST; u = u + 1) begin : g_res
+      assign res_valid_o[u] = out_v[u];
+      assign {res_hit_o[u], res_slot_o[u*SLOT_BITS +: SLOT_BITS], res_rec_o[u*BW +: BW]} =
+          out_r[u*RESW +: RESW];
+    end
+  endgenerate
+  // Tests in ist.v plus results in the ring.
+  reg [15:0] pend_q;
+  reg [5:0]  nout;
+  always @* begin
+    nout = 6'd0;
+    for (a = 0; a < IST; a = a + 1) nout = nout + {5'd0, out_v[a]};
+  end
+  assign busy_o = (pend_q != 16'd0);
+
+  // ---- state ------------------------------------------------------------------------------------
+  integer j, b;
+  always @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      head_q      <= {QBITS{1'b0}};
+      cnt_q       <= {(QBITS+1){1'b0}};
+      pend_q      <= 16'd0;
+      cnt_busy_o  <= 64'd0;
+      cnt_miss_o  <= 64'd0;
+      cnt_tests_o <= 64'd0;
+      for (j = 0; j < HN; j = j + 1) ring_v[j] <= {IST{1'b0}};
+    end else begin
+      head_q <= head_q + npop16[QBITS-1:0];
+      cnt_q  <= cnt_next[QBITS:0];
+      pend_q <= pend_q + {10'd0, nhit} - {10'd0, nout};
+      cnt_busy_o  <= cnt_busy_o + {58'd0, nhit};
+      cnt_miss_o  <= cnt_miss_o + {58'd0, nmiss};
+      cnt_tests_o <= cnt_tests_o + {58'd0, ntest};
+      if (!bypass) begin
+        ring_v[rd] <= {IST{1'b0}};
+        ring_v[wr] <= g_out_v;
+        ring_r[wr] <= g_out_r;
+      end
+      for (b = 0; b < IST; b = b + 1)
+        if (miss[b]) begin
+          q_slot[mpos[b*QBITS +: QBITS]]  <= q_slot[head_q + b[QBITS-1:0]];
+          q_pos[mpos[b*QBITS +: QBITS]]   <= q_pos[head_q + b[QBITS-1:0]];
+          q_tri[mpos[b*QBITS +: QBITS]]   <= q_tri[head_q + b[QBITS-1:0]];
+          q_ready[mpos[b*QBITS +: QBITS]] <= now_i + 32'd1;
+        end
+      for (p = 0; p < PIPES; p = p + 1)
+        for (j = 0; j < WORDS; j = j + 1)
+          if (j < hin_n_i[p*6 +: 6]) begin
+            q_slot[base[p*QBITS +: QBITS] + j[QBITS-1:0]]  <= hin_slot_i[p*SLOT_BITS +: SLOT_BITS];
+            q_pos[base[p*QBITS +: QBITS] + j[QBITS-1:0]]   <= hin_pos_i[p*32 +: 32] + j;
+            q_tri[base[p*QBITS +: QBITS] + j[QBITS-1:0]]   <= hin_words_i[(p*WORDS + j)*32 +: 32];
+            q_ready[base[p*QBITS +: QBITS] + j[QBITS-1:0]] <= hin_ready_i[p*32 +: 32];
+          end
+    end
+  end
+
+endmodule
