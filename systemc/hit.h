@@ -6,10 +6,12 @@
 // it leaves, hit_latency cycles later, as in a pipelined unit: the slot is freed (a miss, a shadow
 // ray, a hit without a shadow ray), the pixel written, or the shadow ray handed to the rgu.
 //
-// Two views (SimConfig::hit_view): the transaction model (hls::hit_shadow at entry, applied at
-// leave; default) or a pin-level unit with rtl/units/hit.v's ports (systemc/pins/hit.h: the
-// SystemC twin or the Verilated RTL), every ray driven into it (the result is read only for a
-// primary hit). Same cycles and bits.
+// Three views (SimConfig::hit_view): the transaction model (hls::hit_shadow at entry, applied at
+// leave; default); the pin-level SystemC twin of rtl/units/hit.v (systemc/pins/hit.h, --pins hit),
+// every ray driven into it (the result is read only for a primary hit); or the whole unit in RTL
+// (--rtl hit: rtl/units/hit_unit.v, the hit queue, the slot read, hit.v and the decision to free
+// the slot or keep the shadow ray, systemc/hit_rtl.h), whose leaving rays are applied here (the
+// frame buffer is the host's) after checking the RTL's decision. Same cycles and bits.
 #pragma once
 
 #include <systemc>
@@ -21,6 +23,7 @@
 
 #include "hls/hit.h"
 #include "hls/trace.h"
+#include "systemc/hit_rtl.h"
 #include "systemc/pins/hit.h"
 #include "systemc/slot.h"
 #include "systemc/slot_unit.h"
@@ -35,11 +38,15 @@ class Hit : public SlotUnit {
     pipe_.reset(size_t(latency) + 2);  // one ray enters per cycle
   }
 
-  // The pin-level view: hit.v (twin or RTL) at port.
+  // The pin-level view: hit.v's SystemC twin at port.
   void bind(pins::HitPort* port) { port_ = port; }
+  // The whole unit in RTL (--rtl hit): it holds the queue, reads the slots and decides.
+  void bind_rtl(HitRtl* r) { rtl_ = r; }
+  const HitRtl* rtl() const { return rtl_; }
   bool wants_edge() const { return edge_; }
 
   bool tick(Cycle now) {
+    if (rtl_) return tick_rtl(now);
     bool active = false;
     edge_ = false;
     // A result leaving the unit: the slot is freed, the pixel written or the shadow ray handed
@@ -96,7 +103,13 @@ class Hit : public SlotUnit {
     return true;
   }
 
+  // The RTL's clock edge, after the trv's finished rays of this cycle (RtuChannels::hit_q).
+  void edge(Cycle now) {
+    if (rtl_) rtl_->edge(now);
+  }
+
   Cycle next_event(Cycle now) const {
+    if (rtl_) return rtl_->next_event(now);
     if (port_ && in_flight_ != 0) return now + 1;
     return std::min(ch_.hit_q.head_ready(), pipe_.head_ready());
   }
@@ -106,6 +119,38 @@ class Hit : public SlotUnit {
     uint16_t slot = 0;
     hls::ShadowSetup ss{};
   };
+
+  // The RTL's cycle: the ray leaving (applied, its decision checked against the slot's kind).
+  bool tick_rtl(Cycle now) {
+    if (!configured_) {
+      rtl_->config(regs());
+      configured_ = true;
+    }
+    HitLeave x;
+    const bool active = rtl_->tick(now, x);
+    if (!active || (!x.free && !x.spawn)) return active;
+    const Slot& r = ch_.slots[x.slot];
+    const bool spawn = !r.shadow && r.best.found && x.ss.spawn;
+    if (x.shadow != r.shadow || x.found != r.best.found || x.spawn != spawn || x.free == spawn)
+      throw std::logic_error("--rtl hit: slot " + std::to_string(x.slot) + " leaves as " +
+                             (x.spawn ? "a shadow ray" : "free") + " (kind " +
+                             (x.shadow ? "shadow" : "primary") + ", " +
+                             (x.found ? "hit" : "miss") + "); the slot's ray is " +
+                             (r.shadow ? "a shadow ray" : "primary") +
+                             (r.best.found ? " with a hit" : " without a hit"));
+    finish(Done{x.slot, x.ss}, now);
+    return true;
+  }
+
+  // The unit's per-frame registers (the light is the VTU's, translated at set-up).
+  pins::HitConfig regs() const {
+    pins::HitConfig c;
+    for (int i = 0; i < 3; ++i) c.light[i] = fc_.light[i];
+    c.tmin = fc_.tmin;
+    c.sp = fc_.spawn;
+    c.g = hls::hit_regs<A>(fc_.spawn);
+    return c;
+  }
 
   // The unit's result for slot d.slot, at cycle now (when it leaves the unit).
   void finish(const Done& d, Cycle now) {
@@ -165,12 +210,7 @@ class Hit : public SlotUnit {
   void drive(uint16_t s, const Slot& r, const hls::HitTri& ht) {
     if (!port_->in_ready()) throw std::logic_error("hit: pin-level unit not ready with out_ready high");
     if (!configured_) {
-      pins::HitConfig c;
-      for (int i = 0; i < 3; ++i) c.light[i] = fc_.light[i];
-      c.tmin = fc_.tmin;
-      c.sp = fc_.spawn;
-      c.g = hls::hit_regs<A>(fc_.spawn);
-      port_->config(c);
+      port_->config(regs());
       configured_ = true;
     }
     pins::HitIn in;
@@ -195,6 +235,7 @@ class Hit : public SlotUnit {
 
   TimedFifo<Done> pipe_;          // the model: results leaving after hit_latency
   pins::HitPort* port_ = nullptr;  // the pin-level view (nullptr: the model)
+  HitRtl* rtl_ = nullptr;          // the whole unit in RTL (--rtl hit)
   std::array<uint16_t, 1024> side_{};  // slot of each tag in flight
   uint32_t next_tag_ = 0, in_flight_ = 0;
   bool edge_ = false, configured_ = false;

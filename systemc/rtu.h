@@ -13,6 +13,7 @@
 #include "systemc/ascache.h"
 #include "systemc/config.h"
 #include "systemc/hit.h"
+#include "systemc/hit_rtl.h"
 #include "systemc/ist.h"
 #include "systemc/ist_rtl.h"
 #include "systemc/membus.h"
@@ -116,15 +117,20 @@ class Rtu : public sc_core::sc_module {
       }
       ist.bind(ports);
     }
-    if (cfg.hit_view != UnitView::model) {
+    if (cfg.hit_view == UnitView::rtl) {  // the whole unit: rtl/units/hit_unit.v
       const unsigned stages = pin_stages("hit", cfg.hit_latency, 10, "--hit-latency");
-      if (cfg.hit_view == UnitView::twin)
-        hit_port_ = std::make_unique<pins::HitPortT<pins::HitTwin<A>>>(
-            "hit_pins", "SystemC twin", clock->clk, clock->rst_n, stages);
-      else
-        hit_port_ = pins::make_rtl_hit(hls::format_id<F>(), R, stages, "hit_rtl", clock->clk,
-                                       clock->rst_n);
-      if (!hit_port_) no_rtl("hit", stages);
+      hit_rtl_ = make_rtl_hit_unit(hls::format_id<F>(), R, stages, ch_, cfg);
+      if (!hit_rtl_)
+        throw ConfigError(std::string("no Verilated hit_unit for ") +
+                          hls::format_name(hls::format_id<F>()) + " " + hls::rounding_name(R) +
+                          " STAGES=" + std::to_string(stages) + " in this build; built: " +
+                          rtl_hit_unit_built());
+      hit.bind_rtl(hit_rtl_.get());
+    }
+    if (cfg.hit_view == UnitView::twin) {  // the SystemC twin of rtl/units/hit.v
+      const unsigned stages = pin_stages("hit", cfg.hit_latency, 10, "--hit-latency");
+      hit_port_ = std::make_unique<pins::HitPortT<pins::HitTwin<A>>>(
+          "hit_pins", "SystemC twin", clock->clk, clock->rst_n, stages);
       hit.bind(hit_port_.get());
     }
     if (cfg.rgu_view != UnitView::model) {  // the primary rays (rgu.v has no shadow path)
@@ -159,6 +165,7 @@ class Rtu : public sc_core::sc_module {
   pins::RguPort* rgu_port() { return rgu_port_.get(); }
   const TrvRtl* trv_rtl() const { return trv_rtl_.get(); }
   const IstRtl* ist_rtl() const { return ist_rtl_.get(); }
+  const HitRtl* hit_rtl() const { return hit_rtl_.get(); }
   bool wants_edge() const {
     return vtu_unit.wants_edge() || ist.wants_edge() || hit.wants_edge() || rgu.wants_edge();
   }
@@ -173,11 +180,13 @@ class Rtu : public sc_core::sc_module {
       a |= rgu.tick(now);
       trv_rtl_->edge(now);
       ist.edge(now);  // the trv's hand-offs of this cycle into the ist's RTL
+      hit.edge(now);  // and its finished rays into the hit unit's
       return a;
     }
     a |= trv.tick(now);
     a |= rgu.tick(now);
     ist.edge(now);
+    hit.edge(now);
     return a;
   }
   Cycle next_event(Cycle now) const {
@@ -195,6 +204,7 @@ class Rtu : public sc_core::sc_module {
     s.vtu_busy = vtu_unit.busy();
     if (trv_rtl_) trv_rtl_->stats(s);
     if (ist_rtl_) ist_rtl_->stats(s);
+    if (hit_rtl_) s.hit_busy = hit_rtl_->busy();
     return s;
   }
   size_t in_flight() const { return slots_ - ch_.free_slots.size(); }
@@ -240,6 +250,7 @@ class Rtu : public sc_core::sc_module {
   std::unique_ptr<pins::VtuPort> vtu_port_;
   std::vector<std::unique_ptr<pins::IstPort>> ist_ports_;
   std::unique_ptr<IstRtl> ist_rtl_;  // --rtl ist: rtl/units/ist_unit.v in the ist's place
+  std::unique_ptr<HitRtl> hit_rtl_;  // --rtl hit: rtl/units/hit_unit.v in the hit unit's place
   std::unique_ptr<TrvRtl> trv_rtl_;  // --rtl trv: rtl/units/trv_unit.v in trv's (and the ist
                                      // reduction's) place
   std::unique_ptr<pins::HitPort> hit_port_;

@@ -43,7 +43,7 @@ class Top : public sc_core::sc_module {
     bus.set_l2(cfg.l2);
     if (cfg.rtus < 1 || cfg.rtus > 64) throw std::invalid_argument("rtus must be 1..64");
     if (cfg.vtu_view != UnitView::model || cfg.ist_view == UnitView::twin ||
-        cfg.hit_view != UnitView::model ||
+        cfg.hit_view == UnitView::twin ||
         cfg.rgu_view != UnitView::model)
       clock_ = std::make_unique<pins::PinClock>(period_);
     for (int i = 0; i < cfg.rtus; ++i)
@@ -108,6 +108,15 @@ class Top : public sc_core::sc_module {
         sc_core::sc_trace(tf_, ist_sig_.head_valid, "rtu0_ist_head_valid_o");
         sc_core::sc_trace(tf_, ist_sig_.busy, "rtu0_ist_busy_o");
       }
+      if (rtus[0]->hit_rtl()) {
+        sc_core::sc_trace(tf_, hit_sig_.fin, "rtu0_hit_fin_valid_i");
+        sc_core::sc_trace(tf_, hit_sig_.in, "rtu0_hit_rd_valid_o");
+        sc_core::sc_trace(tf_, hit_sig_.in_slot, "rtu0_hit_rd_slot_o");
+        sc_core::sc_trace(tf_, hit_sig_.out, "rtu0_hit_out_valid_o");
+        sc_core::sc_trace(tf_, hit_sig_.out_slot, "rtu0_hit_out_slot_o");
+        sc_core::sc_trace(tf_, hit_sig_.spawn, "rtu0_hit_out_spawn_o");
+        sc_core::sc_trace(tf_, hit_sig_.head_valid, "rtu0_hit_head_valid_o");
+      }
       // RTU 0's pin-level units: their clock and handshakes (the signals the RTL sees).
       if (clock_) {
         sc_core::sc_trace(tf_, clock_->clk, "clk_i");
@@ -166,6 +175,10 @@ class Top : public sc_core::sc_module {
   struct IstSignals {
     sc_core::sc_signal<bool> head_valid, busy;
     sc_core::sc_signal<uint32_t> hin, acc_valid, rsp_hit, res_valid;
+  };
+  struct HitSignals {
+    sc_core::sc_signal<bool> in, out, spawn, head_valid;
+    sc_core::sc_signal<uint32_t> fin, in_slot, out_slot;
   };
   struct RtuSignals {
     sc_core::sc_signal<bool> busy;
@@ -361,6 +374,16 @@ class Top : public sc_core::sc_module {
       ist_sig_.head_valid.write(p.head_valid);
       ist_sig_.busy.write(p.busy);
     }
+    if (const HitRtl* h = rtus[0]->hit_rtl()) {
+      const HitProbe p = h->probe(now);
+      hit_sig_.fin.write(p.fin);
+      hit_sig_.in.write(p.in);
+      hit_sig_.in_slot.write(p.in_slot);
+      hit_sig_.out.write(p.out);
+      hit_sig_.out_slot.write(p.out_slot);
+      hit_sig_.spawn.write(p.spawn);
+      hit_sig_.head_valid.write(p.head_valid);
+    }
   }
 
   sc_core::sc_time period_;
@@ -371,6 +394,7 @@ class Top : public sc_core::sc_module {
   sc_core::sc_signal<uint32_t> cache_sig_[3][3];  // RTU 0: node, list, tri x accesses, hits, fills
   TrvSignals trv_sig_;
   IstSignals ist_sig_;
+  HitSignals hit_sig_;
 };
 
 }  // namespace raycore::sc

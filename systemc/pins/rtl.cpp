@@ -17,7 +17,6 @@ bool matches(const char* fmt, const char* mode, unsigned stages, hls::FormatId f
 // The port of each module in rtl_frame_variants.h.
 using PortOf_vtu = VtuPort;
 using PortOf_ist = void;  // ist.v's --sc models are the lockstep test's (the frame binds ist_unit.v)
-using PortOf_hit = HitPort;
 using PortOf_rgu = RguPort;
 
 // The built model of the unit whose port is Port (only its module's lines instantiate one; the
@@ -43,10 +42,6 @@ std::unique_ptr<VtuPort> make_rtl_vtu(hls::FormatId f, hls::Rounding r, unsigned
   return make_rtl<VtuPort>(f, r, s, name, clk, rst_n);
 }
 
-std::unique_ptr<HitPort> make_rtl_hit(hls::FormatId f, hls::Rounding r, unsigned s, const char* name,
-                                      sc_core::sc_signal<bool>& clk, sc_core::sc_signal<bool>& rst_n) {
-  return make_rtl<HitPort>(f, r, s, name, clk, rst_n);
-}
 std::unique_ptr<RguPort> make_rtl_rgu(hls::FormatId f, hls::Rounding r, unsigned s, const char* name,
                                       sc_core::sc_signal<bool>& clk, sc_core::sc_signal<bool>& rst_n) {
   return make_rtl<RguPort>(f, r, s, name, clk, rst_n);
