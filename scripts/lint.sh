@@ -20,7 +20,7 @@ command -v verilator >/dev/null && command -v yosys >/dev/null ||
 mapfile -t SRCS < <(find rtl -name '*.v' | sort)
 [ ${#SRCS[@]} -gt 0 ] || { echo "lint: no Verilog files under rtl/" >&2; exit 1; }
 WAIVERS=rtl/lint/waivers.vlt
-ELABORATE_ONLY=" trv_pass trv_unit hit ist_unit "
+ELABORATE_ONLY=" trv_pass trv_unit hit ist_unit hit_unit "
 LOG=$(mktemp -d "${TMPDIR:-/tmp}/raycore-lint.XXXXXX")
 trap 'rm -rf "$LOG"' EXIT
 
