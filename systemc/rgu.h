@@ -14,7 +14,10 @@
 // out_ready_i high exactly then. The model's schedule decides when a primary ray is issued; the
 // pins must agree (out_valid_o high then, low before the first ray, the pixel the model expects:
 // else std::logic_error naming the cycle), and the ray's bits and pixel index in the slot are the
-// pins'. rgu.v has no shadow path: shadow rays are forwarded here in every view.
+// pins'. rgu.v has no shadow path: shadow rays are forwarded here in the pin views. With --rtl rgu
+// the whole unit is RTL (rtl/units/rgu_unit.v, systemc/rgu_rtl.h: rgu.v, the shadow-ray hand-off and
+// the free slots), clocked in every cycle the RTU ticks: it decides which ray goes to the trv in
+// which slot; the model's schedule is checked against it and the C++ slot gets the primary ray.
 #pragma once
 
 #include <systemc>
@@ -24,6 +27,7 @@
 
 #include "hls/rgu.h"
 #include "systemc/pins/rgu.h"
+#include "systemc/rgu_rtl.h"
 #include "systemc/slot.h"
 
 namespace raycore::sc {
@@ -46,6 +50,14 @@ class Rgu : public sc_core::sc_module {
     port_->start(false);
     port_->out_ready(false);
   }
+  // The whole unit in RTL (--rtl rgu): it holds the free slots (RtuChannels::free_slots is then the
+  // hit -> rgu wire of the cycle).
+  void bind_rtl(RguRtl* r) {
+    rtl_ = r;
+    ch_.free_slots.clear();
+  }
+  const RguRtl* rtl() const { return rtl_; }
+  size_t free_slots() const { return rtl_ ? rtl_->free_slots() : ch_.free_slots.size(); }
   bool wants_edge() const { return edge_; }
   pins::RguPort* port() const { return port_; }
   Cycle first_primary() const { return first_; }
@@ -54,6 +66,7 @@ class Rgu : public sc_core::sc_module {
 
   bool tick(Cycle now) {
     edge_ = false;
+    if (rtl_) return tick_rtl(now);
     if (port_) {
       port_->out_ready(false);
       port_->start(now == 0 && primaries_left());
@@ -120,14 +133,89 @@ class Rgu : public sc_core::sc_module {
 
   Cycle next_event(Cycle now) const {
     Cycle t = ch_.shadow_q.head_ready();
-    if (primaries_left() && !ch_.free_slots.empty()) t = std::min(t, std::max(now + 1, first_));
+    if (primaries_left() && free_slots() != 0) t = std::min(t, std::max(now + 1, first_));
     return t;
   }
 
  private:
   std::string where(Cycle now) const {
-    return "rgu of RTU " + std::to_string(rtu_) + " (" + port_->model() + "), cycle " +
-           std::to_string(now) + ": ";
+    return "rgu of RTU " + std::to_string(rtu_) + " (" + (rtl_ ? rtl_->name() : port_->model()) +
+           "), cycle " + std::to_string(now) + ": ";
+  }
+
+  // The RTL's cycle: the hit unit's freed slot and shadow ray of this cycle in, the ray out.
+  bool tick_rtl(Cycle now) {
+    if (!configured_) {  // the per-frame registers (fc_ is complete by the first cycle)
+      RguRegs g;
+      g.cam = fc_.rgu_cam;
+      g.width = uint32_t(fc_.width);
+      g.height = uint32_t(fc_.height);
+      g.rtu = uint32_t(rtu_);
+      g.rtus = uint32_t(rtus_);
+      g.tmin = fc_.tmin;
+      g.slots = uint32_t(ch_.slots.size());
+      rtl_->config(g);
+      configured_ = true;
+    }
+    int freed = -1, shadow = -1;
+    if (!ch_.free_slots.empty()) {
+      if (ch_.free_slots.size() > 1) throw std::logic_error(where(now) + "two slots freed in a cycle");
+      freed = ch_.free_slots.back();
+      ch_.free_slots.clear();
+    }
+    if (ch_.shadow_q.can_pop(now)) {
+      shadow = ch_.shadow_q.pop();
+      if (ch_.shadow_q.can_pop(now)) throw std::logic_error(where(now) + "two shadow rays in a cycle");
+    }
+    // What the model does in this cycle, against what the RTL does.
+    const bool model_primary = shadow < 0 && primaries_left() && now >= first_ &&
+                               (freed >= 0 || rtl_->free_slots() != 0);
+    const RguIssue x = rtl_->cycle(now == 0 && primaries_left(), freed, shadow);
+    if (x.valid != (shadow >= 0 || model_primary) || (x.valid && x.shadow != (shadow >= 0)) ||
+        (shadow >= 0 && x.slot != uint16_t(shadow)))
+      throw std::logic_error(where(now) + "the RTL " +
+                             (x.valid ? std::string(x.shadow ? "issues a shadow ray" : "issues a primary ray") +
+                                            " in slot " + std::to_string(x.slot)
+                                      : std::string("issues no ray")) +
+                             "; the model " +
+                             (shadow >= 0 ? "hands over the shadow ray of slot " + std::to_string(shadow)
+                              : model_primary ? std::string("issues a primary ray")
+                                              : std::string("issues no ray")));
+    // A full trv queue holds every slot: then there is neither a free slot nor a shadow ray.
+    if (x.valid && !ch_.trv_q.can_push())
+      throw std::logic_error(where(now) + "a ray for the trv, whose queue is full");
+    if (shadow >= 0) {
+      ch_.trv_q.push(x.slot, now + 1);
+      ++st_.shadow_rays;
+      ++st_.rgu_busy;
+      ++fc_.issued;
+      return true;
+    }
+    if (!primaries_left()) return false;
+    if (now < first_) return true;  // start-up: the RTL is clocked through it
+    if (!x.valid) {
+      ++st_.rgu_stall_no_slot;
+      return false;
+    }
+    if (x.pixel != walk_.pixel())
+      throw std::logic_error(where(now) + "out_pixel_o is " + std::to_string(x.pixel) +
+                             ", the model's next pixel " + std::to_string(walk_.pixel()));
+    Slot& sl = ch_.slots[x.slot];
+    sl.ray = x.ray;
+    sl.pixel = x.pixel;
+    sl.shadow = false;
+    sl.skip_id = ~0u;
+    sl.state = SlotState::start;
+    ch_.trv_q.push(x.slot, now + 1);
+    ++st_.primary_rays;
+    ++st_.rgu_busy;
+    ++fc_.issued;
+    walk_.next();
+    if (!primaries_left()) {
+      st_.rgu_primary_end = now + 1;
+      st_.rgu_busy_primary = st_.rgu_busy;
+    }
+    return true;
   }
 
   FrameCtx& fc_;
@@ -137,7 +225,8 @@ class Rgu : public sc_core::sc_module {
   hls::RguTiles walk_;
   Cycle first_;                      // the first cycle a primary ray can be issued in
   pins::RguPort* port_ = nullptr;    // pin-level view
-  bool edge_ = false;
+  RguRtl* rtl_ = nullptr;            // the whole unit in RTL (--rtl rgu)
+  bool edge_ = false, configured_ = false;
 };
 
 }  // namespace raycore::sc

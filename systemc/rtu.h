@@ -21,6 +21,7 @@
 #include "systemc/pins/rgu.h"
 #include "systemc/pins/rtl.h"
 #include "systemc/rgu.h"
+#include "systemc/rgu_rtl.h"
 #include "systemc/slot.h"
 #include "systemc/trv.h"
 #include "systemc/trv_rtl.h"
@@ -133,7 +134,7 @@ class Rtu : public sc_core::sc_module {
           "hit_pins", "SystemC twin", clock->clk, clock->rst_n, stages);
       hit.bind(hit_port_.get());
     }
-    if (cfg.rgu_view != UnitView::model) {  // the primary rays (rgu.v has no shadow path)
+    if (cfg.rgu_view != UnitView::model) {
       const unsigned stages = pin_stages("rgu", cfg.rgu_latency, 8, "--rgu-latency");
       const uint32_t tile = cfg.tile;
       if (tile < 2 || tile > 256 || (tile & (tile - 1)) != 0)
@@ -142,21 +143,20 @@ class Rtu : public sc_core::sc_module {
       if (uint32_t(fc.width) > 65535 || uint32_t(fc.height) > 65535)
         throw ConfigError("rgu at pin level: frames up to 65535 pixels a side (rgu.v's "
                           "COORD_BITS 16)");
-      if (cfg.rgu_view == UnitView::twin) {
+      if (cfg.rgu_view == UnitView::twin) {  // the primary rays at rgu.v's pins
         rgu_port_ = std::make_unique<pins::RguPortT<pins::RguTwin<A>>>(
             "rgu_pins", "SystemC twin", clock->clk, clock->rst_n, stages, int(tile));
-      } else {
-        if (tile != pins::kRtlRguTile)
-          throw ConfigError("no Verilated rgu with " + std::to_string(tile) + " x " +
-                            std::to_string(tile) + " tiles in this build (built: " +
-                            std::to_string(pins::kRtlRguTile) + " x " +
-                            std::to_string(pins::kRtlRguTile) + "); models: " +
-                            pins::rtl_models_built());
-        rgu_port_ = pins::make_rtl_rgu(hls::format_id<F>(), R, stages, "rgu_rtl", clock->clk,
-                                       clock->rst_n);
+        rgu.bind(rgu_port_.get());
+      } else {  // the whole unit: rtl/units/rgu_unit.v
+        rgu_rtl_ = make_rtl_rgu_unit(hls::format_id<F>(), R, stages, tile, cfg);
+        if (!rgu_rtl_)
+          throw ConfigError(std::string("no Verilated rgu_unit for ") +
+                            hls::format_name(hls::format_id<F>()) + " " + hls::rounding_name(R) +
+                            " STAGES=" + std::to_string(stages) + " with " + std::to_string(tile) +
+                            " x " + std::to_string(tile) + " tiles in this build; built: " +
+                            rtl_rgu_unit_built());
+        rgu.bind_rtl(rgu_rtl_.get());
       }
-      if (!rgu_port_) no_rtl("rgu", stages);
-      rgu.bind(rgu_port_.get());
     }
   }
   pins::VtuPort* vtu_port() { return vtu_port_.get(); }
@@ -166,6 +166,7 @@ class Rtu : public sc_core::sc_module {
   const TrvRtl* trv_rtl() const { return trv_rtl_.get(); }
   const IstRtl* ist_rtl() const { return ist_rtl_.get(); }
   const HitRtl* hit_rtl() const { return hit_rtl_.get(); }
+  const RguRtl* rgu_rtl() const { return rgu_rtl_.get(); }
   bool wants_edge() const {
     return vtu_unit.wants_edge() || ist.wants_edge() || hit.wants_edge() || rgu.wants_edge();
   }
@@ -195,7 +196,7 @@ class Rtu : public sc_core::sc_module {
                         rgu.next_event(now)});
     return t;
   }
-  bool done() const { return !rgu.primaries_left() && ch_.free_slots.size() == slots_; }
+  bool done() const { return !rgu.primaries_left() && rgu.free_slots() == slots_; }
   RtuStats stats() const {
     RtuStats s = st_;
     s.node = node.stats();
@@ -205,9 +206,13 @@ class Rtu : public sc_core::sc_module {
     if (trv_rtl_) trv_rtl_->stats(s);
     if (ist_rtl_) ist_rtl_->stats(s);
     if (hit_rtl_) s.hit_busy = hit_rtl_->busy();
+    if (rgu_rtl_) {
+      rgu_rtl_->stats(s);
+      s.rgu_busy = s.primary_rays + s.shadow_rays;
+    }
     return s;
   }
-  size_t in_flight() const { return slots_ - ch_.free_slots.size(); }
+  size_t in_flight() const { return slots_ - rgu.free_slots(); }
   uint64_t rgu_primaries() const { return st_.primary_rays; }
 
   Ascache node, list, tri;
@@ -251,6 +256,7 @@ class Rtu : public sc_core::sc_module {
   std::vector<std::unique_ptr<pins::IstPort>> ist_ports_;
   std::unique_ptr<IstRtl> ist_rtl_;  // --rtl ist: rtl/units/ist_unit.v in the ist's place
   std::unique_ptr<HitRtl> hit_rtl_;  // --rtl hit: rtl/units/hit_unit.v in the hit unit's place
+  std::unique_ptr<RguRtl> rgu_rtl_;  // --rtl rgu: rtl/units/rgu_unit.v in the rgu's place
   std::unique_ptr<TrvRtl> trv_rtl_;  // --rtl trv: rtl/units/trv_unit.v in trv's (and the ist
                                      // reduction's) place
   std::unique_ptr<pins::HitPort> hit_port_;

@@ -44,7 +44,7 @@ class Top : public sc_core::sc_module {
     if (cfg.rtus < 1 || cfg.rtus > 64) throw std::invalid_argument("rtus must be 1..64");
     if (cfg.vtu_view != UnitView::model || cfg.ist_view == UnitView::twin ||
         cfg.hit_view == UnitView::twin ||
-        cfg.rgu_view != UnitView::model)
+        cfg.rgu_view == UnitView::twin)
       clock_ = std::make_unique<pins::PinClock>(period_);
     for (int i = 0; i < cfg.rtus; ++i)
       rtus.push_back(std::make_unique<Rtu<A>>(("rtu" + std::to_string(i)).c_str(), fc, cfg, i,

@@ -16,8 +16,9 @@ bool matches(const char* fmt, const char* mode, unsigned stages, hls::FormatId f
 
 // The port of each module in rtl_frame_variants.h.
 using PortOf_vtu = VtuPort;
-using PortOf_ist = void;  // ist.v's --sc models are the lockstep test's (the frame binds ist_unit.v)
-using PortOf_rgu = RguPort;
+// ist.v's and rgu.v's --sc models are their lockstep tests' (the frame binds ist_unit.v, rgu_unit.v).
+using PortOf_ist = void;
+using PortOf_rgu = void;
 
 // The built model of the unit whose port is Port (only its module's lines instantiate one; the
 // others' ports do not match), bound to a new Port; nullptr if none has that configuration.
@@ -42,15 +43,11 @@ std::unique_ptr<VtuPort> make_rtl_vtu(hls::FormatId f, hls::Rounding r, unsigned
   return make_rtl<VtuPort>(f, r, s, name, clk, rst_n);
 }
 
-std::unique_ptr<RguPort> make_rtl_rgu(hls::FormatId f, hls::Rounding r, unsigned s, const char* name,
-                                      sc_core::sc_signal<bool>& clk, sc_core::sc_signal<bool>& rst_n) {
-  return make_rtl<RguPort>(f, r, s, name, clk, rst_n);
-}
 
 std::string rtl_models_built() {
   std::string s;
 #define RAYCORE_RTL_FRAME_VARIANT(prefix, module, fmt, mode, stages) \
-  if (std::string(#module) != "ist")                                 \
+  if (std::string(#module) == "vtu")                                 \
     s += std::string(s.empty() ? "" : ", ") + #module " " #fmt " " #mode " STAGES=" #stages;
 #include "rtl_frame_variants.h"
 #undef RAYCORE_RTL_FRAME_VARIANT

@@ -7,10 +7,6 @@ std::unique_ptr<VtuPort> make_rtl_vtu(hls::FormatId, hls::Rounding, unsigned, co
                                       sc_core::sc_signal<bool>&, sc_core::sc_signal<bool>&) {
   return nullptr;
 }
-std::unique_ptr<RguPort> make_rtl_rgu(hls::FormatId, hls::Rounding, unsigned, const char*,
-                                      sc_core::sc_signal<bool>&, sc_core::sc_signal<bool>&) {
-  return nullptr;
-}
 std::string rtl_models_built() { return "none (built with RAYCORE_RTL=OFF)"; }
 
 }  // namespace raycore::sc::pins

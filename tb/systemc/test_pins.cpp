@@ -316,11 +316,12 @@ TEST(PinsFrameRtl, RguMissingVariantIsNamed) {
   sc::SimConfig cfg;
   cfg.rgu_view = UnitView::rtl;
   const Summary r = expect_refused(tiny_scene(), config(FormatId::fp32, Rounding::rne, false, 8, 8),
-                                   cfg, "no Verilated rgu for fp32 rne STAGES=2");
-  EXPECT_NE(std::string(r.error).find("rgu FP24 rtz STAGES=2"), std::string::npos) << r.error;
+                                   cfg, "no Verilated rgu_unit for fp32 rne STAGES=2 with 8 x 8 tiles");
+  EXPECT_NE(std::string(r.error).find("rgu_unit FP24 rtz S=2 (8 x 8 tiles"), std::string::npos)
+      << r.error;
   cfg.tile = 4;
   expect_refused(tiny_scene(), config(FormatId::fp24, Rounding::rtz, false, 8, 8), cfg,
-                 "no Verilated rgu with 4 x 4 tiles");
+                 "no Verilated rgu_unit for fp24 rtz STAGES=2 with 4 x 4 tiles");
 }
 TEST(PinsFrameRtl, MissingVariantIsNamed) {
   sc::SimConfig cfg;
