@@ -57,6 +57,8 @@ class Rgu : public sc_core::sc_module {
     ch_.free_slots.clear();
   }
   const RguRtl* rtl() const { return rtl_; }
+  // The RTL's ray of the last cycle it ran (the waveform, --trace): none if not cycle `now`.
+  RguIssue rtl_probe(Cycle now) const { return probe_cycle_ == now ? probe_ : RguIssue{}; }
   size_t free_slots() const { return rtl_ ? rtl_->free_slots() : ch_.free_slots.size(); }
   bool wants_edge() const { return edge_; }
   pins::RguPort* port() const { return port_; }
@@ -171,6 +173,8 @@ class Rgu : public sc_core::sc_module {
     const bool model_primary = shadow < 0 && primaries_left() && now >= first_ &&
                                (freed >= 0 || rtl_->free_slots() != 0);
     const RguIssue x = rtl_->cycle(now == 0 && primaries_left(), freed, shadow);
+    probe_ = x;
+    probe_cycle_ = now;
     if (x.valid != (shadow >= 0 || model_primary) || (x.valid && x.shadow != (shadow >= 0)) ||
         (shadow >= 0 && x.slot != uint16_t(shadow)))
       throw std::logic_error(where(now) + "the RTL " +
@@ -226,6 +230,8 @@ class Rgu : public sc_core::sc_module {
   Cycle first_;                      // the first cycle a primary ray can be issued in
   pins::RguPort* port_ = nullptr;    // pin-level view
   RguRtl* rtl_ = nullptr;            // the whole unit in RTL (--rtl rgu)
+  RguIssue probe_{};                 // its ray of cycle probe_cycle_
+  Cycle probe_cycle_ = kNever;
   bool edge_ = false, configured_ = false;
 };
 

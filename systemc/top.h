@@ -154,6 +154,14 @@ class Top : public sc_core::sc_module {
         sc_core::sc_trace(tf_, g->s.out_pixel, "rtu0_rgu_out_pixel_o");
         sc_core::sc_trace(tf_, g->s.out_d_x, "rtu0_rgu_out_d_x_o");
       }
+      if (rtus[0]->rgu_rtl()) {
+        sc_core::sc_trace(tf_, rgu_sig_.valid, "rtu0_rgu_out_valid_o");
+        sc_core::sc_trace(tf_, rgu_sig_.shadow, "rtu0_rgu_out_shadow_o");
+        sc_core::sc_trace(tf_, rgu_sig_.slot, "rtu0_rgu_out_slot_o");
+        sc_core::sc_trace(tf_, rgu_sig_.pixel, "rtu0_rgu_out_pixel_o");
+        sc_core::sc_trace(tf_, rgu_sig_.free, "rtu0_rgu_free_count_o");
+        sc_core::sc_trace(tf_, rgu_sig_.busy, "rtu0_rgu_busy_o");
+      }
     }
     SC_THREAD(run);
   }
@@ -179,6 +187,10 @@ class Top : public sc_core::sc_module {
   struct HitSignals {
     sc_core::sc_signal<bool> in, out, spawn, head_valid;
     sc_core::sc_signal<uint32_t> fin, in_slot, out_slot;
+  };
+  struct RguSignals {
+    sc_core::sc_signal<bool> valid, shadow, busy;
+    sc_core::sc_signal<uint32_t> slot, pixel, free;
   };
   struct RtuSignals {
     sc_core::sc_signal<bool> busy;
@@ -384,6 +396,15 @@ class Top : public sc_core::sc_module {
       hit_sig_.spawn.write(p.spawn);
       hit_sig_.head_valid.write(p.head_valid);
     }
+    if (const RguRtl* g = rtus[0]->rgu_rtl()) {
+      const RguIssue x = rtus[0]->rgu.rtl_probe(now);
+      rgu_sig_.valid.write(x.valid);
+      rgu_sig_.shadow.write(x.valid && x.shadow);
+      rgu_sig_.slot.write(x.slot);
+      rgu_sig_.pixel.write(x.valid && !x.shadow ? x.pixel : 0);
+      rgu_sig_.free.write(g->free_slots());
+      rgu_sig_.busy.write(g->busy());
+    }
   }
 
   sc_core::sc_time period_;
@@ -395,6 +416,7 @@ class Top : public sc_core::sc_module {
   TrvSignals trv_sig_;
   IstSignals ist_sig_;
   HitSignals hit_sig_;
+  RguSignals rgu_sig_;
 };
 
 }  // namespace raycore::sc

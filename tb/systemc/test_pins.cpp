@@ -22,10 +22,12 @@
 #include <systemc>
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <random>
 #include <sstream>
 #include <string>
@@ -673,6 +675,48 @@ void expect_every_subset(bool membus) {
 }
 TEST(RtlSubsets, EveryUnitSubsetWithoutMembus) { expect_every_subset(false); }
 TEST(RtlSubsets, EveryUnitSubsetWithMembus) { expect_every_subset(true); }
+
+// The waveform of an all-RTL frame (--rtl all,membus --trace): every unit's handshakes of RTU 0
+// are in the VCD, with the frame equal to the model's.
+TEST(RtlWaveform, AllRtlFrameHasEveryUnitOfRtu0) {
+  sc::SimConfig cfg;
+  cfg.rtus = 2;
+  cfg.l2.size_bytes = 0;
+  const auto tc = config(FormatId::fp24, Rounding::rtz, true, 16, 8);
+  const Summary model = expect_match(corridor(), tc, cfg);
+  cfg.vtu_view = cfg.ist_view = cfg.trv_view = cfg.ascache_view = cfg.hit_view = cfg.rgu_view =
+      cfg.membus_view = UnitView::rtl;
+  const std::string vcd = ::testing::TempDir() + "raycore_all_rtl.vcd";
+  std::remove(vcd.c_str());
+  cfg.trace_file = vcd;
+  expect_same_counts(model, expect_match(corridor(), tc, cfg), "--rtl all,membus --trace");
+  std::ifstream in(vcd);
+  ASSERT_TRUE(in.good()) << "no waveform written to " << vcd;
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  for (const char* sig : {"clk_i", "rtu0_vtu_in_valid_i", "rtu0_vtu_out_valid_o",
+                          "rtu0_rgu_out_valid_o", "rtu0_rgu_out_shadow_o", "rtu0_rgu_free_count_o",
+                          "rtu0_trv_in_valid_i", "rtu0_trv_go_o", "rtu0_trv_fin_o",
+                          "rtu0_trv_acc_valid_o", "rtu0_ist_hin_n_i", "rtu0_ist_acc_valid_o",
+                          "rtu0_ist_res_valid_o", "rtu0_hit_fin_valid_i", "rtu0_hit_rd_valid_o",
+                          "rtu0_hit_out_valid_o", "rtu0_hit_out_spawn_o", "rtu0_node_accesses",
+                          "rtu0_list_hits", "rtu0_tri_fills"})
+    EXPECT_NE(text.find(std::string(" ") + sig + " "), std::string::npos) << sig << " not in " << vcd;
+  // The handshakes move: each of these one-bit signals is 1 in some cycle ("$var wire 1 <id>
+  // <name> $end" declares it, a line "1<id>" sets it).
+  for (const char* sig : {"rtu0_rgu_out_valid_o", "rtu0_rgu_out_shadow_o", "rtu0_hit_out_spawn_o",
+                          "rtu0_hit_rd_valid_o", "rtu0_trv_in_valid_i", "rtu0_ist_head_valid_o"}) {
+    std::istringstream lines(text);
+    std::string line, id;
+    while (id.empty() && std::getline(lines, line)) {
+      std::istringstream f(line);
+      std::string var, kind, width, code, name;
+      if (f >> var >> kind >> width >> code >> name && var == "$var" && name == sig) id = code;
+    }
+    ASSERT_FALSE(id.empty()) << sig << " not declared in " << vcd;
+    EXPECT_NE(text.find("\n1" + id + "\n"), std::string::npos) << sig << " (" << id << ") never 1";
+  }
+  std::remove(vcd.c_str());
+}
 
 // ---- the bus interface in RTL (rtl/units/membus_if.v, --rtl membus, no L2) --------------------
 // The frame with membus_if arbitrating the caches' requests and routing the memory's beats (the
