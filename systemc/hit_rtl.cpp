@@ -50,7 +50,7 @@ class HitRtlT final : public HitRtl {
   bool tick(Cycle now, HitLeave& out) override {
     if (!ch_.hit_q.empty()) throw std::logic_error("--rtl hit: finished rays left from the last cycle");
     // A cycle with no ray inside hit.v and the head not ready changes nothing in the RTL.
-    stepped_ = m_.busy_o || (m_.head_valid_o && vl::cycle_at(now, m_.head_ready_o) <= now);
+    stepped_ = vl::queue_steps(m_, now);
     probe_ = HitProbe{};
     probe_.cycle = now;
     probe_.head_valid = m_.head_valid_o;
@@ -123,14 +123,7 @@ class HitRtlT final : public HitRtl {
       ++lanes;
     }
     probe_.fin = m_.fin_valid_i;
-    if (!stepped_ && lanes == 0) return;  // nothing happened: the registers hold
-    if (!stepped_) {  // only finished rays: the cycle's inputs as tick() would drive them
-      m_.clk_i = 0;
-      m_.now_i = uint32_t(now);
-      m_.eval();
-    }
-    m_.clk_i = 1;
-    m_.eval();
+    vl::queue_edge(m_, stepped_, lanes != 0, now, [](M&) {});
   }
 
   HitProbe probe(Cycle now) const override {
@@ -141,11 +134,7 @@ class HitRtlT final : public HitRtl {
     return p;
   }
 
-  Cycle next_event(Cycle now) const override {
-    if (m_.busy_o) return now + 1;
-    if (!m_.head_valid_o) return kNever;
-    return vl::cycle_at(now, m_.head_ready_o);
-  }
+  Cycle next_event(Cycle now) const override { return vl::queue_next_event(m_, now); }
 
   uint64_t busy() const override { return m_.cnt_busy_o; }
 

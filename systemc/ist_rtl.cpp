@@ -59,7 +59,7 @@ class IstRtlT final : public IstRtl {
     if (!ch_.ist_q.empty()) throw std::logic_error("--rtl ist: hand-offs left from the last cycle");
     // A cycle in which no test is inside, none leaves and the head is not ready changes nothing in
     // the RTL (every register holds): neither evaluate nor clock it.
-    stepped_ = m_.busy_o || (m_.head_valid_o && at(now, m_.head_ready_o) <= now);
+    stepped_ = vl::queue_steps(m_, now);
     probe_ = IstProbe{};
     probe_.cycle = now;
     probe_.head_valid = m_.head_valid_o;
@@ -146,16 +146,7 @@ class IstRtlT final : public IstRtl {
     if (n != 0) set_bits(m_.hin_n_i, (lanes - 1) * 6, 6, n);
     probe_.hin = 0;
     for (unsigned p = 0; p < lanes; ++p) probe_.hin += get_bits(m_.hin_n_i, p * 6, 6);
-    if (!stepped_ && lanes == 0) return;  // nothing happened: the registers hold
-    if (!stepped_) {  // only hand-offs: the cycle's inputs as tick() would drive
-                      // them
-      m_.clk_i = 0;
-      m_.now_i = uint32_t(now);
-      m_.rsp_hit_i = 0;
-      m_.eval();
-    }
-    m_.clk_i = 1;
-    m_.eval();
+    vl::queue_edge(m_, stepped_, lanes != 0, now, [](M& m) { m.rsp_hit_i = 0; });
   }
 
   IstProbe probe(Cycle now) const override {
@@ -166,11 +157,7 @@ class IstRtlT final : public IstRtl {
     return p;
   }
 
-  Cycle next_event(Cycle now) const override {
-    if (m_.busy_o) return now + 1;
-    if (!m_.head_valid_o) return kNever;
-    return at(now, m_.head_ready_o);
-  }
+  Cycle next_event(Cycle now) const override { return vl::queue_next_event(m_, now); }
 
   void stats(RtuStats& s) const override {
     s.ist_busy = m_.cnt_busy_o;
@@ -179,8 +166,6 @@ class IstRtlT final : public IstRtl {
   }
 
  private:
-  static Cycle at(Cycle now, uint32_t c) { return vl::cycle_at(now, c); }
-
   void configure() {  // the per-frame registers (the margins are set before the
                       // frame)
     m_.eps_i = fc_.margins.eps;

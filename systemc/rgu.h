@@ -74,11 +74,7 @@ class Rgu : public sc_core::sc_module {
       port_->start(now == 0 && primaries_left());
     }
     if (ch_.shadow_q.can_pop(now) && ch_.trv_q.can_push()) {
-      const uint16_t s = ch_.shadow_q.pop();
-      ch_.trv_q.push(s, now + 1);
-      ++st_.shadow_rays;
-      ++st_.rgu_busy;
-      ++fc_.issued;
+      issued_shadow(ch_.shadow_q.pop(), now);
       return true;
     }
     if (!primaries_left()) return false;
@@ -118,18 +114,7 @@ class Rgu : public sc_core::sc_module {
       sl.ray = hls::rgu_primary<A>(fc_.rgu_cam, uint32_t(walk_.x()), uint32_t(walk_.y()), fc_.tmin);
       sl.pixel = walk_.pixel();
     }
-    sl.shadow = false;
-    sl.skip_id = ~0u;
-    sl.state = SlotState::start;
-    ch_.trv_q.push(s, now + 1);
-    ++st_.primary_rays;
-    ++st_.rgu_busy;
-    ++fc_.issued;
-    walk_.next();
-    if (!primaries_left()) {
-      st_.rgu_primary_end = now + 1;
-      st_.rgu_busy_primary = st_.rgu_busy;
-    }
+    issued_primary(s, now);
     return true;
   }
 
@@ -189,10 +174,7 @@ class Rgu : public sc_core::sc_module {
     if (x.valid && !ch_.trv_q.can_push())
       throw std::logic_error(where(now) + "a ray for the trv, whose queue is full");
     if (shadow >= 0) {
-      ch_.trv_q.push(x.slot, now + 1);
-      ++st_.shadow_rays;
-      ++st_.rgu_busy;
-      ++fc_.issued;
+      issued_shadow(x.slot, now);
       return true;
     }
     if (!primaries_left()) return false;
@@ -207,10 +189,25 @@ class Rgu : public sc_core::sc_module {
     Slot& sl = ch_.slots[x.slot];
     sl.ray = x.ray;
     sl.pixel = x.pixel;
+    issued_primary(x.slot, now);
+    return true;
+  }
+
+  // Slot s holds the shadow ray the hit unit handed over: to the trv.
+  void issued_shadow(uint16_t s, Cycle now) {
+    ch_.trv_q.push(s, now + 1);
+    ++st_.shadow_rays;
+    ++st_.rgu_busy;
+    ++fc_.issued;
+  }
+
+  // Slot s holds the primary ray of the walk's pixel (its ray and pixel written): to the trv.
+  void issued_primary(uint16_t s, Cycle now) {
+    Slot& sl = ch_.slots[s];
     sl.shadow = false;
     sl.skip_id = ~0u;
     sl.state = SlotState::start;
-    ch_.trv_q.push(x.slot, now + 1);
+    ch_.trv_q.push(s, now + 1);
     ++st_.primary_rays;
     ++st_.rgu_busy;
     ++fc_.issued;
@@ -219,7 +216,6 @@ class Rgu : public sc_core::sc_module {
       st_.rgu_primary_end = now + 1;
       st_.rgu_busy_primary = st_.rgu_busy;
     }
-    return true;
   }
 
   FrameCtx& fc_;

@@ -79,6 +79,36 @@ inline uint64_t cycle_at(uint64_t now, uint32_t c) {
   return uint64_t(int64_t(now) + int32_t(c - uint32_t(now)));
 }
 
+// The units with a ready-cycle queue stepped from C++ (ist_unit, hit_unit: head_valid_o,
+// head_ready_o, busy_o, now_i, clk_i). A cycle changes such a unit only while something is inside
+// it or its head is ready; otherwise neither evaluate nor clock it (every register holds).
+template <class M>
+bool queue_steps(const M& m, uint64_t now) {
+  return m.busy_o || (m.head_valid_o && cycle_at(now, m.head_ready_o) <= now);
+}
+// Its next event for the cycle model: the next cycle while busy, else the head's ready cycle.
+template <class M>
+uint64_t queue_next_event(const M& m, uint64_t now) {
+  if (m.busy_o) return now + 1;
+  if (!m.head_valid_o) return ~uint64_t(0);
+  return cycle_at(now, m.head_ready_o);
+}
+// The cycle's clock edge, after its pushes were driven: none if the unit neither stepped nor got
+// pushes; if it got only pushes, first the cycle's other inputs as its tick would drive them
+// (idle(m)), then the rising edge.
+template <class M, class Idle>
+void queue_edge(M& m, bool stepped, bool pushes, uint64_t now, Idle idle) {
+  if (!stepped && !pushes) return;
+  if (!stepped) {
+    m.clk_i = 0;
+    m.now_i = uint32_t(now);
+    idle(m);
+    m.eval();
+  }
+  m.clk_i = 1;  // the inputs and the rising edge in one evaluation
+  m.eval();
+}
+
 // A built model's format and rounding as its variant line spells them ("FP24", "rtz" | "rne" |
 // "raycore") against the frame's.
 inline bool variant_is(const char* fmt, const char* mode, hls::FormatId f, hls::Rounding r) {
