@@ -128,9 +128,8 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
   };
   views("--rtl", UnitView::rtl,
         "units (vtu,ist,trv,ascache,hit,rgu, or all: every unit of the RTUs; and membus) simulated by their "
-        "Verilated RTL in the frame (vtu, hit, rgu at their pins; rgu: the primary rays, shadow rays "
-        "are forwarded by the model; ist: rtl/units/ist_unit.v, the whole unit, and trv: "
-        "rtl/units/trv_unit.v, stepped from C++; ascache: the node, list "
+        "Verilated RTL in the frame (vtu at its pins; trv, ist, hit, rgu: the whole units "
+        "rtl/units/{trv,ist,hit,rgu}_unit.v, stepped from C++; ascache: the node, list "
         "and triangle caches, rtl/units/ascache.v stepped from C++; membus: the chip's bus interface "
         "rtl/units/membus_if.v, without the L2: --l2-kb 0)");
   views("--pins", UnitView::twin,

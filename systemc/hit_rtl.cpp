@@ -9,6 +9,7 @@
 #include <systemc.h>
 
 #include "rtl_hit_unit_models.h"
+#include "systemc/rtl_fields.h"
 #include "systemc/vl_bits.h"
 
 namespace raycore::sc {
@@ -65,18 +66,8 @@ class HitRtlT final : public HitRtl {
         set_bits(m_.rd_i, i * W, W, r.ray.o[i]);
         set_bits(m_.rd_i, (3 + i) * W, W, r.ray.d[i]);
       }
-      const Best& b = r.best;
-      const unsigned o = 6 * W;
-      set_bits(m_.rd_i, o, W, b.nd);
-      set_bits(m_.rd_i, o + W, W, b.nv);
-      set_bits(m_.rd_i, o + 2 * W, W, b.nu);
-      set_bits(m_.rd_i, o + 3 * W, 2, b.k);
-      set_bits(m_.rd_i, o + 3 * W + 2, 32, b.id);
-      set_bits(m_.rd_i, o + 3 * W + 34, 32, b.pos);
-      set_bits(m_.rd_i, o + 3 * W + 66, W, b.den);
-      set_bits(m_.rd_i, o + 4 * W + 66, W, b.t);
-      set_bits(m_.rd_i, o + 5 * W + 66, 1, b.found);
-      set_bits(m_.rd_i, o + BW, 1, r.shadow);
+      vl::set_best(m_.rd_i, 6 * W, W, r.best);
+      set_bits(m_.rd_i, 6 * W + BW, 1, r.shadow);
       m_.eval();
       probe_.in = true;
       probe_.in_slot = m_.rd_slot_o;
@@ -93,14 +84,7 @@ class HitRtlT final : public HitRtl {
     s.front = m_.out_front_o;
     s.spawn = m_.out_spawn_o;
     s.dens = m_.out_dens_o;
-    // out_ray_o: {o xyz, d xyz, inv xyz, tmin, tmax}, tmax lowest
-    s.ray.tmax = get_bits(m_.out_ray_o, 0, W);
-    s.ray.tmin = get_bits(m_.out_ray_o, W, W);
-    for (unsigned i = 0; i < 3; ++i) {
-      s.ray.inv[i] = get_bits(m_.out_ray_o, (4 - i) * W, W);
-      s.ray.d[i] = get_bits(m_.out_ray_o, (7 - i) * W, W);
-      s.ray.o[i] = get_bits(m_.out_ray_o, (10 - i) * W, W);
-    }
+    s.ray = vl::get_ray(m_.out_ray_o, 0, W);
     s.skip_id = m_.out_skip_id_o;
     probe_.out = true;
     probe_.spawn = out.spawn;

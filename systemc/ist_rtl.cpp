@@ -11,6 +11,7 @@
 #include "hls/wald.h"
 #include "rtl_ist_unit_models.h"
 #include "systemc/ascache.h"
+#include "systemc/rtl_fields.h"
 #include "systemc/vl_bits.h"
 
 namespace raycore::sc {
@@ -95,18 +96,10 @@ class IstRtlT final : public IstRtl {
     m_.eval();
     for (unsigned u = 0; u < IST; ++u) {
       if (!get_bits(m_.res_valid_o, u, 1)) continue;
-      const unsigned b = u * BW;  // {1, t, den, pos, id, k, nu, nv, nd}, nd lowest
-      IstRes o;
-      o.slot = uint16_t(get_bits(m_.res_slot_o, u * SLOT_BITS, SLOT_BITS));
-      o.hit = get_bits(m_.res_hit_o, u, 1) != 0;
-      o.nd = get_bits(m_.res_rec_o, b, W);
-      o.nv = get_bits(m_.res_rec_o, b + W, W);
-      o.nu = get_bits(m_.res_rec_o, b + 2 * W, W);
-      o.k = get_bits(m_.res_rec_o, b + 3 * W, 2);
-      o.id = get_bits(m_.res_rec_o, b + 3 * W + 2, 32);
-      o.pos = get_bits(m_.res_rec_o, b + 3 * W + 34, 32);
-      o.den = get_bits(m_.res_rec_o, b + 3 * W + 66, W);
-      o.t = get_bits(m_.res_rec_o, b + 4 * W + 66, W);
+      const Best x = vl::get_best(m_.res_rec_o, u * BW, W);  // its top bit 1: a result
+      const IstRes o{uint16_t(get_bits(m_.res_slot_o, u * SLOT_BITS, SLOT_BITS)),
+                     get_bits(m_.res_hit_o, u, 1) != 0, x.pos, x.t, x.den, x.id, x.k, x.nu, x.nv,
+                     x.nd};
       out.push_back(o);
       any = true;
     }

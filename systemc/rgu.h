@@ -154,6 +154,9 @@ class Rgu : public sc_core::sc_module {
       shadow = ch_.shadow_q.pop();
       if (ch_.shadow_q.can_pop(now)) throw std::logic_error(where(now) + "two shadow rays in a cycle");
     }
+    // After the last primary ray, a cycle with neither a freed slot nor a shadow ray changes
+    // nothing in the RTL (rgu.v is idle, nothing stalls): neither evaluate nor clock it.
+    if (freed < 0 && shadow < 0 && !primaries_left()) return false;
     // What the model does in this cycle, against what the RTL does.
     const bool model_primary = shadow < 0 && primaries_left() && now >= first_ &&
                                (freed >= 0 || rtl_->free_slots() != 0);

@@ -10,12 +10,11 @@
 #include <systemc.h>
 
 #include "rtl_rgu_unit_models.h"
+#include "systemc/rtl_fields.h"
 #include "systemc/vl_bits.h"
 
 namespace raycore::sc {
 namespace {
-
-using vl::get_bits;
 
 template <class M, unsigned W, unsigned SLOT_BITS>
 class RguRtlT final : public RguRtl {
@@ -59,14 +58,7 @@ class RguRtlT final : public RguRtl {
     o.shadow = m_.out_shadow_o;
     o.slot = uint16_t(m_.out_slot_o);
     o.pixel = m_.out_pixel_o;
-    // out_ray_o: {o xyz, d xyz, inv xyz, tmin, tmax}, tmax lowest
-    o.ray.tmax = get_bits(m_.out_ray_o, 0, W);
-    o.ray.tmin = get_bits(m_.out_ray_o, W, W);
-    for (unsigned i = 0; i < 3; ++i) {
-      o.ray.inv[i] = get_bits(m_.out_ray_o, (4 - i) * W, W);
-      o.ray.d[i] = get_bits(m_.out_ray_o, (7 - i) * W, W);
-      o.ray.o[i] = get_bits(m_.out_ray_o, (10 - i) * W, W);
-    }
+    o.ray = vl::get_ray(m_.out_ray_o, 0, W);
     m_.clk_i = 1;
     m_.eval();
     return o;

@@ -180,14 +180,12 @@ class Rtu : public sc_core::sc_module {
       a |= trv_rtl_->tick(now);
       a |= rgu.tick(now);
       trv_rtl_->edge(now);
-      ist.edge(now);  // the trv's hand-offs of this cycle into the ist's RTL
-      hit.edge(now);  // and its finished rays into the hit unit's
-      return a;
+    } else {
+      a |= trv.tick(now);
+      a |= rgu.tick(now);
     }
-    a |= trv.tick(now);
-    a |= rgu.tick(now);
-    ist.edge(now);
-    hit.edge(now);
+    ist.edge(now);  // the trv's hand-offs of this cycle into the ist's RTL (if bound)
+    hit.edge(now);  // and its finished rays into the hit unit's
     return a;
   }
   Cycle next_event(Cycle now) const {

@@ -11,6 +11,7 @@
 #include <systemc.h>
 
 #include "rtl_trv_unit_models.h"
+#include "systemc/rtl_fields.h"
 #include "systemc/vl_bits.h"
 
 namespace raycore::sc {
@@ -67,16 +68,8 @@ class TrvRtlT final : public TrvRtl {
       set_bits(m_.res_valid_i, u, 1, 1);
       set_bits(m_.res_slot_i, u * SLOT_BITS, SLOT_BITS, o.slot);
       set_bits(m_.res_hit_i, u, 1, o.hit);
-      const unsigned b = u * BW;  // {1, t, den, pos, id, k, nu, nv, nd}, nd lowest
-      set_bits(m_.res_rec_i, b, W, o.nd);
-      set_bits(m_.res_rec_i, b + W, W, o.nv);
-      set_bits(m_.res_rec_i, b + 2 * W, W, o.nu);
-      set_bits(m_.res_rec_i, b + 3 * W, 2, o.k);
-      set_bits(m_.res_rec_i, b + 3 * W + 2, 32, o.id);
-      set_bits(m_.res_rec_i, b + 3 * W + 34, 32, o.pos);
-      set_bits(m_.res_rec_i, b + 3 * W + 66, W, o.den);
-      set_bits(m_.res_rec_i, b + 4 * W + 66, W, o.t);
-      set_bits(m_.res_rec_i, b + 5 * W + 66, 1, 1);
+      // The record with its top bit 1 (a result), as ist_unit.v puts it out.
+      vl::set_best(m_.res_rec_i, u * BW, W, Best{true, o.t, o.den, o.pos, o.id, o.k, o.nu, o.nv, o.nd});
     }
     const bool had_results = !results_.empty();
     results_.clear();
@@ -126,17 +119,7 @@ class TrvRtlT final : public TrvRtl {
           ch_.ist_q.push({s, pos + i, get_bits(m_.ist_words_o, (p * WORDS + i) * 32, 32)}, ready);
       }
       if (get_bits(m_.fin_o, p, 1)) {
-        const unsigned b = p * BW;
-        Best& x = r.best;
-        x.nd = get_bits(m_.best_o, b, W);
-        x.nv = get_bits(m_.best_o, b + W, W);
-        x.nu = get_bits(m_.best_o, b + 2 * W, W);
-        x.k = get_bits(m_.best_o, b + 3 * W, 2);
-        x.id = get_bits(m_.best_o, b + 3 * W + 2, 32);
-        x.pos = get_bits(m_.best_o, b + 3 * W + 34, 32);
-        x.den = get_bits(m_.best_o, b + 3 * W + 66, W);
-        x.t = get_bits(m_.best_o, b + 4 * W + 66, W);
-        x.found = get_bits(m_.best_o, b + 5 * W + 66, 1) != 0;
+        r.best = vl::get_best(m_.best_o, p * BW, W);
         r.state = SlotState::done;
         ch_.hit_q.push(s, now + cfg_.trv_latency);
       }
@@ -153,10 +136,7 @@ class TrvRtlT final : public TrvRtl {
       m_.in_valid_i = 1;
       m_.in_slot_i = static_cast<std::remove_reference_t<decltype(m_.in_slot_i)>>(s);
       m_.in_shadow_i = r.shadow;
-      const uint32_t f[11] = {r.ray.tmax, r.ray.tmin, r.ray.inv[2], r.ray.inv[1], r.ray.inv[0],
-                              r.ray.d[2], r.ray.d[1],  r.ray.d[0],   r.ray.o[2],   r.ray.o[1],
-                              r.ray.o[0]};
-      for (unsigned i = 0; i < 11; ++i) set_bits(m_.in_ray_i, i * W, W, f[i]);
+      vl::set_ray(m_.in_ray_i, 0, W, r.ray);
       if (probe_.cycle != now) {
         probe_ = TrvProbe{};
         probe_.cycle = now;
