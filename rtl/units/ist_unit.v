@@ -214,7 +214,7 @@ module ist_unit #(
     end
     base = {((PIPES+1)*QBITS){1'b0}};
     base[0 +: QBITS] = at;
-    pushes = {10'd0, nmiss};
+    pushes = 16'd0;  // the trv's entries (the misses are in left already)
     for (p = 0; p < PIPES; p = p + 1) begin
       nb = {10'd0, hin_n_i[p*6 +: 6]};
       base[(p+1)*QBITS +: QBITS] = base[p*QBITS +: QBITS] + nb[QBITS-1:0];
@@ -222,7 +222,7 @@ module ist_unit #(
     end
   end
 
-  wire [15:0] cnt_next = left + pushes - {10'd0, nmiss};  // pushes counts the misses too
+  wire [15:0] cnt_next = left + pushes;
   wire        unused_cnt = ^cnt_next[15:QBITS+1];             // < 2^QBITS entries
 
   // ---- 1. the delay ring: results due hl_i cycles after they leave ist.v ------------------------
