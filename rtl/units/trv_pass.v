@@ -75,9 +75,9 @@ module trv_pass #(
   input  wire [32+2*(1+EXP_BITS+MAN_BITS)-1:0] e2_i, // stack[sp-2]
   input  wire [15:0]                   room_i,       // free entries of the ist queue
   // Cache accesses: A (node or list), B (list, after a node read), same-cycle responses.
-  output reg                           acc_a_valid_o,
-  output reg                           acc_a_list_o,
-  output reg  [31:0]                   acc_a_byte_o,
+  output wire                          acc_a_valid_o,
+  output wire                          acc_a_list_o,
+  output wire [31:0]                   acc_a_byte_o,
   input  wire                          rsp_a_hit_i,
   input  wire [5:0]                    rsp_a_avail_i,
   input  wire [32*WORDS-1:0]           rsp_a_data_i,
@@ -214,6 +214,17 @@ module trv_pass #(
     .out_far_node_o(dp_far_node), .out_far_tfar_o(dp_far_tfar), .out_tag_o(dp_tag));
   wire unused_dp = ^{dp_rdy, dp_vld, dp_op, dp_below, dp_tag, nd_hi[31:26]};
 
+  // Access A, decided by the pass's inputs alone and never by a response (in rtu.v the caches
+  // answer within the cycle: a response feeding its own access would be a combinational loop):
+  // the node of a node pass or of a fused pop (node_step below), or the list of a list pass with
+  // room at the ist (list_step below; a list read fused after a node read is access B).
+  wire        a_node = go_i && ((st_i == S_NODE) || node_from_e1);
+  wire        a_list = go_i && (st_i == S_LIST) && (room_i != 16'd0);
+  wire [31:0] a_lbyte = {first_i[29:0], 2'd0} + {pos_i[29:0], 2'd0};
+  assign acc_a_valid_o = a_node || a_list;
+  assign acc_a_list_o  = a_list;
+  assign acc_a_byte_o  = a_node ? {this_node[28:0], 3'd0} : a_list ? a_lbyte : 32'd0;
+
   // The pass, in the model's order.
   reg        do_node, node_fused, do_list, list_fused, list_b, le2, pop2, hit_a;
   reg [31:0] extra, xe, again, nxt, lbyte;
@@ -229,7 +240,6 @@ module trv_pass #(
     room_o = room_i;
     busy_o = 1'b0;  node_miss_o = 1'b0;  list_miss_o = 1'b0;  ist_full_o = 1'b0;  inner_o = 1'b0;
     leaf_o = 1'b0;  pops_o = 2'd0;  list_steps_o = 1'b0;  fused_o = 2'd0;  err_o = 1'b0;
-    acc_a_valid_o = 1'b0;  acc_a_list_o = 1'b0;  acc_a_byte_o = 32'd0;
     acc_b_valid_o = 1'b0;  acc_b_byte_o = 32'd0;
     do_node = 1'b0;  node_fused = 1'b0;  do_list = 1'b0;  list_fused = 1'b0;  list_b = 1'b0;
     le2 = 1'b0;  pop2 = 1'b0;  hit_a = 1'b0;
@@ -301,9 +311,7 @@ module trv_pass #(
       // node_step (extra 0): access A, the node.
       if (do_node) begin
         again = now_i + extra + {16'd0, lat_i};
-        acc_a_valid_o = 1'b1;
-        acc_a_byte_o = {node_o[28:0], 3'd0};
-        if (!rsp_a_hit_i) begin
+        if (!rsp_a_hit_i) begin  // access A (a_node) read node_o
           if (!node_fused) node_miss_o = 1'b1;
           q_push_o = 1'b1;
           q_ready_o = again;
@@ -392,10 +400,7 @@ module trv_pass #(
             hit_a = rsp_b_hit_i;
             avail = {26'd0, rsp_b_avail_i};
             words = rsp_b_data_i;
-          end else begin
-            acc_a_valid_o = 1'b1;
-            acc_a_list_o = 1'b1;
-            acc_a_byte_o = lbyte;
+          end else begin  // access A (a_list) read lbyte
             hit_a = rsp_a_hit_i;
             avail = {26'd0, rsp_a_avail_i};
             words = rsp_a_data_i;

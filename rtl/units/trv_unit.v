@@ -25,7 +25,10 @@
 // {node, tnear, tfar}; the queue (2^SLOT_BITS entries of slot + ready cycle). Parameters:
 // SLOT_BITS (2^SLOT_BITS slots), DEPTH (stack entries per slot, depth_i <= DEPTH at run time),
 // PIPES (pipes_i <= PIPES at run time), IST (ist results per cycle), WORDS (list words per cache
-// read). Not here: the mailbox (--mailbox, refused by the binding).
+// read), READS (1: the slot read ports rd_* for the ist and hit units, as rtu.v wires them; 0: none,
+// the outputs zero, as the frame's binding reads systemc's slots). Not here: the mailbox
+// (--mailbox, refused by the binding).
+// lint: also READS=1 SLOT_BITS=7 DEPTH=64 PIPES=4 IST=2 WORDS=16
 module trv_unit #(
   parameter integer EXP_BITS  = 7,
   parameter integer MAN_BITS  = 16,
@@ -35,7 +38,8 @@ module trv_unit #(
   parameter integer DEPTH     = 8,
   parameter integer PIPES     = 2,
   parameter integer IST       = 2,
-  parameter integer WORDS     = 4
+  parameter integer WORDS     = 4,
+  parameter integer READS     = 0
 ) (
   input  wire                            clk_i,
   input  wire                            rst_ni,
@@ -79,6 +83,14 @@ module trv_unit #(
   output wire [PIPES*32-1:0]             ist_ready_o,
   output wire [PIPES*(1+EXP_BITS+MAN_BITS)-1:0] ist_tmax_o,
   output wire [PIPES*32*WORDS-1:0]       ist_words_o,
+  // Slot reads (same cycle, READS = 1), o x lowest: unit u's ist entry {tmax, tmin, d zyx, o zyx};
+  // the ray entering the hit unit {shadow, best, d zyx, o zyx}; the best record of the ray leaving.
+  input  wire [IST*SLOT_BITS-1:0]        rd_ist_slot_i,
+  output wire [IST*8*(1+EXP_BITS+MAN_BITS)-1:0] rd_ist_o,
+  input  wire [SLOT_BITS-1:0]            rd_hit_slot_i,
+  output wire [1+67+11*(1+EXP_BITS+MAN_BITS)-1:0] rd_hit_o,
+  input  wire [SLOT_BITS-1:0]            rd_px_slot_i,
+  output wire [67+5*(1+EXP_BITS+MAN_BITS)-1:0] rd_px_best_o,
   // The queue's head (the cycle model's next event).
   output wire                            head_valid_o,
   output wire [31:0]                     head_ready_o,
@@ -128,6 +140,32 @@ module trv_unit #(
 
   assign head_valid_o = (cnt_q != {(SLOT_BITS+1){1'b0}});
   assign head_ready_o = fq_ready[head_q];
+
+  // ---- slot reads for the ist and hit units (READS = 1) -----------------------------------------
+  // A wire ray's {o xyz, d xyz} (its bits [5W +: 6W], o x highest) as {d zyx, o zyx} (o x lowest).
+  function automatic [6*W-1:0] dir_org(input [6*W-1:0] r);
+    dir_org = {r[0 +: W], r[W +: W], r[2*W +: W], r[3*W +: W], r[4*W +: W], r[5*W +: W]};
+  endfunction
+  genvar r;
+  generate
+    if (READS != 0) begin : g_reads
+      for (r = 0; r < IST; r = r + 1) begin : g_ist
+        wire [SLOT_BITS-1:0] s = rd_ist_slot_i[r*SLOT_BITS +: SLOT_BITS];
+        wire [RW-1:0]        ray = ray_q[s];
+        wire                 unused_ray = ^{ray[2*W +: 3*W], ray[0 +: W]};  // inv, tmax
+        assign rd_ist_o[r*8*W +: 8*W] = {tmax_q[s], ray[W +: W], dir_org(ray[5*W +: 6*W])};
+      end
+      wire [RW-1:0] hray = ray_q[rd_hit_slot_i];
+      wire          unused_hray = ^hray[0 +: 5*W];  // inv, tmin, tmax
+      assign rd_hit_o = {shadow_q[rd_hit_slot_i], best_q[rd_hit_slot_i], dir_org(hray[5*W +: 6*W])};
+      assign rd_px_best_o = best_q[rd_px_slot_i];
+    end else begin : g_no_reads
+      wire unused_rd = ^{rd_ist_slot_i, rd_hit_slot_i, rd_px_slot_i};
+      assign rd_ist_o = {(IST*8*W){1'b0}};
+      assign rd_hit_o = {(1+BW+6*W){1'b0}};
+      assign rd_px_best_o = {BW{1'b0}};
+    end
+  endgenerate
 
   // ---- 1. ist results: the leaf reduction, chained over the ports ------------------------------
   // Port u starts from the record as the earlier ports of this cycle left it (same slot).

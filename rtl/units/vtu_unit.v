@@ -1,0 +1,236 @@
+// vtu_unit - the fill path of one RTU: the memory's data beats into the MSHR line buffers, and a
+// filled line into its cache, node and triangle lines through vtu.v record by record on the way
+// (the RTL view of systemc/vtu.h's VtuUnit with the MSHR buffers systemc/ascache.h keeps):
+//   1. a data beat of cache p's MSHR t (one-hot beat_valid_i, from membus_if's rsp_*) is written
+//      into line buffer (p, t) at its beat index;
+//   2. on a line's last beat: a list line, or any line with the VTU off, is installed as it is
+//      (fill_*_o of its cache in that cycle, the beat merged in); a node or triangle line with the
+//      VTU on is queued for vtu.v;
+//   3. the queue's head line is driven into vtu.v one record per cycle: its 8-byte nodes or its
+//      Wald triangle records (hls/wald.h's layout), only those inside the image (the line's first
+//      record + i < node_count_i / tri_count_i; the MSHR's line index is taken from the cache's
+//      request as the bus accepts it);
+//   4. a record leaving vtu.v (3 x STAGES cycles later) is written back into its line buffer; when
+//      the line's last record has left, the line is installed (fill_*_o in that cycle, the record
+//      merged in).
+// One record per cycle at full rate (vtu.v never stalls here: out_ready is always high). Caches
+// are in port order node 0, list 1, triangle 2 (systemc/vtu.h's Port).
+//
+// Timing: the transaction model (VtuUnit) drives a line's first record in the cycle its last beat
+// arrives; this unit queues the line at that cycle's edge and drives it one cycle later. The
+// frame's cycle numbers come from the model with the per-unit bindings (raycore simulate --rtl vtu,
+// systemc/pins/vtu.h); this module is the part of rtu.v that those bindings keep in C++.
+// lint: also STAGES=2 MSHRS=8 NODE_LB=64 LIST_LB=64 TRI_LB=64
+// lint: also STAGES=1 MSHRS=2 NODE_LB=32 LIST_LB=16 TRI_LB=48 EXP_BITS=8 MAN_BITS=23
+module vtu_unit #(
+  parameter integer EXP_BITS   = 7,
+  parameter integer MAN_BITS   = 16,
+  parameter integer RNE        = 0,
+  parameter integer RAYCORE    = 0,
+  parameter integer STAGES     = 2,
+  parameter integer MSHRS      = 4,   // per cache
+  parameter integer NODE_LB    = 64,  // line bytes of each cache
+  parameter integer LIST_LB    = 64,
+  parameter integer TRI_LB     = 64,
+  parameter integer BEAT_BYTES = 16,
+  parameter integer LEN_BITS   = 12,
+  parameter integer LINE_W     = 26,
+  // Derived (not to be overridden): the Wald record of hls/wald.h, the buffers' width.
+  parameter integer W_     = 1 + EXP_BITS + MAN_BITS,
+  parameter integer CB_    = (W_ <= 24) ? 3 : 4,
+  parameter integer IDOFF_ = ((9 * CB_ + 1 + 3) / 4) * 4,
+  parameter integer RB_    = ((IDOFF_ + 4 + 15) / 16) * 16,
+  parameter integer MAXLB_ = (NODE_LB > LIST_LB) ? ((NODE_LB > TRI_LB) ? NODE_LB : TRI_LB)
+                                                 : ((LIST_LB > TRI_LB) ? LIST_LB : TRI_LB),
+  parameter integer MB_    = (MSHRS > 1) ? $clog2(MSHRS) : 1
+) (
+  input  wire                   clk_i,
+  input  wire                   rst_ni,
+  // Configuration, static per frame.
+  input  wire                   vtu_on_i,
+  input  wire [W_-1:0]          cam_x_i,
+  input  wire [W_-1:0]          cam_y_i,
+  input  wire [W_-1:0]          cam_z_i,
+  input  wire [31:0]            node_count_i,
+  input  wire [31:0]            tri_count_i,
+  // The caches' line requests as the bus takes them (port p in bits [p*w +: w]).
+  input  wire [2:0]             req_take_i,
+  input  wire [3*LINE_W-1:0]    req_line_i,
+  input  wire [3*MB_-1:0]       req_tag_i,
+  // The memory's data beats of this RTU's caches.
+  input  wire [2:0]             beat_valid_i,
+  input  wire [MB_-1:0]         beat_tag_i,
+  input  wire [LEN_BITS-1:0]    beat_idx_i,
+  input  wire                   beat_last_i,
+  input  wire [8*BEAT_BYTES-1:0] beat_data_i,
+  // Fills (ascache.v's fill_*_i), port p's line in fill_data_o[p*8*MAXLB_ +: 8*<its line bytes>].
+  output wire [2:0]             fill_valid_o,
+  output wire [3*MB_-1:0]       fill_tag_o,
+  output wire [3*8*MAXLB_-1:0]  fill_data_o,
+  // Records driven into vtu.v (RtuStats::vtu_busy), and records inside it.
+  output reg  [63:0]            cnt_busy_o,
+  output wire                   busy_o
+);
+
+  localparam integer W    = W_;
+  localparam integer LW   = 8 * MAXLB_;
+  localparam integer BB   = 8 * BEAT_BYTES;
+  localparam integer NREC = NODE_LB / 8;     // records per line
+  localparam integer TREC = TRI_LB / RB_;
+  localparam integer MREC = (NREC > TREC) ? NREC : TREC;
+  localparam integer RIB  = (MREC > 1) ? $clog2(MREC) : 1;
+  localparam integer TAGW = 1 + MB_ + RIB + 1;  // vtu.v's tag: {tri, MSHR, record, last}
+  localparam integer QN   = 2 * MSHRS;         // node and triangle lines waiting
+  localparam integer QB   = $clog2(QN);
+  localparam integer IB   = $clog2(3 * MSHRS);  // a line buffer's index: p * MSHRS + t
+  localparam integer LBASE = MSHRS;
+  localparam integer TBASE = 2 * MSHRS;
+  wire [IB-1:0] LIST_BASE = LBASE[IB-1:0];
+  wire [IB-1:0] TRI_BASE  = TBASE[IB-1:0];
+
+  // ---- 1. the line buffers and the MSHRs' line indices -------------------------------------------
+  reg [LW-1:0]     buf_q  [0:3*MSHRS-1];   // entry p * MSHRS + t
+  reg [LINE_W-1:0] line_q [0:3*MSHRS-1];
+  wire [1:0] bport = beat_valid_i[0] ? 2'd0 : beat_valid_i[1] ? 2'd1 : 2'd2;
+  wire       beat  = |beat_valid_i;
+
+  // ---- 2. the lines done, and the queue of lines for vtu.v ----------------------------------------
+  wire       bypass = !vtu_on_i || (bport == 2'd1);
+  reg  [1+MB_-1:0] q_line [0:QN-1];       // {tri, MSHR}
+  reg  [QB-1:0]    head_q;
+  reg  [QB:0]      cnt_q;
+  reg  [RIB-1:0]   rec_q;                 // the head line's next record
+
+  // ---- 3. the head line's records ---------------------------------------------------------------
+  wire              h_tri  = q_line[head_q][MB_];
+  wire [MB_-1:0]    h_tag  = q_line[head_q][MB_-1:0];
+  wire [IB-1:0]     h_idx  = (h_tri ? TRI_BASE : {IB{1'b0}}) + {{(IB-MB_){1'b0}}, h_tag};
+  wire [LW-1:0]     h_buf  = buf_q[h_idx];
+  wire [LINE_W-1:0] h_line = line_q[h_idx];
+  // Records of the line inside the image: min(records per line, count - first record).
+  wire [31:0] per   = h_tri ? TREC : NREC;
+  wire [31:0] first = {{(32-LINE_W){1'b0}}, h_line} * per;
+  wire [31:0] avail = (h_tri ? tri_count_i : node_count_i) - first;
+  wire [31:0] nrec  = (avail < per) ? avail : per;
+  wire [31:0] rec32 = {{(32-RIB){1'b0}}, rec_q};
+  wire        last  = (rec32 + 32'd1 >= nrec);
+  wire        drive = (cnt_q != {(QB+1){1'b0}});
+  wire [63:0]     node  = h_buf[rec_q * 64 +: 64];
+  wire [8*RB_-1:0] trec = h_buf[rec_q * 8 * RB_ +: 8 * RB_];
+  wire [7:0]      kf    = trec[8*9*CB_ +: 8];
+  wire            unused_trec = ^trec;  // padding
+
+  wire          in_ready, o_valid, o_kind;
+  wire [63:0]   o_node;
+  wire [1:0]    o_k;
+  wire [7:0]    o_flags;
+  wire [W-1:0]  o_c0, o_c1, o_c2, o_c3, o_c4, o_c5, o_c6, o_c7, o_c8;
+  wire [31:0]   o_id;
+  wire [TAGW-1:0] o_tag;
+  wire          take = drive && in_ready;
+  vtu #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
+        .TAG_BITS(TAGW)) u_vtu (
+    .clk_i(clk_i), .rst_ni(rst_ni), .vtu_on_i(1'b1),
+    .cam_x_i(cam_x_i), .cam_y_i(cam_y_i), .cam_z_i(cam_z_i),
+    .in_valid_i(drive), .in_ready_o(in_ready), .in_kind_i(h_tri), .in_node_i(node),
+    .in_k_i(kf[1:0]), .in_flags_i({kf[7:2], 2'b00}),
+    .in_c0_i(trec[0*8*CB_ +: W]), .in_c1_i(trec[1*8*CB_ +: W]), .in_c2_i(trec[2*8*CB_ +: W]),
+    .in_c3_i(trec[3*8*CB_ +: W]), .in_c4_i(trec[4*8*CB_ +: W]), .in_c5_i(trec[5*8*CB_ +: W]),
+    .in_c6_i(trec[6*8*CB_ +: W]), .in_c7_i(trec[7*8*CB_ +: W]), .in_c8_i(trec[8*8*CB_ +: W]),
+    .in_id_i(trec[8*IDOFF_ +: 32]), .in_tag_i({h_tri, h_tag, rec_q, last}),
+    .out_valid_o(o_valid), .out_ready_i(1'b1), .out_kind_o(o_kind), .out_node_o(o_node),
+    .out_k_o(o_k), .out_flags_o(o_flags),
+    .out_c0_o(o_c0), .out_c1_o(o_c1), .out_c2_o(o_c2), .out_c3_o(o_c3), .out_c4_o(o_c4),
+    .out_c5_o(o_c5), .out_c6_o(o_c6), .out_c7_o(o_c7), .out_c8_o(o_c8), .out_id_o(o_id),
+    .out_tag_o(o_tag));
+
+  // ---- 4. a record leaving: encoded back (hls::encode_tri: padding zero) ------------------------
+  wire            t_tri  = o_tag[TAGW-1];
+  wire [MB_-1:0]  t_tag  = o_tag[TAGW-2 -: MB_];
+  wire [RIB-1:0]  t_rec  = o_tag[1 +: RIB];
+  wire            t_last = o_tag[0];
+  wire [IB-1:0]   t_idx  = (t_tri ? TRI_BASE : {IB{1'b0}}) + {{(IB-MB_){1'b0}}, t_tag};
+  wire            unused_out = ^{o_kind, o_flags[1:0]};  // = t_tri; the flags' low bits are k's
+  reg  [8*RB_-1:0] enc;
+  always @* begin
+    enc = {(8*RB_){1'b0}};
+    enc[0*8*CB_ +: W] = o_c0; enc[1*8*CB_ +: W] = o_c1; enc[2*8*CB_ +: W] = o_c2;
+    enc[3*8*CB_ +: W] = o_c3; enc[4*8*CB_ +: W] = o_c4; enc[5*8*CB_ +: W] = o_c5;
+    enc[6*8*CB_ +: W] = o_c6; enc[7*8*CB_ +: W] = o_c7; enc[8*8*CB_ +: W] = o_c8;
+    enc[8*9*CB_ +: 8] = {o_flags[7:2], o_k};
+    enc[8*IDOFF_ +: 32] = o_id;
+  end
+
+  // ---- fills: one per port per cycle, in the cycle the line is complete --------------------------
+  // A bypassed line with its last beat merged in, or a line with its last record merged in (the
+  // two never meet on one port: node and triangle lines bypass only with the VTU off, when no
+  // record is in vtu.v, and list lines never enter it).
+  wire [IB-1:0] b_idx = ((bport == 2'd0) ? {IB{1'b0}} : (bport == 2'd1) ? LIST_BASE : TRI_BASE) +
+                       {{(IB-MB_){1'b0}}, beat_tag_i};
+  reg  [LW-1:0] b_line, r_line;
+  always @* begin
+    b_line = buf_q[b_idx];
+    b_line[beat_idx_i * BB +: BB] = beat_data_i;
+    r_line = buf_q[t_idx];
+    if (t_tri) r_line[t_rec * 8 * RB_ +: 8 * RB_] = enc;
+    else       r_line[t_rec * 64 +: 64] = o_node;
+  end
+  wire       b_fill = beat && beat_last_i && bypass;
+  wire       r_fill = o_valid && t_last;
+  wire [1:0] r_port = t_tri ? 2'd2 : 2'd0;
+  genvar p;
+  generate
+    for (p = 0; p < 3; p = p + 1) begin : g_fill
+      localparam integer LB = (p == 0) ? NODE_LB : (p == 1) ? LIST_LB : TRI_LB;
+      localparam [1:0]   P2 = p;
+      wire          from_b = b_fill && (bport == P2);
+      wire [LW-1:0] line   = from_b ? b_line : r_line;
+      assign fill_valid_o[p] = from_b || (r_fill && (r_port == P2));
+      assign fill_tag_o[p*MB_ +: MB_] = from_b ? beat_tag_i : t_tag;
+      assign fill_data_o[p*LW +: LW] = {{(LW-8*LB){1'b0}}, line[0 +: 8*LB]};
+      if (LB < MAXLB_) begin : g_unused
+        wire unused_line = ^line[LW-1:8*LB];
+      end
+    end
+  endgenerate
+
+  // Records inside vtu.v.
+  reg [7:0] inside_q;
+  assign busy_o = (inside_q != 8'd0) || drive;
+
+  wire push = beat && beat_last_i && !bypass;
+  wire [QB-1:0] tail = head_q + cnt_q[QB-1:0];
+  integer i;
+  always @(posedge clk_i or negedge rst_ni) begin
+    if (!rst_ni) begin
+      head_q     <= {QB{1'b0}};
+      cnt_q      <= {(QB+1){1'b0}};
+      rec_q      <= {RIB{1'b0}};
+      inside_q   <= 8'd0;
+      cnt_busy_o <= 64'd0;
+    end else begin
+      if (push) q_line[tail] <= {bport == 2'd2, beat_tag_i};
+      cnt_q <= cnt_q + {{QB{1'b0}}, push} - {{QB{1'b0}}, take && last};
+      if (take) begin
+        rec_q <= last ? {RIB{1'b0}} : rec_q + 1'b1;
+        if (last) head_q <= head_q + 1'b1;
+      end
+      inside_q   <= inside_q + {7'd0, take} - {7'd0, o_valid};
+      cnt_busy_o <= cnt_busy_o + {63'd0, take};
+    end
+  end
+
+  // The buffers: beats and records written, line indices taken (no reset: data).
+  always @(posedge clk_i) begin
+    if (beat) buf_q[b_idx][beat_idx_i * BB +: BB] <= beat_data_i;
+    if (o_valid) begin
+      if (t_tri) buf_q[t_idx][t_rec * 8 * RB_ +: 8 * RB_] <= enc;
+      else       buf_q[t_idx][t_rec * 64 +: 64] <= o_node;
+    end
+    for (i = 0; i < 3; i = i + 1)
+      if (req_take_i[i])
+        line_q[((i == 0) ? {IB{1'b0}} : (i == 1) ? LIST_BASE : TRI_BASE) +
+               {{(IB-MB_){1'b0}}, req_tag_i[i*MB_ +: MB_]}] <= req_line_i[i*LINE_W +: LINE_W];
+  end
+
+endmodule
