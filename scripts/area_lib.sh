@@ -20,6 +20,10 @@ AREA_TIMEOUT=${RAYCORE_AREA_TIMEOUT:-1200}
 # trv is the traversal datapath alone (STAGES 2, the pin-level twin's); trv_unit the whole
 # traversal unit (slots, stacks, ready queue, PIPES passes, the ist result reduction).
 AREA_UNITS=(ascache hit ist membus_if rgu spawn trv trv_unit vtu)
+# The tops: rtu (one RTU whole: every unit above, slot_ram, vtu_unit and the wiring) is
+# synthesised by scripts/area_rtu.sh at the cycle model's defaults; chip (RTUS rtu + membus_if) is
+# only linted and elaborated (scripts/lint.sh): its area is RTUS x the RTU's + membus_if's.
+AREA_TOPS=(rtu chip)
 
 # The modules rtl/units/<name>.v instantiates ("<name> #(" at the start of a line).
 area_children() {
@@ -55,13 +59,13 @@ file_of() { if [ -f "rtl/fp/$1.v" ]; then echo "rtl/fp/$1.v"; else echo "rtl/uni
 # to AREA_UNITS, so that it is not silently left out).
 area_check_units() {
   local reached=" " u s g
-  for u in "${AREA_UNITS[@]}"; do
+  for u in "${AREA_UNITS[@]}" "${AREA_TOPS[@]}"; do
     [ -f "rtl/units/$u.v" ] || { echo "area: AREA_UNITS names $u, there is no rtl/units/$u.v" >&2; return 1; }
     for s in $(srcs_for "$u"); do reached+="$s "; done
   done
   for g in rtl/units/*.v; do
     [[ "$reached" == *" $g "* ]] ||
-      { echo "area: $g is neither in AREA_UNITS (scripts/area_lib.sh) nor instantiated by one" >&2; return 1; }
+      { echo "area: $g is neither in AREA_UNITS / AREA_TOPS (scripts/area_lib.sh) nor instantiated by one" >&2; return 1; }
   done
 }
 
@@ -82,6 +86,7 @@ BEGIN {
   g["$_XOR_"] = 2.00; g["$_XNOR_"] = 2.00; g["$_MUX_"] = 2.33; g["$_NMUX_"] = 2.33
   g["$_AOI3_"] = 1.33; g["$_OAI3_"] = 1.33; g["$_AOI4_"] = 1.67; g["$_OAI4_"] = 1.67
 }
+/=== design hierarchy ===/ { cells = 0; ffs = 0; ge = 0; bad = 0 }  # a hierarchy: its totals only
 $1 == "Number" && $3 == "cells:" { cells = $4 }
 $1 ~ /^\$_/ && NF == 2 {
   t = $1; n = $2
@@ -117,23 +122,26 @@ MEM_LIST_AWK='
 /^ *end/ { if (w && s) printf "%s %d x %d, %d read + %d write ports\n", id, s, w, r, x; w = s = 0 }
 '
 
-# area_synth NAME MODULE SHARE CHPARAM: one yosys run of MODULE (SHARE: share or noshare;
-# CHPARAM: "-set P V ..." or empty) with its logs under $AREA_TMP/NAME.*. Sets A_STATUS (ok or
+# area_synth NAME MODULE SHARE CHPARAM [hier]: one yosys run of MODULE (SHARE: share or noshare;
+# CHPARAM: "-set P V ..." or empty) with its logs under $AREA_TMP/NAME.*; with hier the hierarchy
+# is kept (each module synthesised once per parameter set, `stat` of the design hierarchy: the
+# instances' cells summed; depth: the longest path within one module). Sets A_STATUS (ok or
 # timeout), A_SECS (wall seconds of the yosys run), and when ok A_CELLS A_FFS A_GE A_DEPTH A_SRAM
 # A_SRAM_PORTED and A_MEMS (the memories, MEM_LIST_AWK's lines). Exits on a yosys error.
 # Results are cached in $RAYCORE_AREA_CACHE (default out/area-cache) by a hash of the yosys
 # version, the script and the sources (A_SECS is then the recorded time of the run that made
 # them); RAYCORE_AREA_CACHE=none turns the cache off. Timeouts are not cached.
 area_synth() {
-  local name=$1 mod=$2 share=$3 chp=$4 log="$AREA_TMP/$1" t0 rc=0 noshare="" script srcs key
-  local cache=${RAYCORE_AREA_CACHE:-out/area-cache} w m
+  local name=$1 mod=$2 share=$3 chp=$4 hier=${5:-} log="$AREA_TMP/$1" t0 rc=0 noshare="" script
+  local srcs key cache=${RAYCORE_AREA_CACHE:-out/area-cache} w m flatten=-flatten stat="stat"
   [ "$share" = noshare ] && noshare="-noshare"
+  [ "$hier" = hier ] && { flatten=""; stat="stat -top $mod"; }
   srcs=$(srcs_for "$mod")
   script="read_verilog $srcs; \
     ${chp:+chparam $chp $mod;} \
-    synth $noshare -flatten -top $mod -run :fine; tee -q -o $log.mem dump t:\$mem_v2; \
+    synth $noshare $flatten -top $mod -run :fine; tee -q -o $log.mem dump t:\$mem_v2; \
     opt -fast -full; opt -full; techmap; opt -fast; abc -fast; opt -fast; hierarchy -check; check; \
-    tee -q -o $log.stat stat; tee -q -o $log.ltp ltp -noff"
+    tee -q -o $log.stat $stat; tee -q -o $log.ltp ltp -noff"
   # shellcheck disable=SC2086  # srcs: a list of file names without spaces
   key=$({ yosys -V; echo "${script//"$log"/LOG}"; cat $srcs; } | sha256sum | cut -c1-16)
   if [ "$cache" != none ] && [ -s "$cache/$key.res" ]; then
@@ -156,7 +164,7 @@ area_synth() {
   m=$(awk "$MEM_AWK" "$log.mem") || exit 1
   read -r A_CELLS A_FFS A_GE <<< "$w"
   read -r A_SRAM A_SRAM_PORTED <<< "$m"
-  A_DEPTH=$(sed -n 's/.*length=\([0-9]*\).*/\1/p' "$log.ltp" | head -1)
+  A_DEPTH=$(sed -n 's/.*length=\([0-9]*\).*/\1/p' "$log.ltp" | sort -n | tail -1)
   A_MEMS=$(awk "$MEM_LIST_AWK" "$log.mem")
   if [ "$cache" != none ]; then
     mkdir -p "$cache"

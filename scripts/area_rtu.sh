@@ -5,9 +5,13 @@
 # the VTU's share of the sum. Replaces the section (from its heading to the end of FILE) or
 # appends it. Called by scripts/area.sh (`make area`), alone by `make area-rtu`.
 #
+# Then rtl/units/rtu.v synthesised whole (its parameter defaults are the cycle model's defaults):
+# the RTU's cells, flip-flops, NAND2 eq. and SRAM bits as one design, and the VTU's share of it
+# (vtu.v, and the fill path vtu_unit.v with its line buffers, each synthesised alone, over rtu.v).
 # Same measurement as scripts/area.sh (scripts/area_lib.sh: NAND2 weights, memories kept as $mem
 # SRAM macros, ltp depth), with `synth -noshare` for every unit. RAYCORE_AREA_RTU_MODES (default
-# "rtz rne") the FP24 rounding modes; RAYCORE_AREA_TIMEOUT (s, default 1200) per yosys run.
+# "rtz rne") the FP24 rounding modes; RAYCORE_AREA_TIMEOUT (s, default 1200) per yosys run of a
+# unit, RAYCORE_AREA_WHOLE_TIMEOUT (s, default 7200) for rtu.v whole.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 command -v yosys >/dev/null || { echo "area_rtu: yosys is needed (make deps)" >&2; exit 1; }
@@ -60,7 +64,9 @@ run_unit() {
   if [ "$fmt" = fmt ]; then
     chp="-set EXP_BITS 7 -set MAN_BITS 16 -set RNE $([ "$mode" = rne ] && echo 1 || echo 0) $par"
   fi
-  area_synth "$(slug "$name")-$mode" "$mod" noshare "$chp"
+  # rtu.v keeps its hierarchy (each unit synthesised once per parameter set, the instances
+  # summed): flattened, yosys' optimisation of the whole RTU runs for hours.
+  area_synth "$(slug "$name")-$mode" "$mod" noshare "$chp" "$([ "$mod" = rtu ] && echo hier)"
   R[$key|status]=$A_STATUS
   R[$key|secs]=$A_SECS
   if [ "$A_STATUS" = ok ]; then
@@ -73,8 +79,19 @@ run_unit() {
   fi
 }
 
+# The whole RTU and its fill path (rtu.v's defaults: the cycle model's; vtu_unit at the RTU's).
+WHOLE=(
+  "rtu whole|rtu|1|fmt|"
+  "vtu_unit|vtu_unit|1|fmt|-set STAGES 2 -set MSHRS 8"
+)
+WHOLE_TIMEOUT=${RAYCORE_AREA_WHOLE_TIMEOUT:-7200}
+
 for mode in "${MODES[@]}"; do
   for u in "${UNITS[@]}" "$CHIP"; do run_unit "$u" "$mode"; done
+  unit_timeout=$AREA_TIMEOUT
+  AREA_TIMEOUT=$WHOLE_TIMEOUT
+  for u in "${WHOLE[@]}"; do run_unit "$u" "$mode"; done
+  AREA_TIMEOUT=$unit_timeout
 done
 
 # One row: name instances params key.
@@ -103,11 +120,10 @@ section() {
   echo "rgu_latency 16 = 8 x 2), then summed over the RTU's instances. Same measurement as the table above"
   echo "(NAND2 weights, \`ltp\` depth, memories kept as \`\$mem\` SRAM macros), but with \`synth -noshare\`."
   echo
-  echo "- **This is a sum of separately synthesised units, not an RTU**: there is no \`rtu.v\` top yet."
-  echo "  The glue between the units (the ist input queue, the line packing from the caches into the trv"
-  echo "  and ist operands, the channels and the side buffers that the ist and hit tags index, the rgu's"
-  echo "  shadow-ray hand-off) is still C++ in the cycle model (\`systemc/rtu.h\`) and is not counted."
-  echo "  Neither is the L2 shared by the RTUs (256 KB by default, no RTL)."
+  echo "- **The table sums separately synthesised units**; the RTU synthesised whole (rtl/units/rtu.v,"
+  echo "  with the glue between the units: slot_ram, vtu_unit, the trv's slot read ports, the cache"
+  echo "  responses' alignment) follows below the tables. Not counted anywhere: the L2 shared by the"
+  echo "  RTUs (256 KB by default, no RTL) and the chip's membus_if (its row: once per chip)."
   echo "- Parameters: vtu TAG_BITS 8 (cache port 2 + MSHR 3 + record in the line 3 bits); ist and hit"
   echo "  TAG_BITS 7 (a ray slot, or an index of the <= 20 tests in flight per ist; the modules' default"
   echo "  16 is the cycle model's free-running pin tag); trv_unit 2^7 = 128 slots (the model's 96 ray"
@@ -170,14 +186,64 @@ section() {
       echo
     fi
   done
+  whole_section
   echo "Memories kept as SRAM (\`\$mem\` cells; per instance, SIZE x WIDTH, ports as yosys leaves them):"
   echo
-  for u in "${UNITS[@]}" "$CHIP"; do
+  for u in "${UNITS[@]}" "$CHIP" "${WHOLE[@]}"; do
     IFS='|' read -r name mod inst fmt par <<< "$u"
     k="$name|${MODES[0]}"
     [ "${R[$k|status]}" = ok ] || continue
     if [ -z "${R[$k|mems]}" ]; then echo "- $name: none"; continue; fi
     echo "- $name: $(paste -sd';' <<< "${R[$k|mems]}" | sed 's/;/; /g')"
+  done
+}
+
+# The RTU synthesised whole: rtu.v against the sum of its parts, and the VTU's share of it.
+whole_section() {
+  local mode k v f
+  echo "### rtu.v synthesised whole"
+  echo
+  echo "\`rtl/units/rtu.v\` (one RTU: rgu_unit, trv_unit with its slot read ports, 2 x ist in ist_unit, hit_unit,"
+  echo "the three ascaches, slot_ram, vtu_unit with vtu.v, and the wiring: the trv's cache responses"
+  echo "aligned to the byte read, the hand-offs) synthesised as one design at its parameter defaults ="
+  echo "the cycle model's (the parameters of the table above), its hierarchy kept: every module once"
+  echo "per parameter set, \`stat -top rtu\` summing the instances (flattened, yosys' optimisation of"
+  echo "the whole RTU ran for more than 40 minutes without finishing on this machine). depth: the"
+  echo "longest path within one module. The VTU's rows are synthesised"
+  echo "alone: **vtu.v** (the datapath) and **vtu_unit** (the fill path: the MSHR line buffers of the"
+  echo "three caches, 24 lines, the record queue and vtu.v). Only vtu.v exists for the VTU's sake: without"
+  echo "a VTU the fill path keeps its line buffers (a line is installed whole) and loses vtu.v and the"
+  echo "record queue; so vtu.v's share is the VTU's cost and vtu_unit's an upper bound of it."
+  echo
+  for mode in "${MODES[@]}"; do
+    echo "#### FP24 $mode"
+    echo
+    echo "| design | cells | FFs | NAND2 eq. | depth | SRAM bits | SRAM NAND2 eq. | yosys s |"
+    echo "|---|---:|---:|---:|---:|---:|---:|---:|"
+    for v in "rtu whole" vtu_unit vtu; do
+      k="$v|$mode"
+      if [ "${R[$k|status]:-}" != ok ]; then
+        echo "| $v | did not finish in $((WHOLE_TIMEOUT / 60)) min | | | | | | ${R[$k|secs]:-} |"
+        continue
+      fi
+      awk -v n="$v" -v c="${R[$k|cells]}" -v f="${R[$k|ffs]}" -v g="${R[$k|ge]}" -v d="${R[$k|depth]}" \
+          -v s="${R[$k|sram]}" -v sp="${R[$k|ported]}" -v b="$SRAM_BIT_NAND2" -v t="${R[$k|secs]}" \
+          'BEGIN { printf "| %s | %d | %d | %d | %d | %d | %.0f | %d |\n", n, c, f, g, d, s, sp * b, t }'
+    done
+    echo
+    k="rtu whole|$mode"
+    if [ "${R[$k|status]:-}" = ok ] && [ "${R[vtu|$mode|status]:-}" = ok ] &&
+       [ "${R[vtu_unit|$mode|status]:-}" = ok ]; then
+      awk -v r="${R[$k|ge]}" -v rs="${R[$k|ported]}" -v rs1="${R[$k|sram]}" -v v="${R[vtu|$mode|ge]}" \
+          -v u="${R[vtu_unit|$mode|ge]}" -v us="${R[vtu_unit|$mode|ported]}" -v b="$SRAM_BIT_NAND2" \
+          -v mode="$mode" 'BEGIN {
+        printf "**The VTU share of the RTU (FP24 %s), measured on rtu.v whole:** vtu.v %.1f%% of the logic ", mode, 100 * v / r
+        printf "(%d of %d NAND2 eq.), %.1f%% of logic + SRAM (%.2f M NAND2 eq., SRAM port-weighted), ", v, r, 100 * v / (r + rs * b), (r + rs * b) / 1e6
+        printf "%.1f%% with every SRAM bit single-port; the whole fill path (vtu_unit, with the line buffers) ", 100 * v / (r + rs1 * b)
+        printf "%.1f%% of the logic, %.1f%% of logic + SRAM. ", 100 * u / r, 100 * (u + us * b) / (r + rs * b)
+        printf "In 45 nm at 0.798 um^2 per NAND2 eq.: the RTU %.2f mm^2 of logic, %.2f mm^2 with SRAM; vtu.v %.3f mm^2.\n", r * 0.798e-6, (r + rs * b) * 0.798e-6, v * 0.798e-6 }'
+      echo
+    fi
   done
 }
 

@@ -142,7 +142,7 @@ section_frames() {
 # --sc RTL (--rtl) must give the transaction model's cycle count (frames section) and golden_match;
 # reports each run's simulated cycles/s and rays/s. Needs `frames` first (its VTU-on report).
 section_cosim() {
-  header "cosim: sponza-paper 800x480 with vtu+ist+hit+rgu as pin-level twins and as Verilated RTL, then every unit in RTL (--rtl all), then with the bus interface too (--rtl all,membus --l2-kb 0)"
+  header "cosim: sponza-paper 800x480 with vtu+ist+hit+rgu as pin-level twins and as Verilated RTL, then every unit in RTL (--rtl all), then with the bus interface too (--rtl all,membus --l2-kb 0), then every RTU one Verilated rtu.v (--rtl rtu --l2-kb 0)"
   local rc_bin="$BUILD/bin/raycore"
   local scenes=${SHARED_SCENES:-$(cd "$(dirname "$0")/.." && pwd)/../shared/scenes}
   local sponza="$scenes/sponza-paper.glb"
@@ -159,12 +159,14 @@ section_cosim() {
   local ref_nol2="$OUT/simulate-vtu-on-nol2.json"
   "$rc_bin" simulate "$sponza" --vtu on --l2-kb 0 --no-reference --out-dir "$OUT" \
     --report "$ref_nol2" --png "$OUT/simulate-vtu-on-nol2.png" || return 1
-  # view:units:tag; rtl-all has every unit of the RTUs in RTL, rtl-all-membus the bus interface too.
-  for run in pins:vtu,ist,hit,rgu:pins rtl:vtu,ist,hit,rgu:rtl rtl:all:rtl-all rtl:all,membus:rtl-all-membus; do
+  # view:units:tag; rtl-all has every unit of the RTUs in RTL, rtl-all-membus the bus interface too,
+  # rtl-rtu every RTU as one Verilated rtu.v with the bus interface.
+  for run in pins:vtu,ist,hit,rgu:pins rtl:vtu,ist,hit,rgu:rtl rtl:all:rtl-all \
+             rtl:all,membus:rtl-all-membus rtl:rtu:rtl-rtu; do
     IFS=: read -r view units tag <<<"$run"
     local extra=()
     ref="$OUT/simulate-vtu-on.json"
-    [ "$tag" = rtl-all-membus ] && { extra=(--l2-kb 0); ref=$ref_nol2; }
+    [ "$tag" = rtl-all-membus ] || [ "$tag" = rtl-rtu ] && { extra=(--l2-kb 0); ref=$ref_nol2; }
     echo "command: $rc_bin simulate $sponza --vtu on --$view $units ${extra[*]} --no-reference --out-dir $OUT"
     "$rc_bin" simulate "$sponza" --vtu on --"$view" "$units" "${extra[@]}" --no-reference --out-dir "$OUT" \
       --report "$OUT/simulate-$tag.json" --png "$OUT/simulate-$tag.png" || { rc=1; continue; }

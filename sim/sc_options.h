@@ -103,11 +103,12 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
     auto list = std::make_shared<std::vector<std::string>>();
     c.add_option(name, *list, help)
         ->delimiter(',')
-        ->check(CLI::IsMember({"vtu", "ist", "trv", "ascache", "hit", "rgu", "membus", "all"}))
+        ->check(CLI::IsMember({"vtu", "ist", "trv", "ascache", "hit", "rgu", "membus", "all", "rtu"}))
         ->each([&o, list, view](const std::string& unit) {
           o.overrides.push_back([unit, view](SimConfig& s) {
             auto set = [&](const std::string& u) {
-              UnitView& v = u == "vtu"   ? s.vtu_view
+              UnitView& v = u == "rtu"   ? s.rtu_view
+                            : u == "vtu" ? s.vtu_view
                             : u == "ist" ? s.ist_view
                             : u == "trv" ? s.trv_view
                             : u == "ascache" ? s.ascache_view
@@ -131,7 +132,8 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
         "Verilated RTL in the frame (vtu at its pins; trv, ist, hit, rgu: the whole units "
         "rtl/units/{trv,ist,hit,rgu}_unit.v, stepped from C++; ascache: the node, list "
         "and triangle caches, rtl/units/ascache.v stepped from C++; membus: the chip's bus interface "
-        "rtl/units/membus_if.v, without the L2: --l2-kb 0)");
+        "rtl/units/membus_if.v, without the L2: --l2-kb 0); or rtu alone: every RTU one Verilated "
+        "rtl/units/rtu.v (all its units and the glue between them) with membus_if.v, --l2-kb 0");
   views("--pins", UnitView::twin,
         "units (vtu,ist,hit,rgu, or all) simulated by their pin-level SystemC twin (same ports as the RTL; trv "
         "has none)");

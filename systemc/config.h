@@ -96,6 +96,9 @@ struct SimConfig {
   // set-up after start in cycle 0) + rgu_latency cycles into the frame, as from rgu.v.
   uint32_t rgu_latency = 16;
   UnitView rgu_view = UnitView::model;
+  // The whole RTU: rtl/units/rtu.v Verilated (systemc/rtu_rtl.h), every RTU one model stepped from
+  // C++ with the Verilated bus interface (membus_if.v); rtl only, alone (no other unit's view).
+  UnitView rtu_view = UnitView::model;
   // Simulator.
   std::string trace_file;  // VCD of the top-level handshakes and counters
   bool progress = false;   // progress bar on stderr

@@ -30,6 +30,58 @@
 
 namespace raycore::sc {
 
+// The hit unit's per-frame registers (the light is the VTU's, translated at set-up).
+template <class A>
+pins::HitConfig hit_config(const FrameCtx& fc) {
+  pins::HitConfig c;
+  for (int i = 0; i < 3; ++i) c.light[i] = fc.light[i];
+  c.tmin = fc.tmin;
+  c.sp = fc.spawn;
+  c.g = hls::hit_regs<A>(fc.spawn);
+  return c;
+}
+
+// The frame buffer's write for a ray leaving the hit unit (the host's side of the unit, for every
+// view of it, and for the RTU in RTL, systemc/rtu_rtl.h): the ray of `pixel`, a shadow ray or the
+// primary, with its best hit b and the unit's results ss. Returns true when the slot keeps the
+// shadow ray ss.ray (a primary hit that spawns one); cos_light is the pixel's primary cosine,
+// written by the primary and read by its shadow ray. Counts the pixel's retired rays.
+template <class A>
+bool write_pixel(FrameCtx& fc, uint32_t pixel, bool shadow, const Best& b,
+                 const hls::ShadowSetup& ss, double& cos_light) {
+  hls::PixelResult& p = fc.frame->px[pixel];
+  if (shadow) {
+    p.lit = p.front && !b.found;  // --shadow-spawn all: a ray behind the light is not lit
+    p.shadow_tri = b.found ? int32_t(b.id) : -1;
+    p.shade = hls::shade_pixel(true, p.lit, cos_light);
+    ++fc.shadow_retired[pixel];
+    return false;
+  }
+  ++fc.primary_retired[pixel];
+  if (!b.found) {
+    p.shade = hls::shade_pixel(false, false, 0);
+    return false;
+  }
+  p.tri = int32_t(b.id);
+  p.t_bits = b.t;
+  p.t = A::to_double(b.t);
+  p.hit = {A::to_double(ss.h[0]) + fc.offset[0], A::to_double(ss.h[1]) + fc.offset[1],
+           A::to_double(ss.h[2]) + fc.offset[2]};
+  p.front = ss.front;
+  if (!ss.spawn) {
+    p.shade = hls::shade_pixel(true, false, 0);
+    return false;
+  }
+  p.shadow_ray = true;
+  // The shade's cosine: a host-side computation in double from the unit's outputs (the shadow
+  // direction and dens) and the triangle's plane; not part of the unit.
+  const double nu = A::to_double(b.nu), nv = A::to_double(b.nv);
+  double l2 = 0;
+  for (int i = 0; i < 3; ++i) l2 += A::to_double(ss.ray.d[i]) * A::to_double(ss.ray.d[i]);
+  cos_light = std::fabs(A::to_double(ss.dens)) / std::sqrt((1 + nu * nu + nv * nv) * l2);
+  return true;
+}
+
 template <class A>
 class Hit : public SlotUnit {
  public:
@@ -143,53 +195,15 @@ class Hit : public SlotUnit {
   }
 
   // The unit's per-frame registers (the light is the VTU's, translated at set-up).
-  pins::HitConfig regs() const {
-    pins::HitConfig c;
-    for (int i = 0; i < 3; ++i) c.light[i] = fc_.light[i];
-    c.tmin = fc_.tmin;
-    c.sp = fc_.spawn;
-    c.g = hls::hit_regs<A>(fc_.spawn);
-    return c;
-  }
+  pins::HitConfig regs() const { return hit_config<A>(fc_); }
 
   // The unit's result for slot d.slot, at cycle now (when it leaves the unit).
   void finish(const Done& d, Cycle now) {
     const uint16_t s = d.slot;
     Slot& r = ch_.slots[s];
-    hls::PixelResult& p = fc_.frame->px[r.pixel];
-    if (r.shadow) {
-      p.lit = p.front && !r.best.found;  // --shadow-spawn all: a ray behind the light is not lit
-      p.shadow_tri = r.best.found ? int32_t(r.best.id) : -1;
-      p.shade = hls::shade_pixel(true, p.lit, r.cos_light);
-      ++fc_.shadow_retired[r.pixel];
-      return retire(s, now);
-    }
-    ++fc_.primary_retired[r.pixel];
-    if (!r.best.found) {
-      p.shade = hls::shade_pixel(false, false, 0);
-      return retire(s, now);
-    }
-    const Best& b = r.best;
-    const hls::ShadowSetup& ss = d.ss;
-    p.tri = int32_t(b.id);
-    p.t_bits = b.t;
-    p.t = A::to_double(b.t);
-    p.hit = {A::to_double(ss.h[0]) + fc_.offset[0], A::to_double(ss.h[1]) + fc_.offset[1],
-             A::to_double(ss.h[2]) + fc_.offset[2]};
-    p.front = ss.front;
-    if (!ss.spawn) {
-      p.shade = hls::shade_pixel(true, false, 0);
-      return retire(s, now);
-    }
-    p.shadow_ray = true;
-    // The shade's cosine: a host-side computation in double from the unit's outputs (the shadow
-    // direction and dens) and the triangle's plane; not part of the unit.
-    const double nu = A::to_double(b.nu), nv = A::to_double(b.nv);
-    double l2 = 0;
-    for (int i = 0; i < 3; ++i) l2 += A::to_double(ss.ray.d[i]) * A::to_double(ss.ray.d[i]);
-    r.cos_light = std::fabs(A::to_double(ss.dens)) / std::sqrt((1 + nu * nu + nv * nv) * l2);
-    r.ray = ss.ray;
-    r.skip_id = ss.skip_id;
+    if (!write_pixel<A>(fc_, r.pixel, r.shadow, r.best, d.ss, r.cos_light)) return retire(s, now);
+    r.ray = d.ss.ray;
+    r.skip_id = d.ss.skip_id;
     r.shadow = true;
     r.state = SlotState::start;
     ch_.shadow_q.push(s, now);

@@ -268,6 +268,8 @@ bool Membus::tick_rtl(Cycle now) {
                              ")");
     const uint32_t off = f.got * bandwidth_;
     std::memcpy(f.q.data + off, r.data, std::min<uint32_t>(bandwidth_, f.q.bytes - off));
+    reqs_[f.requester].client->mem_beat(reqs_[f.requester].port, f.q.tag, f.got, r.last, r.data,
+                                        bandwidth_, now + 1);
     ++f.got;
     if (r.last != (f.got == f.beats) || (r.last && now + 1 != f.arrival))
       throw std::logic_error("--rtl membus: the line's last beat came back in cycle " +

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "systemc/rtu_rtl.h"
 #include "systemc/top.h"
 
 namespace raycore::sc {
@@ -68,20 +69,38 @@ SimResult run(const hls::Image& image, const scenes::Camera& cam, const scenes::
   fc.tri_line_records = std::max<uint32_t>(1, (cfg.tri_cache.line_bytes + rb / 2) / rb);
   res.tri_line_bytes = fc.tri_line_records * rb;
 
-  Top<A> top("top", fc, cfg, image.bytes, tc.vtu, vtu);
-  sc_core::sc_start();
-  if (!top.error.empty()) throw std::runtime_error(top.error);
-  if (!top.rtus.empty() && fc.retired == 0 && fc.width * fc.height > 0)
-    throw std::runtime_error("cycle model: no ray retired");
-
-  res.cycles = top.cycles;
-  res.pin_edges = top.pin_edges;
-  for (const auto& r : top.rtus) {
-    res.rtus.push_back(r->stats());
-    res.primary_rays += res.rtus.back().primary_rays;
-    res.shadow_rays += res.rtus.back().shadow_rays;
+  if (cfg.rtu_view != UnitView::model) {  // --rtl rtu: every RTU one Verilated rtu.v
+    if (cfg.rtu_view == UnitView::twin)
+      throw ConfigError("rtu has no pin-level SystemC twin: use --rtl rtu");
+    for (UnitView v : {cfg.vtu_view, cfg.ist_view, cfg.trv_view, cfg.ascache_view, cfg.hit_view,
+                       cfg.rgu_view, cfg.membus_view})
+      if (v != UnitView::model)
+        throw ConfigError("--rtl rtu is the whole RTU (every unit and the glue between them) with "
+                          "the bus interface in RTL: give no other unit to --rtl or --pins");
+    const PixelWrite write = [&fc](uint32_t pixel, bool shadow, const Best& b,
+                                   const hls::ShadowSetup& ss, double& cos_light) {
+      return write_pixel<A>(fc, pixel, shadow, b, ss, cos_light);
+    };
+    const RtuRtlRun r = run_rtl_rtus(hls::format_id<F>(), R, fc, cfg, image.bytes, vtu.c,
+                                     hit_config<A>(fc), write);
+    res.cycles = r.cycles;
+    res.rtus = r.rtus;
+    res.bus = r.bus;
+  } else {
+    Top<A> top("top", fc, cfg, image.bytes, tc.vtu, vtu);
+    sc_core::sc_start();
+    if (!top.error.empty()) throw std::runtime_error(top.error);
+    res.cycles = top.cycles;
+    res.pin_edges = top.pin_edges;
+    for (const auto& r : top.rtus) res.rtus.push_back(r->stats());
+    res.bus = top.bus.stats();
   }
-  res.bus = top.bus.stats();
+  if (cfg.rtus > 0 && fc.retired == 0 && fc.width * fc.height > 0)
+    throw std::runtime_error("cycle model: no ray retired");
+  for (const RtuStats& s : res.rtus) {
+    res.primary_rays += s.primary_rays;
+    res.shadow_rays += s.shadow_rays;
+  }
   res.issued = fc.issued;
   res.retired = fc.retired;
   res.primary_retired = std::move(fc.primary_retired);
@@ -311,7 +330,8 @@ nlohmann::json config_json(const SimConfig& c) {
           {"hit_view", unit_view_name(c.hit_view)},
           {"tile", c.tile},
           {"rgu_latency", c.rgu_latency},
-          {"rgu_view", unit_view_name(c.rgu_view)}};
+          {"rgu_view", unit_view_name(c.rgu_view)},
+          {"rtu_view", unit_view_name(c.rtu_view)}};
 }
 
 void config_from_json(const nlohmann::json& j, SimConfig& c) {
@@ -383,6 +403,7 @@ void config_from_json(const nlohmann::json& j, SimConfig& c) {
     else if (k == "tile") c.tile = u32(*it, k);
     else if (k == "rgu_latency") c.rgu_latency = u32(*it, k);
     else if (k == "rgu_view") c.rgu_view = unit_view(*it, k);
+    else if (k == "rtu_view") c.rtu_view = unit_view(*it, k);
     else if (k == "vtu_view") c.vtu_view = unit_view(*it, k);
     else if (k == "ist_view") c.ist_view = unit_view(*it, k);
     else if (k == "trv_view") c.trv_view = unit_view(*it, k);

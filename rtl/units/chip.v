@@ -33,7 +33,7 @@ module chip #(
   parameter integer WAYS       = 4,
   parameter integer NODE_LB    = 64,
   parameter integer LIST_LB    = 64,
-  parameter integer TRI_LB     = 64,
+  parameter integer TRI_LB     = 0,   // 0: whole records nearest 64 bytes (the model's)
   parameter integer MSHRS      = 8,
   parameter integer LINE_W     = 26,
   parameter integer BEAT_BYTES = 16,
@@ -107,6 +107,8 @@ module chip #(
 );
 
   localparam integer N = 3 * RTUS;
+  localparam integer RB  = ((((9 * ((W_ <= 24) ? 3 : 4) + 1 + 3) / 4) * 4 + 4 + 15) / 16) * 16;
+  localparam integer TLB = (TRI_LB != 0) ? TRI_LB : ((64 + RB / 2) / RB) * RB;
 
   wire [N-1:0]           req_valid, req_ready, rsp_valid;
   wire [N*LINE_W-1:0]    req_line;
@@ -126,7 +128,7 @@ module chip #(
   generate
     for (i = 0; i < N; i = i + 1) begin : g_req
       localparam integer P  = i % 3;
-      localparam integer LB = (P == 0) ? NODE_LB : (P == 1) ? LIST_LB : TRI_LB;
+      localparam integer LB = (P == 0) ? NODE_LB : (P == 1) ? LIST_LB : TLB;
       wire [ADDR_BITS-1:0] line = {{(ADDR_BITS-LINE_W){1'b0}}, req_line[i*LINE_W +: LINE_W]};
       assign req_addr[i*ADDR_BITS +: ADDR_BITS] = base_i[P*ADDR_BITS +: ADDR_BITS] + line * LB;
       assign req_bytes[i*LEN_BITS +: LEN_BITS] = LB[LEN_BITS-1:0];

@@ -52,7 +52,7 @@ module rtu #(
   parameter integer WAYS       = 4,
   parameter integer NODE_LB    = 64,
   parameter integer LIST_LB    = 64,
-  parameter integer TRI_LB     = 64,
+  parameter integer TRI_LB     = 0,   // 0: whole records nearest 64 bytes (the model's)
   parameter integer MSHRS      = 8,
   parameter integer LINE_W     = 26,
   parameter integer BEAT_BYTES = 16,
@@ -135,14 +135,15 @@ module rtu #(
   output reg  [63:0]                 cnt_o
 );
 
+  localparam integer TLB  = (TRI_LB != 0) ? TRI_LB : ((64 + RB_ / 2) / RB_) * RB_;
   localparam integer W    = W_;
   localparam integer BW   = 67 + 5 * W;
-  localparam integer RPL  = TRI_LB / RB_;             // triangle records per line
+  localparam integer RPL  = TLB / RB_;             // triangle records per line
   localparam integer NA   = 2 * PIPES;                // trv cache accesses per cycle
   localparam integer NLB  = $clog2(NODE_LB);
   localparam integer LLB  = $clog2(LIST_LB);
-  localparam integer MAXLB = (NODE_LB > LIST_LB) ? ((NODE_LB > TRI_LB) ? NODE_LB : TRI_LB)
-                                                 : ((LIST_LB > TRI_LB) ? LIST_LB : TRI_LB);
+  localparam integer MAXLB = (NODE_LB > LIST_LB) ? ((NODE_LB > TLB) ? NODE_LB : TLB)
+                                                 : ((LIST_LB > TLB) ? LIST_LB : TLB);
 
   // ---- the cycle counter ------------------------------------------------------------------------
   reg [31:0] now_q;
@@ -194,7 +195,7 @@ module rtu #(
   wire [IST*32-1:0]    i_skip;
   wire [IST-1:0]       i_acc_valid, i_rsp_hit, i_res_valid, i_res_hit;
   wire [IST*32-1:0]    i_acc_line;
-  wire [IST*8*TRI_LB-1:0] i_rsp_data;
+  wire [IST*8*TLB-1:0] i_rsp_data;
   wire [IST*SLOT_BITS-1:0] i_res_slot;
   wire [IST*BW-1:0]    i_res_rec;
   wire [15:0]          i_room, i_count;
@@ -349,7 +350,7 @@ module rtu #(
       wire unused_line = ^i_acc_line[gu*32 + LINE_W +: 32 - LINE_W];
     end
   endgenerate
-  ascache #(.SETS(TRI_SETS), .WAYS(WAYS), .LINE_BYTES(TRI_LB), .MSHRS(MSHRS), .HIT_LATENCY(0),
+  ascache #(.SETS(TRI_SETS), .WAYS(WAYS), .LINE_BYTES(TLB), .MSHRS(MSHRS), .HIT_LATENCY(0),
             .PORTS(IST), .LINE_W(LINE_W), .TAG_BITS(1), .CNT_BITS(32)) u_tri (
     .clk_i(clk_i), .rst_ni(rst_ni),
     .acc_valid_i(i_acc_valid), .acc_line_i(i_line), .acc_tag_i({IST{1'b0}}),
@@ -358,7 +359,7 @@ module rtu #(
     .req_valid_o(req_valid_o[2]), .req_ready_i(req_ready_i[2]),
     .req_line_o(req_line_o[2*LINE_W +: LINE_W]), .req_tag_o(req_tag_o[2*MB_ +: MB_]),
     .fill_valid_i(fill_valid[2]), .fill_tag_i(fill_tag[2*MB_ +: MB_]),
-    .fill_data_i(fill_data[2*8*MAXLB +: 8*TRI_LB]),
+    .fill_data_i(fill_data[2*8*MAXLB +: 8*TLB]),
     .mshr_busy_o(mshr_busy[2*$clog2(MSHRS+1) +: $clog2(MSHRS+1)]),
     .cnt_hits_o(c_hits[64 +: 32]), .cnt_misses_o(c_misses[64 +: 32]),
     .cnt_merges_o(c_merges[64 +: 32]), .cnt_full_o(c_full[64 +: 32]),
@@ -422,7 +423,7 @@ module rtu #(
   wire        v_busy;
   vtu_unit #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE),
              .STAGES(STAGES), .MSHRS(MSHRS), .NODE_LB(NODE_LB), .LIST_LB(LIST_LB),
-             .TRI_LB(TRI_LB), .BEAT_BYTES(BEAT_BYTES), .LEN_BITS(LEN_BITS),
+             .TRI_LB(TLB), .BEAT_BYTES(BEAT_BYTES), .LEN_BITS(LEN_BITS),
              .LINE_W(LINE_W)) u_vtu (
     .clk_i(clk_i), .rst_ni(rst_ni), .vtu_on_i(vtu_on_i),
     .cam_x_i(vtu_cam_i[0 +: W]), .cam_y_i(vtu_cam_i[W +: W]), .cam_z_i(vtu_cam_i[2*W +: W]),

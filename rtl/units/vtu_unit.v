@@ -6,7 +6,8 @@
 //   2. on a line's last beat: a list line, or any line with the VTU off, is installed as it is
 //      (fill_*_o of its cache in that cycle, the beat merged in); a node or triangle line with the
 //      VTU on is queued for vtu.v;
-//   3. the queue's head line is driven into vtu.v one record per cycle: its 8-byte nodes or its
+//   3. the queue's head line is driven into vtu.v one record per cycle (a line arriving at an
+//      empty queue from the cycle of its last beat on): its 8-byte nodes or its
 //      Wald triangle records (hls/wald.h's layout), only those inside the image (the line's first
 //      record + i < node_count_i / tri_count_i; the MSHR's line index is taken from the cache's
 //      request as the bus accepts it);
@@ -16,10 +17,10 @@
 // One record per cycle at full rate (vtu.v never stalls here: out_ready is always high). Caches
 // are in port order node 0, list 1, triangle 2 (systemc/vtu.h's Port).
 //
-// Timing: the transaction model (VtuUnit) drives a line's first record in the cycle its last beat
-// arrives; this unit queues the line at that cycle's edge and drives it one cycle later. The
-// frame's cycle numbers come from the model with the per-unit bindings (raycore simulate --rtl vtu,
-// systemc/pins/vtu.h); this module is the part of rtu.v that those bindings keep in C++.
+// Timing as the transaction model's VtuUnit (systemc/vtu.h) with the membus timing of
+// membus_if.v (a line's last beat in the cycle Membus calls mem_resp): records from that cycle on,
+// one per cycle over all lines; a line installed in the cycle its last record leaves (3 x STAGES
+// cycles after it entered), a bypassed line in the cycle of its last beat.
 // lint: also STAGES=2 MSHRS=8 NODE_LB=64 LIST_LB=64 TRI_LB=64
 // lint: also STAGES=1 MSHRS=2 NODE_LB=32 LIST_LB=16 TRI_LB=48 EXP_BITS=8 MAN_BITS=23
 module vtu_unit #(
@@ -101,11 +102,25 @@ module vtu_unit #(
   reg  [QB:0]      cnt_q;
   reg  [RIB-1:0]   rec_q;                 // the head line's next record
 
+  // The line of this cycle's beat with the beat merged in.
+  wire [IB-1:0] b_idx = ((bport == 2'd0) ? {IB{1'b0}} : (bport == 2'd1) ? LIST_BASE : TRI_BASE) +
+                       {{(IB-MB_){1'b0}}, beat_tag_i};
+  reg  [LW-1:0] b_line;
+  always @* begin
+    b_line = buf_q[b_idx];
+    b_line[beat_idx_i * BB +: BB] = beat_data_i;
+  end
+
   // ---- 3. the head line's records ---------------------------------------------------------------
-  wire              h_tri  = q_line[head_q][MB_];
-  wire [MB_-1:0]    h_tag  = q_line[head_q][MB_-1:0];
+  // With the queue empty, the line whose last beat arrives is the head at once (its first record
+  // is driven in that cycle, from the buffer with the beat merged in), as the model starts a line
+  // in the cycle of its mem_resp.
+  wire              push   = beat && beat_last_i && !bypass;
+  wire              direct = push && (cnt_q == {(QB+1){1'b0}});
+  wire              h_tri  = direct ? (bport == 2'd2) : q_line[head_q][MB_];
+  wire [MB_-1:0]    h_tag  = direct ? beat_tag_i : q_line[head_q][MB_-1:0];
   wire [IB-1:0]     h_idx  = (h_tri ? TRI_BASE : {IB{1'b0}}) + {{(IB-MB_){1'b0}}, h_tag};
-  wire [LW-1:0]     h_buf  = buf_q[h_idx];
+  wire [LW-1:0]     h_buf  = direct ? b_line : buf_q[h_idx];
   wire [LINE_W-1:0] h_line = line_q[h_idx];
   // Records of the line inside the image: min(records per line, count - first record).
   wire [31:0] per   = h_tri ? TREC : NREC;
@@ -114,7 +129,7 @@ module vtu_unit #(
   wire [31:0] nrec  = (avail < per) ? avail : per;
   wire [31:0] rec32 = {{(32-RIB){1'b0}}, rec_q};
   wire        last  = (rec32 + 32'd1 >= nrec);
-  wire        drive = (cnt_q != {(QB+1){1'b0}});
+  wire        drive = (cnt_q != {(QB+1){1'b0}}) || push;
   wire [63:0]     node  = h_buf[rec_q * 64 +: 64];
   wire [8*RB_-1:0] trec = h_buf[rec_q * 8 * RB_ +: 8 * RB_];
   wire [7:0]      kf    = trec[8*9*CB_ +: 8];
@@ -164,13 +179,10 @@ module vtu_unit #(
   // ---- fills: one per port per cycle, in the cycle the line is complete --------------------------
   // A bypassed line with its last beat merged in, or a line with its last record merged in (the
   // two never meet on one port: node and triangle lines bypass only with the VTU off, when no
-  // record is in vtu.v, and list lines never enter it).
-  wire [IB-1:0] b_idx = ((bport == 2'd0) ? {IB{1'b0}} : (bport == 2'd1) ? LIST_BASE : TRI_BASE) +
-                       {{(IB-MB_){1'b0}}, beat_tag_i};
-  reg  [LW-1:0] b_line, r_line;
+  // record is in vtu.v, and list lines never enter it). The line of the record leaving, with the
+  // record merged in:
+  reg  [LW-1:0] r_line;
   always @* begin
-    b_line = buf_q[b_idx];
-    b_line[beat_idx_i * BB +: BB] = beat_data_i;
     r_line = buf_q[t_idx];
     if (t_tri) r_line[t_rec * 8 * RB_ +: 8 * RB_] = enc;
     else       r_line[t_rec * 64 +: 64] = o_node;
@@ -198,7 +210,6 @@ module vtu_unit #(
   reg [7:0] inside_q;
   assign busy_o = (inside_q != 8'd0) || drive;
 
-  wire push = beat && beat_last_i && !bypass;
   wire [QB-1:0] tail = head_q + cnt_q[QB-1:0];
   integer i;
   always @(posedge clk_i or negedge rst_ni) begin

@@ -788,6 +788,100 @@ TEST(AllRtlFrame, SponzaPaperSmallFrameWithBus) {
                     "sponza-paper 64x40, every unit and the bus rtl");
 }
 
+// ---- the whole RTU in RTL (--rtl rtu) ----------------------------------------------------------
+// Every RTU one Verilated rtl/units/rtu.v (its units and the glue between them: slot_ram,
+// vtu_unit, the caches' wiring) with the Verilated membus_if: the transaction model's cycles, bus
+// bytes, frame, ray counts and work counters (the model with --l2-kb 0).
+void expect_rtu_rtl(const scenes::Scene& s, const sim::TraceConfig& tc, sc::SimConfig cfg,
+                    const std::string& what) {
+  cfg.l2.size_bytes = 0;
+  const Summary model = expect_match(s, tc, cfg);
+  cfg.rtu_view = UnitView::rtl;
+  const Summary p = expect_match(s, tc, cfg);
+  expect_same_counts(model, p, what);
+  EXPECT_EQ(p.issued, model.issued) << what;
+  EXPECT_EQ(p.shadow, model.shadow) << what;
+  EXPECT_EQ(p.retired, model.retired) << what;
+}
+TEST(RtuRtlFrame, CorridorVtuOnTwoRtus) {
+  sc::SimConfig cfg;
+  cfg.rtus = 2;
+  expect_rtu_rtl(corridor(), config(FormatId::fp24, Rounding::rtz, true, 40, 24), cfg,
+                 "corridor 40x24, VTU on, 2 RTUs");
+}
+// Shadow rays of each kind of hand-off (skip-origin's skip id through slot_ram, segment rays,
+// spawn-all), the VTU off (every line bypasses vtu.v), randomised memory latency, 3 RTUs.
+TEST(RtuRtlFrame, ShadowRaysVtuOffRandomLatency) {
+  for (const hls::SpawnParams& sp : {spawn(hls::Spawn::skip_origin), spawn(hls::Spawn::none, true),
+                                     spawn(hls::Spawn::ulp_offset, false, true)}) {
+    auto tc = config(FormatId::fp24, Rounding::rtz, false, 32, 20);
+    tc.spawn = sp;
+    sc::SimConfig cfg;
+    cfg.rtus = 3;
+    cfg.seed = 5;
+    expect_rtu_rtl(corridor(), tc, cfg, "corridor 32x20, VTU off, seed 5, " +
+                                            sim::to_string(sp.spawn) +
+                                            (sp.segment ? " segment" : "") +
+                                            (sp.spawn_all ? " all" : ""));
+  }
+}
+// The registers that are not the RTU's structure: trv latency, cache hit latencies (the
+// triangle cache's through ist_unit's delay ring), 2 trv pipes and 1 ist unit of the built 4 and
+// 2, fewer rays in flight, a short stack, no fusing, a short ist queue; the VTU on, skip-back.
+TEST(RtuRtlFrame, RegistersAwayFromTheDefaults) {
+  auto tc = margins_config(Rounding::rtz, true);
+  tc.spawn = spawn(hls::Spawn::skip_back);
+  sc::SimConfig cfg;
+  cfg.rtus = 2;
+  cfg.seed = 11;
+  cfg.trv_latency = 3;
+  cfg.node_cache.hit_latency = 2;
+  cfg.list_cache.hit_latency = 0;
+  cfg.tri_cache.hit_latency = 5;
+  cfg.trv_pipes = 2;
+  cfg.ist_units = 1;
+  cfg.rays_in_flight = 24;
+  cfg.trv_fuse = false;
+  cfg.ist_queue = 6;
+  expect_rtu_rtl(corridor(), tc, cfg, "corridor, registers away from the defaults");
+}
+TEST(RtuRtlFrame, SponzaPaperSmallFrame) {
+  const std::string path = std::string(RAYCORE_SHARED_SCENES_DIR) + "/sponza-paper.glb";
+  if (!std::ifstream(path).good()) GTEST_SKIP() << path << " not found (../shared/scenes)";
+  static const scenes::Scene s = scenes::load_gltf(path, false);
+  sc::SimConfig cfg;
+  cfg.rtus = 2;
+  cfg.seed = 29;
+  expect_rtu_rtl(s, config(FormatId::fp24, Rounding::rtz, true, 64, 40), cfg,
+                 "sponza-paper 64x40, the whole RTU rtl");
+}
+TEST(RtuRtlFrame, RefusesWhatItCannotRun) {
+  const auto tc = config(FormatId::fp24, Rounding::rtz, true, 8, 8);
+  sc::SimConfig cfg;
+  cfg.rtu_view = UnitView::rtl;
+  expect_refused(tiny_scene(), tc, cfg, "--l2-kb 0 (the L2 has no RTL)");
+  cfg.l2.size_bytes = 0;
+  expect_refused(tiny_scene(), config(FormatId::fp24, Rounding::rne, true, 8, 8), cfg,
+                 "no Verilated rtu for FP24 rne in this build; built: rtu FP24 rtz");
+  cfg.rays_in_flight = 200;
+  cfg.ist_units = 3;
+  cfg.tri_cache.size_bytes = 64 * 1024;
+  const Summary r = expect_refused(tiny_scene(), tc, cfg, "--rays-in-flight <= 128");
+  EXPECT_NE(std::string(r.error).find("--ist-units <= 2"), std::string::npos) << r.error;
+  EXPECT_NE(std::string(r.error).find("caches of 16 / 8 / 32 KB"), std::string::npos) << r.error;
+  cfg = {};
+  cfg.l2.size_bytes = 0;
+  cfg.rtu_view = UnitView::rtl;
+  cfg.ist_latency = 30;
+  expect_refused(tiny_scene(), tc, cfg, "pipeline depths of STAGES 2");
+  cfg.ist_latency = 20;
+  cfg.ist_view = UnitView::rtl;
+  expect_refused(tiny_scene(), tc, cfg, "give no other unit to --rtl or --pins");
+  cfg.ist_view = UnitView::model;
+  cfg.rtu_view = UnitView::twin;
+  expect_refused(tiny_scene(), tc, cfg, "rtu has no pin-level SystemC twin");
+}
+
 // ---- lockstep: twin vs Verilated model --------------------------------------------------------
 
 uint64_t lockstep_count() {

@@ -1,0 +1,375 @@
+// systemc/rtu_rtl.cpp - the frame on RTUs in RTL (see rtu_rtl.h). Built with the Verilated models
+// (RAYCORE_RTL=ON); the variants are rtl/units/rtu.cmake's list.
+#include "systemc/rtu_rtl.h"
+
+#include <array>
+#include <memory>
+#include <stdexcept>
+#include <type_traits>
+
+// The models are built into the frame library with the SystemC ones (VM_SC=1): Verilator's
+// runtime then names sc_time_stamp unqualified, as systemc.h declares it.
+#include <systemc.h>
+
+#include "rtl_rtu_models.h"
+#include "systemc/membus_rtl.h"
+#include "systemc/rtl_fields.h"
+#include "systemc/vl_bits.h"
+
+namespace raycore::sc {
+namespace {
+
+using vl::get_bits;
+using vl::set_bits;
+
+// A cycle with no ray retired for this long is a hang (the cycle model's frames retire a ray at
+// least every few thousand cycles, even with the memory's latency at its largest).
+constexpr Cycle kHangCycles = 10'000'000;
+
+// The data beat an RTU takes at its pins in a given cycle (membus_if routes one per cycle).
+struct Beat {
+  bool valid = false;
+  uint32_t rtu = 0, port = 0, tag = 0, index = 0;
+  bool last = false;
+  std::array<uint8_t, 64> data{};
+};
+
+// The parameters rtu.v is Verilated with (rtl/units/rtu.cmake) and what they fix in SimConfig.
+struct Built {
+  unsigned slot_bits, pipes, ist, words, qbits, hlbits, tile;
+  uint32_t node_kb, list_kb, tri_kb, ways, line, mshrs, stages;
+};
+
+template <class M, unsigned W>
+class RtuRtlRunner {
+  static constexpr unsigned BW = 67 + 5 * W;
+
+ public:
+  RtuRtlRunner(const char* name, const Built& b, FrameCtx& fc, const SimConfig& cfg,
+               const std::vector<uint8_t>& image, const uint32_t vtu_cam[3],
+               const pins::HitConfig& hit, const PixelWrite& write)
+      : name_(name), fc_(fc), cfg_(cfg), write_(write),
+        bus_("membus_rtu", image, cfg.mem_latency, cfg.mem_bandwidth, cfg.mem_queue_depth,
+             cfg.seed) {
+    check(b);
+    while ((1u << mb_) < b.mshrs) ++mb_;
+    auto r = make_rtl_membus(unsigned(3 * cfg.rtus), cfg.mem_queue_depth, cfg.mem_bandwidth);
+    if (!r)
+      throw ConfigError("--rtl rtu: no Verilated membus_if for " + std::to_string(cfg.rtus) +
+                        " RTUs, --mem-queue-depth " + std::to_string(cfg.mem_queue_depth) +
+                        " and --mem-bandwidth " + std::to_string(cfg.mem_bandwidth) +
+                        " in this build; built: " + rtl_membus_built());
+    if (cfg.mem_bandwidth > 64) throw ConfigError("--rtl rtu: beats of up to 64 bytes");
+    const hls::ImageHeader& h = fc.header;
+    base_ = {h.node_offset, h.list_offset, h.tri_offset};
+    line_ = {cfg.node_cache.line_bytes, cfg.list_cache.line_bytes,
+             fc.tri_line_records * (W <= 24 ? 32u : 48u)};
+    for (int k = 0; k < cfg.rtus; ++k) {
+      rtus_.push_back(std::make_unique<Unit>(this, k));
+      Unit& u = *rtus_.back();
+      for (uint32_t p = 0; p < 3; ++p) {
+        u.req[p].reset(1);
+        u.buf[p].assign(size_t(cfg.node_cache.mshrs) * 64, 0);
+        bus_.add_requester(&u.req[p], &u, p);
+      }
+      vl::async_reset(u.m);
+      configure(u.m, k, vtu_cam, hit);
+    }
+    bus_.bind_rtl(std::move(r));
+    cos_.assign(fc.frame->px.size(), 0.0);
+  }
+  ~RtuRtlRunner() {
+    for (auto& u : rtus_) u->m.final();
+  }
+
+  RtuRtlRun run() {
+    RtuRtlRun res;
+    Cycle now = 0;
+    for (;; ++now) {
+      // The caches' requests of this cycle (registered in rtu.v: valid from the last edge).
+      for (auto& up : rtus_) {
+        Unit& u = *up;
+        for (uint32_t p = 0; p < 3; ++p) {
+          u.req[p].reset(1);
+          u.asked[p] = get_bits(u.m.req_valid_o, p, 1) != 0;
+          if (!u.asked[p]) continue;
+          const uint64_t line = get_bits(u.m.req_line_o, p * 26, 26);
+          const uint32_t tag = get_bits(u.m.req_tag_o, p * mb_, mb_);
+          MemReq q;
+          q.addr = base_[p] + line * line_[p];
+          q.bytes = line_[p];
+          q.tag = tag;
+          q.data = u.buf[p].data() + size_t(tag) * 64;
+          u.req[p].push(q, now);
+        }
+      }
+      now_ = now;
+      beat_now_ = beat_next_;
+      beat_next_.valid = false;
+      bus_.tick(now);  // arbitration (membus_if), the memory's beats; the routed beat -> beat_next_
+      bool all_done = true;
+      for (auto& up : rtus_) {
+        Unit& u = *up;
+        M& m = u.m;
+        m.clk_i = 0;
+        m.start_i = now == 0;
+        uint32_t ready = 0;
+        for (uint32_t p = 0; p < 3; ++p)
+          if (u.asked[p] && u.req[p].empty()) ready |= 1u << p;  // the bus took it
+        m.req_ready_i = uint8_t(ready);
+        m.beat_valid_i = 0;
+        if (beat_now_.valid && beat_now_.rtu == u.index) {
+          m.beat_valid_i = uint8_t(1u << beat_now_.port);
+          m.beat_tag_i = static_cast<std::remove_reference_t<decltype(m.beat_tag_i)>>(beat_now_.tag);
+          m.beat_idx_i = static_cast<std::remove_reference_t<decltype(m.beat_idx_i)>>(beat_now_.index);
+          m.beat_last_i = beat_now_.last;
+          vl::set_bytes(m.beat_data_i, 0, cfg_.mem_bandwidth, beat_now_.data.data());
+        }
+        m.eval();
+        if (m.px_valid_o) leave(u, now);
+        m.clk_i = 1;
+        m.eval();
+        if (m.err_o)
+          throw std::runtime_error("rtu: a ray needs more than the " +
+                                   std::to_string(fc_.stack_depth) +
+                                   " stack entries of --stack-depth (at most 64, the deepest tree)");
+        all_done &= m.done_o != 0;
+      }
+      if (all_done && now > 0) break;
+      if (now > fc_.last_retire + kHangCycles)
+        throw std::runtime_error(name_ + ": no ray retired in " + std::to_string(kHangCycles) +
+                                 " cycles (cycle " + std::to_string(now) + ")");
+    }
+    res.clocked = now + 1;
+    res.cycles = fc_.last_retire + 1;
+    for (auto& up : rtus_) res.rtus.push_back(stats(up->m));
+    res.bus = bus_.stats();
+    for (const RtuStats& s : res.rtus) fc_.issued += s.primary_rays + s.shadow_rays;
+    return res;
+  }
+
+ private:
+
+  struct Unit : MemClient {
+    Unit(RtuRtlRunner* r, int k) : run(r), index(uint32_t(k)) {}
+    void mem_resp(uint32_t, uint32_t, Cycle) override {}  // the last beat told rtu.v already
+    void mem_beat(uint32_t port, uint32_t tag, uint32_t beat, bool last, const uint8_t* data,
+                  uint32_t bytes, Cycle at) override {
+      Beat& b = run->beat_next_;
+      if (b.valid) throw std::logic_error("--rtl rtu: two beats routed in one cycle");
+      if (at != run->now_next()) throw std::logic_error("--rtl rtu: a beat for another cycle");
+      b.valid = true;
+      b.rtu = index;
+      b.port = port;
+      b.tag = tag;
+      b.index = beat;
+      b.last = last;
+      std::copy(data, data + bytes, b.data.begin());
+    }
+    RtuRtlRunner* run;
+    uint32_t index;
+    M m;
+    std::array<TimedFifo<MemReq>, 3> req;
+    std::array<bool, 3> asked{};
+    std::array<std::vector<uint8_t>, 3> buf;  // the bus's copies of the lines (by MSHR)
+  };
+
+  Cycle now_next() const { return now_ + 1; }
+
+  void check(const Built& b) const {
+    auto kb = [](const CacheConfig& c) { return c.size_bytes / 1024; };
+    std::string bad;
+    auto need = [&](bool ok, const std::string& what) {
+      if (!ok) bad += (bad.empty() ? "" : ", ") + what;
+    };
+    need(cfg_.rays_in_flight <= (1u << b.slot_bits),
+         "--rays-in-flight <= " + std::to_string(1u << b.slot_bits));
+    need(fc_.stack_depth <= 64, "--stack-depth <= 64");
+    need(cfg_.trv_pipes >= 1 && cfg_.trv_pipes <= b.pipes,
+         "--trv-pipes <= " + std::to_string(b.pipes));
+    need(cfg_.ist_units >= 1 && cfg_.ist_units <= b.ist,
+         "--ist-units <= " + std::to_string(b.ist));
+    need(cfg_.ist_queue <= (1u << b.qbits), "--ist-queue <= " + std::to_string(1u << b.qbits));
+    need(cfg_.tri_cache.hit_latency < (1u << b.hlbits),
+         "a triangle-cache hit latency < " + std::to_string(1u << b.hlbits));
+    need(cfg_.tile == b.tile, "--tile " + std::to_string(b.tile));
+    need(kb(cfg_.node_cache) == b.node_kb && kb(cfg_.list_cache) == b.list_kb &&
+             kb(cfg_.tri_cache) == b.tri_kb,
+         "caches of " + std::to_string(b.node_kb) + " / " + std::to_string(b.list_kb) + " / " +
+             std::to_string(b.tri_kb) + " KB");
+    for (const CacheConfig* c : {&cfg_.node_cache, &cfg_.list_cache, &cfg_.tri_cache})
+      need(c->ways == b.ways && c->line_bytes == b.line && c->mshrs == b.mshrs,
+           std::to_string(b.ways) + " ways, " + std::to_string(b.line) + "-byte lines and " +
+               std::to_string(b.mshrs) + " MSHRs per cache");
+    need(fc_.tri_line_records * (W <= 24 ? 32u : 48u) == b.line,
+         std::to_string(b.line) + "-byte triangle lines");
+    need(cfg_.vtu_depth == 3 * b.stages && cfg_.ist_latency == 10 * b.stages &&
+             cfg_.hit_latency == 10 * b.stages && cfg_.rgu_latency == 8 * b.stages,
+         "pipeline depths of STAGES " + std::to_string(b.stages) + " (--vtu-depth " +
+             std::to_string(3 * b.stages) + ", --ist-latency " + std::to_string(10 * b.stages) +
+             ", --hit-latency " + std::to_string(10 * b.stages) + ", --rgu-latency " +
+             std::to_string(8 * b.stages) + ")");
+    need(cfg_.mailbox == 0, "--mailbox 0");
+    need(cfg_.l2.size_bytes == 0, "--l2-kb 0 (the L2 has no RTL)");
+    need(cfg_.rtus >= 1 && cfg_.rtus <= 16, "--rtus <= 16");
+    need(uint32_t(fc_.width) <= 65535 && uint32_t(fc_.height) <= 65535,
+         "frames up to 65535 pixels a side");
+    if (!bad.empty())
+      throw ConfigError("--rtl rtu: " + name_ + " is built for " + bad +
+                        " (rtl/units/rtu.cmake); built: " + rtl_rtu_built());
+  }
+
+  void configure(M& m, int k, const uint32_t vtu_cam[3], const pins::HitConfig& hit) {
+    const hls::RguCamera& c = fc_.rgu_cam;
+    for (unsigned i = 0; i < 3; ++i) {  // {o xyz, d00 xyz, dx xyz, dy xyz}, o x highest
+      set_bits(m.cam_i, (11 - i) * W, W, c.o[i]);
+      set_bits(m.cam_i, (8 - i) * W, W, c.d00[i]);
+      set_bits(m.cam_i, (5 - i) * W, W, c.dx[i]);
+      set_bits(m.cam_i, (2 - i) * W, W, c.dy[i]);
+      set_bits(m.box_i, i * W, W, fc_.box_lo[i]);
+      set_bits(m.box_i, (3 + i) * W, W, fc_.box_hi[i]);
+      set_bits(m.light_i, i * W, W, hit.light[i]);
+      set_bits(m.vtu_cam_i, i * W, W, vtu_cam[i]);
+    }
+    m.width_i = uint16_t(fc_.width);
+    m.height_i = uint16_t(fc_.height);
+    m.rtu_i = uint8_t(k);
+    m.rtus_i = uint8_t(cfg_.rtus);
+    m.slots_i = static_cast<std::remove_reference_t<decltype(m.slots_i)>>(cfg_.rays_in_flight);
+    m.tmin_i = fc_.tmin;
+    m.trv_lat_i = uint16_t(cfg_.trv_latency);
+    m.node_hl_i = uint16_t(cfg_.node_cache.hit_latency);
+    m.list_hl_i = uint16_t(cfg_.list_cache.hit_latency);
+    m.pipes_i = uint8_t(cfg_.trv_pipes);
+    m.fuse_i = cfg_.trv_fuse;
+    m.any_hit_i = fc_.spawn.any_hit;
+    m.empty_i = fc_.empty_tree;
+    m.depth_i = uint8_t(fc_.stack_depth);
+    m.widen_i = uint8_t(fc_.margins.widen_ulps);
+    m.eps_i = fc_.margins.eps;
+    m.one_eps_i = fc_.margins.one_eps;
+    m.qcap_i = uint16_t(cfg_.ist_queue);
+    m.tri_hl_i = uint8_t(cfg_.tri_cache.hit_latency);
+    m.ist_units_i = uint8_t(cfg_.ist_units);
+    m.strategy_i = uint8_t(uint32_t(hit.sp.spawn) & 7u);
+    m.segment_i = hit.sp.segment;
+    m.all_i = hit.sp.spawn_all;
+    m.back_i = uint32_t(hit.g.back);
+    m.scale_i = hit.g.scale;
+    m.fixed_i = hit.g.fixed;
+    m.slab_scale_i = hit.g.slab_scale;
+    m.vtu_on_i = fc_.vtu_on;
+    m.node_count_i = fc_.header.node_count;
+    m.tri_count_i = fc_.header.tri_count;
+    m.clk_i = 0;
+    m.eval();
+  }
+
+  // The ray leaving RTU u's hit unit in cycle now: the frame buffer's pixel write.
+  void leave(Unit& u, Cycle now) {
+    M& m = u.m;
+    const uint32_t pixel = get_bits(m.px_pixel_o, 0, 32);  // y * width + x (rgu.v)
+    if (pixel >= fc_.frame->px.size())
+      throw std::logic_error("--rtl rtu: a ray of pixel " + std::to_string(pixel) +
+                             " outside the frame");
+    const Best b = vl::get_best(m.px_best_o, 0, W);
+    hls::ShadowSetup ss{};
+    for (unsigned i = 0; i < 3; ++i) ss.h[i] = get_bits(m.px_h_o, i * W, W);
+    ss.front = m.px_front_o;
+    ss.spawn = m.px_spawn_o;
+    ss.dens = m.px_dens_o;
+    ss.ray = vl::get_ray(m.px_ray_o, 0, W);
+    const bool spawn = write_(pixel, m.px_shadow_o, b, ss, cos_[pixel]);
+    if (spawn != bool(m.px_spawn_o))
+      throw std::logic_error("--rtl rtu: pixel " + std::to_string(pixel) +
+                             ": the RTL's spawn decision differs from the frame buffer's");
+    ++fc_.retired;
+    fc_.last_retire = std::max(fc_.last_retire, now);
+  }
+
+  RtuStats stats(M& m) {
+    auto cnt = [&](unsigned i) {
+      m.cnt_sel_i = uint8_t(i);
+      m.eval();
+      return uint64_t(m.cnt_o);
+    };
+    RtuStats s;
+    s.trv_busy = cnt(1);
+    s.trv_node_miss = cnt(2);
+    s.trv_list_miss = cnt(3);
+    s.trv_ist_full = cnt(4);
+    s.inner_steps = cnt(5);
+    s.leaf_visits = cnt(6);
+    s.pops = cnt(7);
+    s.list_steps = cnt(8);
+    s.trv_fused = cnt(9);
+    s.stack_max = cnt(10);
+    s.ist_busy = cnt(11);
+    s.ist_tri_miss = cnt(12);
+    s.tri_tests = cnt(13);
+    s.hit_busy = cnt(14);
+    s.primary_rays = cnt(15);
+    s.shadow_rays = cnt(16);
+    s.rgu_stall_no_slot = cnt(17);
+    s.vtu_busy = cnt(18);
+    s.rgu_busy = s.primary_rays + s.shadow_rays;
+    s.retired = s.primary_rays + s.shadow_rays;
+    CacheStats* cs[3] = {&s.node, &s.list, &s.tri};
+    for (unsigned c = 0; c < 3; ++c) {
+      cs[c]->hits = cnt(19 + 5 * c);
+      cs[c]->misses = cnt(20 + 5 * c);
+      cs[c]->mshr_merges = cnt(21 + 5 * c);
+      cs[c]->mshr_full = cnt(22 + 5 * c);
+      cs[c]->fills = cnt(23 + 5 * c);
+      cs[c]->accesses = cs[c]->hits + cs[c]->misses;
+    }
+    return s;
+  }
+
+  std::string name_;
+  FrameCtx& fc_;
+  const SimConfig& cfg_;
+  const PixelWrite& write_;
+  Membus bus_;
+  std::vector<std::unique_ptr<Unit>> rtus_;
+  std::array<uint64_t, 3> base_{};
+  std::array<uint32_t, 3> line_{};
+  std::vector<double> cos_;  // per pixel: its primary's cosine, for the shadow ray's shade
+  Beat beat_now_, beat_next_;
+  Cycle now_ = 0;
+  unsigned mb_ = 1;  // MSHR tag bits (rtu.v's MB_)
+};
+
+}  // namespace
+
+RtuRtlRun run_rtl_rtus(hls::FormatId f, hls::Rounding r, FrameCtx& fc, const SimConfig& cfg,
+                       const std::vector<uint8_t>& image, const uint32_t vtu_cam[3],
+                       const pins::HitConfig& hit, const PixelWrite& write) {
+#define RAYCORE_RTL_RTU_VARIANT(prefix, fmt, mode, width, stages, slot_bits, pipes, ist, words,   \
+                                qbits, hlbits, tile, node_kb, list_kb, tri_kb, ways, line, mshrs) \
+  if (vl::variant_is(#fmt, #mode, f, r)) {                                                      \
+    const Built b{slot_bits, pipes, ist, words, qbits, hlbits, tile,                            \
+                  node_kb, list_kb, tri_kb, ways, line, mshrs, stages};                         \
+    RtuRtlRunner<prefix, width> run("Verilated rtu " #fmt " " #mode, b, fc, cfg, image, vtu_cam, \
+                                    hit, write);                                                \
+    return run.run();                                                                           \
+  }
+#include "rtl_rtu_variants.h"
+#undef RAYCORE_RTL_RTU_VARIANT
+  throw ConfigError(std::string("--rtl rtu: no Verilated rtu for ") + hls::format_name(f) + " " +
+                    hls::rounding_name(r) + " in this build; built: " + rtl_rtu_built());
+}
+
+std::string rtl_rtu_built() {
+  std::string s;
+#define RAYCORE_RTL_RTU_VARIANT(prefix, fmt, mode, width, stages, slot_bits, pipes, ist, words,   \
+                                qbits, hlbits, tile, node_kb, list_kb, tri_kb, ways, line, mshrs) \
+  s += std::string(s.empty() ? "" : ", ") + "rtu " #fmt " " #mode " (STAGES " #stages ", " +      \
+       std::to_string(1u << slot_bits) + " slots, " #pipes " trv pipes, " #ist " ist units, " +    \
+       #node_kb "/" #list_kb "/" #tri_kb " KB caches)";
+#include "rtl_rtu_variants.h"
+#undef RAYCORE_RTL_RTU_VARIANT
+  return s.empty() ? "none" : s;
+}
+
+}  // namespace raycore::sc
