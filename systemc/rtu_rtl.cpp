@@ -134,6 +134,10 @@ class RtuRtlRunner {
                                    std::to_string(fc_.stack_depth) +
                                    " stack entries of --stack-depth (at most 64, the deepest tree)");
         all_done &= m.done_o != 0;
+        if (now > 0 && !m.primaries_o && !u.primary_end) {  // the rgu's last primary ray went
+          u.primary_end = now + 1;
+          u.busy_primary = count(m, 15) + count(m, 16);
+        }
       }
       if (all_done && now > 0) break;
       if (now > fc_.last_retire + kHangCycles)
@@ -142,7 +146,11 @@ class RtuRtlRunner {
     }
     res.clocked = now + 1;
     res.cycles = fc_.last_retire + 1;
-    for (auto& up : rtus_) res.rtus.push_back(stats(up->m));
+    for (auto& up : rtus_) {
+      res.rtus.push_back(stats(up->m));
+      res.rtus.back().rgu_primary_end = up->primary_end;
+      res.rtus.back().rgu_busy_primary = up->busy_primary;
+    }
     res.bus = bus_.stats();
     for (const RtuStats& s : res.rtus) fc_.issued += s.primary_rays + s.shadow_rays;
     return res;
@@ -172,6 +180,8 @@ class RtuRtlRunner {
     std::array<TimedFifo<MemReq>, 3> req;
     std::array<bool, 3> asked{};
     std::array<std::vector<uint8_t>, 3> buf;  // the bus's copies of the lines (by MSHR)
+    Cycle primary_end = 0;                     // RtuStats::rgu_primary_end, rgu_busy_primary
+    uint64_t busy_primary = 0;
   };
 
   Cycle now_next() const { return now_ + 1; }
@@ -287,12 +297,15 @@ class RtuRtlRunner {
     fc_.last_retire = std::max(fc_.last_retire, now);
   }
 
+  // Counter i of rtu.v (cnt_sel_i -> cnt_o: combinational, the clock low).
+  static uint64_t count(M& m, unsigned i) {
+    m.cnt_sel_i = uint8_t(i);
+    m.eval();
+    return uint64_t(m.cnt_o);
+  }
+
   RtuStats stats(M& m) {
-    auto cnt = [&](unsigned i) {
-      m.cnt_sel_i = uint8_t(i);
-      m.eval();
-      return uint64_t(m.cnt_o);
-    };
+    auto cnt = [&](unsigned i) { return count(m, i); };
     RtuStats s;
     s.trv_busy = cnt(1);
     s.trv_node_miss = cnt(2);
@@ -322,6 +335,7 @@ class RtuRtlRunner {
       cs[c]->mshr_full = cnt(22 + 5 * c);
       cs[c]->fills = cnt(23 + 5 * c);
       cs[c]->accesses = cs[c]->hits + cs[c]->misses;
+      cs[c]->cycles_lost = cs[c]->misses;  // as the model counts: an issue slot per miss
     }
     return s;
   }

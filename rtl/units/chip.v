@@ -120,7 +120,7 @@ module chip #(
   wire [8*BEAT_BYTES-1:0] rsp_data;
   wire [LEN_BITS-1:0]    rsp_beat;
   wire                   rsp_last;
-  wire [RTUS-1:0]        done, err;
+  wire [RTUS-1:0]        done, err, primaries;
   wire [RTUS*64-1:0]     cnt;
 
   // Line index -> byte address and length, per requester.
@@ -178,13 +178,14 @@ module chip #(
         .px_spawn_o(px[PX_-3-2*COORD_BITS]),
         .px_best_o(px[15*W_+1 +: 67+5*W_]), .px_h_o(px[12*W_+1 +: 3*W_]),
         .px_front_o(px[12*W_]), .px_dens_o(px[11*W_ +: W_]), .px_ray_o(px[0 +: 11*W_]),
-        .done_o(done[r]), .err_o(err[r]), .cnt_sel_i(cnt_sel_i), .cnt_o(cnt[r*64 +: 64]));
+        .done_o(done[r]), .primaries_o(primaries[r]), .err_o(err[r]), .cnt_sel_i(cnt_sel_i), .cnt_o(cnt[r*64 +: 64]));
       assign px_o[r*(1+PX_) +: 1+PX_] = {px_valid, px};
     end
   endgenerate
 
   assign done_o = &done;
   assign err_o  = |err;
+  wire   unused_primaries = ^primaries;  // per RTU; the host polls done_o
   wire [31:0] cr = {{(32-RTU_BITS){1'b0}}, cnt_rtu_i};
   assign cnt_o  = (cr < RTUS) ? cnt[cr[PB_-1:0]*64 +: 64] : 64'd0;
 

@@ -130,6 +130,7 @@ module rtu #(
   output wire [11*W_-1:0]            px_ray_o,      // the shadow ray {o xyz, d xyz, inv xyz, tmin, tmax}
   // ---- status -----------------------------------------------------------------------------------
   output wire                        done_o,        // every primary ray issued, every slot free
+  output wire                        primaries_o,   // primary rays still to come (rgu.v busy)
   output wire                        err_o,         // a ray needed more than depth_i stack entries
   input  wire [5:0]                  cnt_sel_i,
   output reg  [63:0]                 cnt_o
@@ -437,6 +438,7 @@ module rtu #(
 
   // ---- status and counters ----------------------------------------------------------------------
   assign done_o = !rgu_busy && (free_count == slots_i);
+  assign primaries_o = rgu_busy;
   always @* begin
     case (cnt_sel_i)
       6'd0:  cnt_o = {32'd0, now_q};
