@@ -179,7 +179,12 @@ section_cosim() {
       "$(json_get "$OUT/simulate-$tag.json" sim.cycles_per_second)" \
       "$(json_get "$OUT/simulate-$tag.json" sim.rays_per_second)" \
       "$(json_get "$OUT/simulate-$tag.json" sim.pin_clock_edges)"
-    [ "$c0" = "$c1" ] || { echo "cycles differ from the transaction model ($view $units)"; rc=1; }
+    if [ "$tag" = rtl-rtu ]; then  # README, known limitations: within 2% of the model, not exact
+      awk -v a="$c1" -v b="$c0" 'BEGIN { d = (a - b) / b; printf "rtl rtu: %+.3f%% cycles against the model\n", 100 * d; exit (d > 0.02 || d < -0.02) }' ||
+        { echo "cycles of --rtl rtu more than 2% from the transaction model's"; rc=1; }
+    else
+      [ "$c0" = "$c1" ] || { echo "cycles differ from the transaction model ($view $units)"; rc=1; }
+    fi
     [ "$(json_get "$OUT/simulate-$tag.json" golden_match)" = "True" ] || { echo "golden_match false ($view $units)"; rc=1; }
   done
   return $rc
