@@ -73,7 +73,7 @@ area_check_units() {
 # Flip-flops: DFF_X1 5.67, DFFR_X1 (async reset) 6.67, plus MUX2_X1 2.33 for an enable and
 # AND2_X1 1.33 for a synchronous reset/set. Prints "cells ffs nand2_eq" ($mem_v2 cells are in
 # cells, not in the other two).
-WEIGHTS_AWK='
+WEIGHT_FUNCS='
 function ff_weight(t,   w) {
   w = (t ~ /^\$_DFF_[PN][NP][01]_$/ || t ~ /^\$_DFFE_[PN][NP][01][PN]_$/ || t ~ /^\$_DFFSR/) ? 6.67 : 5.67
   if (t ~ /^\$_(DFFE|SDFFE|SDFFCE|DFFSRE)_/) w += 2.33
@@ -86,6 +86,8 @@ BEGIN {
   g["$_XOR_"] = 2.00; g["$_XNOR_"] = 2.00; g["$_MUX_"] = 2.33; g["$_NMUX_"] = 2.33
   g["$_AOI3_"] = 1.33; g["$_OAI3_"] = 1.33; g["$_AOI4_"] = 1.67; g["$_OAI4_"] = 1.67
 }
+'
+WEIGHTS_AWK="$WEIGHT_FUNCS"'
 /=== design hierarchy ===/ { cells = 0; ffs = 0; ge = 0; bad = 0 }  # a hierarchy: its totals only
 $1 == "Number" && $3 == "cells:" { cells = $4 }
 $1 ~ /^\$_/ && NF == 2 {
@@ -95,6 +97,49 @@ $1 ~ /^\$_/ && NF == 2 {
   else { print "area: unknown cell type " t > "/dev/stderr"; bad = 1 }
 }
 END { if (bad) exit 1; printf "%d %d %.0f\n", cells, ffs, ge }
+'
+
+# The cells, flip-flops and NAND2 eq. of one instance's subtree in a hierarchical `stat` (area_synth
+# ... hier): every module's own cells from its section, its instances of other modules weighted by
+# their counts, summed recursively from the module named -v top=<module> (a derived module
+# "$paramod$<hash>\<module>" too; the first match). Prints "cells ffs nand2_eq" ($mem_v2 cells in
+# cells only). With -v children=1: the module's own cells and each of its instances' subtrees.
+SUBTREE_AWK="$WEIGHT_FUNCS"'
+/^=== design hierarchy ===/ { done = 1 }
+done { next }
+/^=== .* ===$/ { mod = $2; mods[mod] = 1; next }
+mod != "" && NF == 2 && $2 ~ /^[0-9]+$/ {
+  t = $1; n = $2
+  if (t ~ /^\$_/ && t ~ /DFF/) { c[mod] += n; f[mod] += n; w[mod] += n * ff_weight(t) }
+  else if (t in g) { c[mod] += n; w[mod] += n * g[t] }
+  else if (t == "$mem_v2") c[mod] += n
+  else { k = ++nk[mod]; sub_t[mod, k] = t; sub_n[mod, k] = n }
+}
+function total(m,   k, s) {
+  if (m in seen) return
+  seen[m] = 1
+  tc[m] = c[m]; tf[m] = f[m]; tw[m] = w[m]
+  for (k = 1; k <= nk[m]; k++) {
+    s = sub_t[m, k]
+    if (!(s in mods)) { print "area: unknown cell type " s > "/dev/stderr"; bad = 1; continue }
+    total(s)
+    tc[m] += sub_n[m, k] * tc[s]; tf[m] += sub_n[m, k] * tf[s]; tw[m] += sub_n[m, k] * tw[s]
+  }
+}
+END {
+  for (m in mods) { b = m; sub(/.*\\/, "", b); if (b == top) { root = m; break } }
+  if (root == "") { print "area: no module " top > "/dev/stderr"; exit 1 }
+  total(root)
+  if (bad) exit 1
+  if (!children) { printf "%d %d %.0f\n", tc[root], tf[root], tw[root]; exit 0 }
+  # -v children=1: the root own cells ("glue"), then each instance type below it, one line each:
+  # "name instances cells ffs nand2_eq" (the totals over its instances).
+  printf "glue 1 %d %d %.0f\n", c[root], f[root], w[root]
+  for (k = 1; k <= nk[root]; k++) {
+    s = sub_t[root, k]; b = s; sub(/.*\\/, "", b)
+    printf "%s %d %d %d %.0f\n", b, sub_n[root, k], sub_n[root, k] * tc[s], sub_n[root, k] * tf[s], sub_n[root, k] * tw[s]
+  }
+}
 '
 
 # Memories (the $mem_v2 cells of `memory -nomap`, from `dump`): SRAM macros, not in cells' FFs or
@@ -125,28 +170,33 @@ MEM_LIST_AWK='
 # area_synth NAME MODULE SHARE CHPARAM [hier]: one yosys run of MODULE (SHARE: share or noshare;
 # CHPARAM: "-set P V ..." or empty) with its logs under $AREA_TMP/NAME.*; with hier the hierarchy
 # is kept (each module synthesised once per parameter set, `stat` of the design hierarchy: the
-# instances' cells summed; depth: the longest path within one module). Sets A_STATUS (ok or
+# instances' cells summed; no depth: A_DEPTH 0). Sets A_STATUS (ok or
 # timeout), A_SECS (wall seconds of the yosys run), and when ok A_CELLS A_FFS A_GE A_DEPTH A_SRAM
-# A_SRAM_PORTED and A_MEMS (the memories, MEM_LIST_AWK's lines). Exits on a yosys error.
+# A_SRAM_PORTED, A_MEMS (the memories, MEM_LIST_AWK's lines) and with hier A_PARTS (SUBTREE_AWK's
+# children lines: the top's own cells and each instance type's subtree). Exits on a yosys error.
 # Results are cached in $RAYCORE_AREA_CACHE (default out/area-cache) by a hash of the yosys
 # version, the script and the sources (A_SECS is then the recorded time of the run that made
 # them); RAYCORE_AREA_CACHE=none turns the cache off. Timeouts are not cached.
 area_synth() {
   local name=$1 mod=$2 share=$3 chp=$4 hier=${5:-} log="$AREA_TMP/$1" t0 rc=0 noshare="" script
   local srcs key cache=${RAYCORE_AREA_CACHE:-out/area-cache} w m flatten=-flatten stat="stat"
+  local ltp="tee -q -o $log.ltp ltp -noff"
   [ "$share" = noshare ] && noshare="-noshare"
-  [ "$hier" = hier ] && { flatten=""; stat="stat -top $mod"; }
+  # With the hierarchy kept, ltp sees each instance as a cell from every input to every output and
+  # reports millions of false loops: no depth (the units' own rows have theirs).
+  [ "$hier" = hier ] && { flatten=""; stat="stat -top $mod"; ltp="tee -q -o $log.ltp log no depth"; }
   srcs=$(srcs_for "$mod")
   script="read_verilog $srcs; \
     ${chp:+chparam $chp $mod;} \
     synth $noshare $flatten -top $mod -run :fine; tee -q -o $log.mem dump t:\$mem_v2; \
     opt -fast -full; opt -full; techmap; opt -fast; abc -fast; opt -fast; hierarchy -check; check; \
-    tee -q -o $log.stat $stat; tee -q -o $log.ltp ltp -noff"
+    tee -q -o $log.stat $stat; $ltp"
   # shellcheck disable=SC2086  # srcs: a list of file names without spaces
   key=$({ yosys -V; echo "${script//"$log"/LOG}"; cat $srcs; } | sha256sum | cut -c1-16)
   if [ "$cache" != none ] && [ -s "$cache/$key.res" ]; then
     read -r A_CELLS A_FFS A_GE A_DEPTH A_SRAM A_SRAM_PORTED A_SECS < "$cache/$key.res"
     A_MEMS=$(cat "$cache/$key.mems")
+    A_PARTS=$(cat "$cache/$key.parts" 2>/dev/null || true)
     A_STATUS=ok
     echo "area: $name: cached ($cache/$key.res)" >&2
     return 0
@@ -165,10 +215,14 @@ area_synth() {
   read -r A_CELLS A_FFS A_GE <<< "$w"
   read -r A_SRAM A_SRAM_PORTED <<< "$m"
   A_DEPTH=$(sed -n 's/.*length=\([0-9]*\).*/\1/p' "$log.ltp" | sort -n | tail -1)
+  A_DEPTH=${A_DEPTH:-0}  # 0: not measured (hier)
   A_MEMS=$(awk "$MEM_LIST_AWK" "$log.mem")
+  A_PARTS=""
+  if [ "$hier" = hier ]; then A_PARTS=$(awk -v top="$mod" -v children=1 "$SUBTREE_AWK" "$log.stat") || exit 1; fi
   if [ "$cache" != none ]; then
     mkdir -p "$cache"
     printf '%s\n' "$A_MEMS" > "$cache/$key.mems"
+    [ -n "$A_PARTS" ] && printf '%s\n' "$A_PARTS" > "$cache/$key.parts"
     echo "$A_CELLS $A_FFS $A_GE $A_DEPTH $A_SRAM $A_SRAM_PORTED $A_SECS" > "$cache/$key.res.tmp"
     mv "$cache/$key.res.tmp" "$cache/$key.res"
   fi

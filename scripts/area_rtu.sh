@@ -57,7 +57,7 @@ run_unit() {
   key="$name|$mode"
   if [ "$fmt" = - ] && [ -n "${R[$name|${MODES[0]}|status]:-}" ]; then
     local f
-    for f in status secs cells ffs ge depth sram ported mems; do R[$key|$f]=${R[$name|${MODES[0]}|$f]}; done
+    for f in status secs cells ffs ge depth sram ported mems parts; do R[$key|$f]=${R[$name|${MODES[0]}|$f]:-}; done
     return 0
   fi
   chp=$par
@@ -71,7 +71,7 @@ run_unit() {
   R[$key|secs]=$A_SECS
   if [ "$A_STATUS" = ok ]; then
     R[$key|cells]=$A_CELLS R[$key|ffs]=$A_FFS R[$key|ge]=$A_GE R[$key|depth]=$A_DEPTH
-    R[$key|sram]=$A_SRAM R[$key|ported]=$A_SRAM_PORTED R[$key|mems]=$A_MEMS
+    R[$key|sram]=$A_SRAM R[$key|ported]=$A_SRAM_PORTED R[$key|mems]=$A_MEMS R[$key|parts]=${A_PARTS:-}
     echo "area_rtu: $name FP24 $mode: cells=$A_CELLS ffs=$A_FFS nand2_eq=$A_GE depth=$A_DEPTH" \
          "sram_bits=$A_SRAM (ported $A_SRAM_PORTED) ${A_SECS}s"
   else
@@ -208,9 +208,9 @@ whole_section() {
   echo "aligned to the byte read, the hand-offs) synthesised as one design at its parameter defaults ="
   echo "the cycle model's (the parameters of the table above), its hierarchy kept: every module once"
   echo "per parameter set, \`stat -top rtu\` summing the instances (flattened, yosys' optimisation of"
-  echo "the whole RTU ran for more than 40 minutes without finishing on this machine). depth: the"
-  echo "longest path within one module. The VTU's rows are synthesised"
-  echo "alone: **vtu.v** (the datapath) and **vtu_unit** (the fill path: the MSHR line buffers of the"
+  echo "the whole RTU ran for more than 40 minutes without finishing on this machine). No depth: with"
+  echo "the hierarchy kept, \`ltp\` takes every instance for a cell from each input to each output."
+  echo "The VTU's rows are synthesised alone: **vtu.v** (the datapath) and **vtu_unit** (the fill path: the MSHR line buffers of the"
   echo "three caches, 24 lines, the record queue and vtu.v). Only vtu.v exists for the VTU's sake: without"
   echo "a VTU the fill path keeps its line buffers (a line is installed whole) and loses vtu.v and the"
   echo "record queue; so vtu.v's share is the VTU's cost and vtu_unit's an upper bound of it."
@@ -228,10 +228,20 @@ whole_section() {
       fi
       awk -v n="$v" -v c="${R[$k|cells]}" -v f="${R[$k|ffs]}" -v g="${R[$k|ge]}" -v d="${R[$k|depth]}" \
           -v s="${R[$k|sram]}" -v sp="${R[$k|ported]}" -v b="$SRAM_BIT_NAND2" -v t="${R[$k|secs]}" \
-          'BEGIN { printf "| %s | %d | %d | %d | %d | %d | %.0f | %d |\n", n, c, f, g, d, s, sp * b, t }'
+          'BEGIN { printf "| %s | %d | %d | %d | %s | %d | %.0f | %d |\n", n, c, f, g, (d > 0 ? d : "-"), s, sp * b, t }'
     done
     echo
     k="rtu whole|$mode"
+    if [ -n "${R[$k|parts]:-}" ]; then
+      echo "rtu.v whole by instance (each instance's subtree in the same synthesis; glue: rtu.v's own"
+      echo "logic: the trv's cache responses aligned to the byte read, the hand-offs, the counter mux):"
+      echo
+      echo "| instance | cells | FFs | NAND2 eq. | share of the RTU's logic |"
+      echo "|---|---:|---:|---:|---:|"
+      awk -v tot="${R[$k|ge]}" '{ printf "| %s | %d | %d | %d | %.1f%% |\n", $1, $3, $4, $5, 100 * $5 / tot }' \
+        <<< "${R[$k|parts]}" | sort -t'|' -k5,5nr
+      echo
+    fi
     if [ "${R[$k|status]:-}" = ok ] && [ "${R[vtu|$mode|status]:-}" = ok ] &&
        [ "${R[vtu_unit|$mode|status]:-}" = ok ]; then
       awk -v r="${R[$k|ge]}" -v rs="${R[$k|ported]}" -v rs1="${R[$k|sram]}" -v v="${R[vtu|$mode|ge]}" \
