@@ -13,6 +13,8 @@
 #include <memory>
 #include <string>
 
+#include "systemc/config.h"
+
 namespace raycore::sc {
 
 class MembusRtl {
@@ -41,5 +43,16 @@ class MembusRtl {
 // The Verilated membus_if, or nullptr when none is built; rtl_membus_built() lists what is.
 std::unique_ptr<MembusRtl> make_rtl_membus(unsigned requesters, unsigned depth, unsigned beat_bytes);
 std::string rtl_membus_built();
+
+// The Verilated membus_if for `rtus` RTUs (3 requesters each), the queue depth and the bus width:
+// throws ConfigError (systemc/config.h) naming what is built when there is none.
+inline std::unique_ptr<MembusRtl> make_rtl_membus_for(int rtus, unsigned depth, unsigned beat_bytes) {
+  auto r = make_rtl_membus(unsigned(3 * rtus), depth, beat_bytes);
+  if (!r)
+    throw ConfigError("no Verilated membus_if for " + std::to_string(rtus) +
+                      " RTUs, --mem-queue-depth " + std::to_string(depth) + " and --mem-bandwidth " +
+                      std::to_string(beat_bytes) + " in this build; built: " + rtl_membus_built());
+  return r;
+}
 
 }  // namespace raycore::sc

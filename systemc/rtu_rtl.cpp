@@ -53,12 +53,7 @@ class RtuRtlRunner {
              cfg.seed) {
     check(b);
     while ((1u << mb_) < b.mshrs) ++mb_;
-    auto r = make_rtl_membus(unsigned(3 * cfg.rtus), cfg.mem_queue_depth, cfg.mem_bandwidth);
-    if (!r)
-      throw ConfigError("--rtl rtu: no Verilated membus_if for " + std::to_string(cfg.rtus) +
-                        " RTUs, --mem-queue-depth " + std::to_string(cfg.mem_queue_depth) +
-                        " and --mem-bandwidth " + std::to_string(cfg.mem_bandwidth) +
-                        " in this build; built: " + rtl_membus_built());
+    auto r = make_rtl_membus_for(cfg.rtus, cfg.mem_queue_depth, cfg.mem_bandwidth);
     if (cfg.mem_bandwidth > 64) throw ConfigError("--rtl rtu: beats of up to 64 bytes");
     const hls::ImageHeader& h = fc.header;
     base_ = {h.node_offset, h.list_offset, h.tri_offset};

@@ -52,12 +52,7 @@ class Top : public sc_core::sc_module {
     if (cfg.membus_view == UnitView::twin)
       throw ConfigError("membus has no pin-level twin in the frame: use --rtl membus");
     if (cfg.membus_view == UnitView::rtl) {  // after the RTUs: their caches are its requesters
-      auto r = make_rtl_membus(unsigned(3 * cfg.rtus), cfg.mem_queue_depth, cfg.mem_bandwidth);
-      if (!r)
-        throw ConfigError("no Verilated membus_if for " + std::to_string(cfg.rtus) +
-                          " RTUs, --mem-queue-depth " + std::to_string(cfg.mem_queue_depth) +
-                          " and --mem-bandwidth " + std::to_string(cfg.mem_bandwidth) +
-                          " in this build; built: " + rtl_membus_built());
+      auto r = make_rtl_membus_for(cfg.rtus, cfg.mem_queue_depth, cfg.mem_bandwidth);
       bus.bind_rtl(std::move(r));
     }
     if (!cfg.trace_file.empty()) {
