@@ -299,8 +299,8 @@ TEST(PinsFrameRtl, VtuIstHitFp24Raycore) {
 TEST(PinsFrameRtl, HitMissingVariantIsNamed) {
   sc::SimConfig cfg;
   cfg.hit_view = UnitView::rtl;
-  const auto tc = config(FormatId::fp32, Rounding::rne, false, 8, 8);
-  const Summary r = expect_refused(tiny_scene(), tc, cfg, "no Verilated hit_unit for fp32 rne STAGES=2");
+  const auto tc = config(FormatId::fp32, Rounding::rtz, false, 8, 8);
+  const Summary r = expect_refused(tiny_scene(), tc, cfg, "no Verilated hit_unit for fp32 rtz STAGES=2");
   EXPECT_NE(std::string(r.error).find("built: hit_unit FP24 rtz S=2"), std::string::npos) << r.error;
 }
 TEST(PinsFrameRtl, RguRtusOneAndThree) { expect_rgu_view(UnitView::rtl); }
@@ -317,8 +317,8 @@ TEST(PinsFrameRtl, RguWithVtuAndIst) {
 TEST(PinsFrameRtl, RguMissingVariantIsNamed) {
   sc::SimConfig cfg;
   cfg.rgu_view = UnitView::rtl;
-  const Summary r = expect_refused(tiny_scene(), config(FormatId::fp32, Rounding::rne, false, 8, 8),
-                                   cfg, "no Verilated rgu_unit for fp32 rne STAGES=2 with 8 x 8 tiles");
+  const Summary r = expect_refused(tiny_scene(), config(FormatId::fp32, Rounding::rtz, false, 8, 8),
+                                   cfg, "no Verilated rgu_unit for fp32 rtz STAGES=2 with 8 x 8 tiles");
   EXPECT_NE(std::string(r.error).find("rgu_unit FP24 rtz S=2 (8 x 8 tiles"), std::string::npos)
       << r.error;
   cfg.tile = 4;
@@ -753,6 +753,21 @@ TEST(MembusRtlFrame, WithEveryUnitRtl) {
       UnitView::rtl;
   expect_membus_rtl(corridor(), config(FormatId::fp24, Rounding::rne, true, 40, 24), cfg,
                     "every unit rtl");
+}
+// FP32 (rne) with every unit and the bus in RTL, 2 RTUs, randomised latency, skip-back shadow
+// rays: vtu.v, ist_unit, trv_unit, the caches' 48-byte triangle lines, hit_unit and rgu_unit at 32
+// bits.
+TEST(MembusRtlFrame, Fp32WithEveryUnitRtl) {
+  sc::SimConfig cfg;
+  cfg.rtus = 2;
+  cfg.seed = 29;
+  cfg.l2.size_bytes = 0;
+  auto tc = config(FormatId::fp32, Rounding::rne, true, 32, 20);
+  tc.spawn = spawn(hls::Spawn::skip_back);
+  const Summary model = expect_match(corridor(), tc, cfg);
+  cfg.vtu_view = cfg.ist_view = cfg.trv_view = cfg.ascache_view = cfg.hit_view = cfg.rgu_view =
+      cfg.membus_view = UnitView::rtl;
+  expect_same_counts(model, expect_match(corridor(), tc, cfg), "fp32 rne, --rtl all,membus");
 }
 TEST(MembusRtlFrame, RefusesWhatItCannotRun) {
   const auto tc = config(FormatId::fp24, Rounding::rtz, false, 8, 8);
