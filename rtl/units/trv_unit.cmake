@@ -20,19 +20,10 @@ if(TARGET raycore_rtl_frame)
   # Three models (about 50k lines of C++ each: the build's cost): FP24 in both roundings and FP32;
   # FP24 raycore is refused by the binding with this list (add "FP24 raycore" here to build it).
   foreach(v "FP24 rtz" "FP24 rne" "FP32 rne")
-    string(REGEX REPLACE " +" ";" v "${v}")
-    list(GET v 0 fmt)
-    list(GET v 1 mode)
-    raycore_rtl_format_flags(g ${fmt} ${mode})
-    if(fmt STREQUAL "FP24")
-      set(width 24)
-    else()
-      set(width 32)
-    endif()
+    raycore_rtl_unit_variant("${v}")
     foreach(p ${_trvu_params})
       list(APPEND g -G${p})
     endforeach()
-    string(TOLOWER "${fmt}" fmt_lc)
     set(prefix "Vtrv_unit_${fmt_lc}_${mode}")
     verilate(raycore_rtl_frame
       SOURCES ${RAYCORE_RTL_FP_SOURCES} ${CMAKE_CURRENT_SOURCE_DIR}/units/trv.v
