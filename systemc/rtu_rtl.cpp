@@ -3,8 +3,11 @@
 #include "systemc/rtu_rtl.h"
 
 #include <array>
+#include <cstdio>
+#include <cstdlib>
 #include <memory>
 #include <stdexcept>
+#include <string>
 #include <type_traits>
 
 // The models are built into the frame library with the SystemC ones (VM_SC=1): Verilator's
@@ -25,6 +28,17 @@ using vl::set_bits;
 // A cycle with no ray retired for this long is a hang (the cycle model's frames retire a ray at
 // least every few thousand cycles, even with the memory's latency at its largest).
 constexpr Cycle kHangCycles = 10'000'000;
+
+// A port's value in hex (a VlWide word by word, the highest first), after a space.
+template <class T>
+void put_hex(FILE* f, const T& s) {
+  if constexpr (std::is_integral_v<T>) {
+    std::fprintf(f, " %llx", static_cast<unsigned long long>(s));
+  } else {
+    std::fprintf(f, " ");
+    for (int i = int(sizeof(s) / 4) - 1; i >= 0; --i) std::fprintf(f, "%08x", uint32_t(s[size_t(i)]));
+  }
+}
 
 // The data beat an RTU takes at its pins in a given cycle (membus_if routes one per cycle).
 struct Beat {
@@ -51,6 +65,7 @@ class RtuRtlRunner {
       : name_(name), fc_(fc), cfg_(cfg), write_(write),
         bus_("membus_rtu", image, cfg.mem_latency, cfg.mem_bandwidth, cfg.mem_queue_depth,
              cfg.seed) {
+    image_ = &image;
     check(b);
     while ((1u << mb_) < b.mshrs) ++mb_;
     auto r = make_rtl_membus_for(cfg.rtus, cfg.mem_queue_depth, cfg.mem_bandwidth);
@@ -74,12 +89,14 @@ class RtuRtlRunner {
     cos_.assign(fc.frame->px.size(), 0.0);
   }
   ~RtuRtlRunner() {
+    if (pxf_) std::fclose(pxf_);
     for (auto& u : rtus_) u->m.final();
   }
 
   RtuRtlRun run() {
     RtuRtlRun res;
     Cycle now = 0;
+    if (const char* prefix = std::getenv("RAYCORE_CHIP_DUMP")) dump_chip(prefix);
     for (;; ++now) {
       // The caches' requests of this cycle (registered in rtu.v: valid from the last edge).
       for (auto& up : rtus_) {
@@ -99,7 +116,6 @@ class RtuRtlRunner {
         }
       }
       now_ = now;
-      beat_now_ = beat_next_;
       beat_next_.valid = false;
       bus_.tick(now);  // arbitration (membus_if), the memory's beats; the routed beat -> beat_next_
       bool all_done = true;
@@ -112,13 +128,15 @@ class RtuRtlRunner {
         for (uint32_t p = 0; p < 3; ++p)
           if (u.asked[p] && u.req[p].empty()) ready |= 1u << p;  // the bus took it
         m.req_ready_i = uint8_t(ready);
+        // rtu.v is built with BEAT_REG = 1: its beat pins take the next cycle's beat (routed by
+        // membus_if in this cycle), registered at this edge as membus_if's response register.
         m.beat_valid_i = 0;
-        if (beat_now_.valid && beat_now_.rtu == u.index) {
-          m.beat_valid_i = uint8_t(1u << beat_now_.port);
-          m.beat_tag_i = static_cast<std::remove_reference_t<decltype(m.beat_tag_i)>>(beat_now_.tag);
-          m.beat_idx_i = static_cast<std::remove_reference_t<decltype(m.beat_idx_i)>>(beat_now_.index);
-          m.beat_last_i = beat_now_.last;
-          vl::set_bytes(m.beat_data_i, 0, cfg_.mem_bandwidth, beat_now_.data.data());
+        if (beat_next_.valid && beat_next_.rtu == u.index) {
+          m.beat_valid_i = uint8_t(1u << beat_next_.port);
+          m.beat_tag_i = static_cast<std::remove_reference_t<decltype(m.beat_tag_i)>>(beat_next_.tag);
+          m.beat_idx_i = static_cast<std::remove_reference_t<decltype(m.beat_idx_i)>>(beat_next_.index);
+          m.beat_last_i = beat_next_.last;
+          vl::set_bytes(m.beat_data_i, 0, cfg_.mem_bandwidth, beat_next_.data.data());
         }
         m.eval();
         if (m.px_valid_o) leave(u, now);
@@ -139,6 +157,8 @@ class RtuRtlRunner {
         throw std::runtime_error(name_ + ": no ray retired in " + std::to_string(kHangCycles) +
                                  " cycles (cycle " + std::to_string(now) + ")");
     }
+    if (pxf_) std::fclose(pxf_);
+    pxf_ = nullptr;
     res.clocked = now + 1;
     res.cycles = fc_.last_retire + 1;
     for (auto& up : rtus_) {
@@ -270,6 +290,37 @@ class RtuRtlRunner {
     m.eval();
   }
 
+  // RAYCORE_CHIP_DUMP=<prefix>: the frame as tb/rtl/tb_chip.v runs it on chip.v (tb/rtl/run_chip.sh):
+  // <prefix>.regs the frame registers (RTU 0's pins, tb_chip.v's order) and the image's regions,
+  // <prefix>.img the memory image (a byte per line, $readmemh), and later <prefix>.px every ray
+  // leaving a hit unit: its pixel, kind and best record (the frame's, to compare as a set).
+  void dump_chip(const std::string& prefix) {
+    auto open = [&](const char* ext) {
+      FILE* f = std::fopen((prefix + ext).c_str(), "w");
+      if (!f) throw std::runtime_error("RAYCORE_CHIP_DUMP: cannot write " + prefix + ext);
+      return f;
+    };
+    M& m = rtus_[0]->m;
+    FILE* f = open(".regs");
+    put_hex(f, m.cam_i); put_hex(f, m.box_i); put_hex(f, m.light_i); put_hex(f, m.vtu_cam_i);
+    put_hex(f, m.width_i); put_hex(f, m.height_i); put_hex(f, m.rtus_i); put_hex(f, m.slots_i);
+    put_hex(f, m.tmin_i); put_hex(f, m.trv_lat_i); put_hex(f, m.node_hl_i); put_hex(f, m.list_hl_i);
+    put_hex(f, m.pipes_i); put_hex(f, m.fuse_i); put_hex(f, m.any_hit_i); put_hex(f, m.empty_i);
+    put_hex(f, m.depth_i); put_hex(f, m.widen_i); put_hex(f, m.eps_i); put_hex(f, m.one_eps_i);
+    put_hex(f, m.qcap_i); put_hex(f, m.tri_hl_i); put_hex(f, m.ist_units_i); put_hex(f, m.strategy_i);
+    put_hex(f, m.segment_i); put_hex(f, m.all_i); put_hex(f, m.back_i); put_hex(f, m.scale_i);
+    put_hex(f, m.fixed_i); put_hex(f, m.slab_scale_i); put_hex(f, m.vtu_on_i);
+    put_hex(f, m.node_count_i); put_hex(f, m.tri_count_i);
+    for (uint64_t b : base_) put_hex(f, b);
+    put_hex(f, uint64_t(image_->size()));
+    std::fprintf(f, "\n");
+    std::fclose(f);
+    f = open(".img");
+    for (uint8_t b : *image_) std::fprintf(f, "%02x\n", b);
+    std::fclose(f);
+    pxf_ = open(".px");
+  }
+
   // The ray leaving RTU u's hit unit in cycle now: the frame buffer's pixel write.
   void leave(Unit& u, Cycle now) {
     M& m = u.m;
@@ -288,6 +339,11 @@ class RtuRtlRunner {
     if (spawn != bool(m.px_spawn_o))
       throw std::logic_error("--rtl rtu: pixel " + std::to_string(pixel) +
                              ": the RTL's spawn decision differs from the frame buffer's");
+    if (pxf_) {
+      std::fprintf(pxf_, "%x %x", pixel, unsigned(m.px_shadow_o));
+      put_hex(pxf_, m.px_best_o);
+      std::fprintf(pxf_, "\n");
+    }
     ++fc_.retired;
     fc_.last_retire = std::max(fc_.last_retire, now);
   }
@@ -344,8 +400,10 @@ class RtuRtlRunner {
   std::array<uint64_t, 3> base_{};
   std::array<uint32_t, 3> line_{};
   std::vector<double> cos_;  // per pixel: its primary's cosine, for the shadow ray's shade
-  Beat beat_now_, beat_next_;
+  Beat beat_next_;  // the beat membus_if routed in this cycle, for the next
   Cycle now_ = 0;
+  FILE* pxf_ = nullptr;
+  const std::vector<uint8_t>* image_ = nullptr;
   unsigned mb_ = 1;  // MSHR tag bits (rtu.v's MB_)
 };
 

@@ -106,6 +106,11 @@ module ist_unit #(
   reg [31:0]          q_ready [0:QN-1];
   reg [QBITS-1:0]     head_q;
   reg [QBITS:0]       cnt_q;
+  // Queue position a + b, modulo the queue. An index of its own width: the tools disagree on the
+  // width of an array index like `q[head_q + b]` (Verilator wraps it, Icarus does not).
+  function automatic [QBITS-1:0] qat(input [QBITS-1:0] a, input [QBITS-1:0] b);
+    qat = a + b;
+  endfunction
 
   assign head_valid_o = (cnt_q != {(QBITS+1){1'b0}});
   assign head_ready_o = q_ready[head_q];
@@ -274,18 +279,18 @@ module ist_unit #(
       end
       for (b = 0; b < IST; b = b + 1)
         if (miss[b]) begin
-          q_slot[mpos[b*QBITS +: QBITS]]  <= q_slot[head_q + b[QBITS-1:0]];
-          q_pos[mpos[b*QBITS +: QBITS]]   <= q_pos[head_q + b[QBITS-1:0]];
-          q_tri[mpos[b*QBITS +: QBITS]]   <= q_tri[head_q + b[QBITS-1:0]];
+          q_slot[mpos[b*QBITS +: QBITS]]  <= q_slot[qat(head_q, b[QBITS-1:0])];
+          q_pos[mpos[b*QBITS +: QBITS]]   <= q_pos[qat(head_q, b[QBITS-1:0])];
+          q_tri[mpos[b*QBITS +: QBITS]]   <= q_tri[qat(head_q, b[QBITS-1:0])];
           q_ready[mpos[b*QBITS +: QBITS]] <= now_i + 32'd1;
         end
       for (p = 0; p < PIPES; p = p + 1)
         for (j = 0; j < WORDS; j = j + 1)
           if (j < hin_n_i[p*6 +: 6]) begin
-            q_slot[base[p*QBITS +: QBITS] + j[QBITS-1:0]]  <= hin_slot_i[p*SLOT_BITS +: SLOT_BITS];
-            q_pos[base[p*QBITS +: QBITS] + j[QBITS-1:0]]   <= hin_pos_i[p*32 +: 32] + j;
-            q_tri[base[p*QBITS +: QBITS] + j[QBITS-1:0]]   <= hin_words_i[(p*WORDS + j)*32 +: 32];
-            q_ready[base[p*QBITS +: QBITS] + j[QBITS-1:0]] <= hin_ready_i[p*32 +: 32];
+            q_slot[qat(base[p*QBITS +: QBITS], j[QBITS-1:0])]  <= hin_slot_i[p*SLOT_BITS +: SLOT_BITS];
+            q_pos[qat(base[p*QBITS +: QBITS], j[QBITS-1:0])]   <= hin_pos_i[p*32 +: 32] + j;
+            q_tri[qat(base[p*QBITS +: QBITS], j[QBITS-1:0])]   <= hin_words_i[(p*WORDS + j)*32 +: 32];
+            q_ready[qat(base[p*QBITS +: QBITS], j[QBITS-1:0])] <= hin_ready_i[p*32 +: 32];
           end
     end
   end

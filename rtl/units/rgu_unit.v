@@ -97,8 +97,11 @@ module rgu_unit #(
   reg [SLOT_BITS:0]   fresh_q;  // slots 0 .. fresh_q - 1 have been used
   wire                have_fresh = (fresh_q < slots_i);
   wire                have_free  = free_valid_i || (sp_q != {(SLOT_BITS+1){1'b0}}) || have_fresh;
+  // The stack's top entry (sp_q >= 1), an index of its own width: the tools disagree on the width
+  // of an array index like `stk_q[a - 1'b1]` (Verilator wraps it, Icarus does not).
+  wire [SLOT_BITS-1:0] sp_top = sp_q[SLOT_BITS-1:0] - 1'b1;
   wire [SLOT_BITS-1:0] top = free_valid_i ? free_slot_i
-                           : (sp_q != {(SLOT_BITS+1){1'b0}}) ? stk_q[sp_q[SLOT_BITS-1:0] - 1'b1]
+                           : (sp_q != {(SLOT_BITS+1){1'b0}}) ? stk_q[sp_top]
                                                               : fresh_q[SLOT_BITS-1:0];
   assign free_count_o = sp_q + (slots_i - fresh_q);
 

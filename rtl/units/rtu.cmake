@@ -2,7 +2,7 @@
 # vtu_unit with vtu.v). Included by rtl/CMakeLists.txt. Verilated with --cc into the frame's
 # library (raycore_rtl_frame) for `raycore simulate --rtl rtu` (systemc/rtu_rtl.cpp steps one model
 # per RTU from C++, with the Verilated membus_if); one model, FP24 rtz (the default run's format),
-# at rtu.v's parameter defaults = the cycle model's defaults (systemc/config.h SimConfig): STAGES 2,
+# with BEAT_REG = 1 (the host drives the next cycle's beat, see rtu.v), at rtu.v's parameter defaults = the cycle model's defaults (systemc/config.h SimConfig): STAGES 2,
 # 128 slots, 64 stack entries, 4 trv pipes, 2 ist units, 16 list words per read, an ist queue of up
 # to 64, 8 x 8 tiles, caches of 16 / 8 / 32 KB with 4 ways, 64-byte lines and 8 MSHRs.
 # rtl_rtu_variants.h: RAYCORE_RTL_RTU_VARIANT(prefix, fmt, mode, width, stages, slot_bits, pipes,
@@ -24,7 +24,7 @@ if(TARGET raycore_rtl_frame)
       SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/lint/waivers.vlt ${_rtu_sources}
       TOP_MODULE rtu
       PREFIX ${prefix}
-      VERILATOR_ARGS ${RAYCORE_RTL_VERILATOR_ARGS} ${g})
+      VERILATOR_ARGS ${RAYCORE_RTL_VERILATOR_ARGS} ${g} -GBEAT_REG=1)
     string(APPEND _rtu_models "#include \"${prefix}.h\"\n")
     string(APPEND _rtu_lines
       "RAYCORE_RTL_RTU_VARIANT(${prefix}, FP24, ${mode}, 24, 2, 7, 4, 2, 16, 6, 4, 8, 16, 8, 32, 4, "

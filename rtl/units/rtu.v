@@ -30,6 +30,7 @@
 // in flight), 64 stack entries, 4 trv pipes, 2 ist units, 16 list words per read, an ist queue of
 // up to 64 entries, caches of 16 / 8 / 32 KB (4 ways, 64-byte lines, 8 MSHRs each).
 // lint: also SLOT_BITS=4 DEPTH=8 PIPES=2 IST=2 WORDS=4 QBITS=3 NODE_SETS=4 LIST_SETS=2 TRI_SETS=4 WAYS=2 MSHRS=2 NODE_LB=32 LIST_LB=16 TRI_LB=32
+// lint: also SLOT_BITS=4 DEPTH=8 PIPES=2 IST=2 WORDS=4 QBITS=3 NODE_SETS=4 LIST_SETS=2 TRI_SETS=4 WAYS=2 MSHRS=2 NODE_LB=32 LIST_LB=16 TRI_LB=32 BEAT_REG=1
 module rtu #(
   parameter integer EXP_BITS   = 7,
   parameter integer MAN_BITS   = 16,
@@ -57,6 +58,7 @@ module rtu #(
   parameter integer LINE_W     = 26,
   parameter integer BEAT_BYTES = 16,
   parameter integer LEN_BITS   = 12,
+  parameter integer BEAT_REG   = 0,   // 1: beat_*_i is the next cycle's beat, registered here
   // Derived (not to be overridden).
   parameter integer W_     = 1 + EXP_BITS + MAN_BITS,
   parameter integer CB_    = (W_ <= 24) ? 3 : 4,
@@ -112,7 +114,7 @@ module rtu #(
   input  wire [2:0]                  req_ready_i,
   output wire [3*LINE_W-1:0]         req_line_o,    // line index within the cache's region
   output wire [3*MB_-1:0]            req_tag_o,     // the MSHR
-  input  wire [2:0]                  beat_valid_i,  // one-hot by cache
+  input  wire [2:0]                  beat_valid_i,  // one-hot by cache (BEAT_REG: next cycle's)
   input  wire [MB_-1:0]              beat_tag_i,
   input  wire [LEN_BITS-1:0]         beat_idx_i,
   input  wire                        beat_last_i,
@@ -420,6 +422,42 @@ module rtu #(
   assign px_ray_o    = h_ray;
 
   // ---- the fill path ----------------------------------------------------------------------------
+  // The beat the fill path takes in this cycle. In the chip it comes from membus_if's response
+  // register (chip.v, BEAT_REG = 0). A host that steps rtu.v alone (systemc/rtu_rtl.cpp) sets
+  // BEAT_REG = 1 and drives the next cycle's beat, registered here: the same beat in the same
+  // cycle, from flip-flops as in the chip. Needed for Verilator 5.006: with the beat a top-level
+  // input, the fill reaches the trv's cache accesses chained through the caches' ports (the
+  // UNOPTFLAT of rtl/lint/waivers.vlt) in its input region, where the --cc model settled that
+  // chain differently from Icarus and from the same RTL Verilated with the beat from a register
+  // (a list-cache miss at cycle 6,303 of corridor 20x12, VTU off, that the others do not take).
+  wire [2:0]            b_valid;
+  wire [MB_-1:0]        b_tag;
+  wire [LEN_BITS-1:0]   b_idx;
+  wire                  b_last;
+  wire [8*BEAT_BYTES-1:0] b_data;
+  generate
+    if (BEAT_REG != 0) begin : g_beat_reg
+      reg [2:0]            bv_q;
+      reg [MB_-1:0]        bt_q;
+      reg [LEN_BITS-1:0]   bi_q;
+      reg                  bl_q;
+      reg [8*BEAT_BYTES-1:0] bd_q;
+      always @(posedge clk_i or negedge rst_ni) begin
+        if (!rst_ni) bv_q <= 3'b000;
+        else         bv_q <= beat_valid_i;
+      end
+      always @(posedge clk_i) begin
+        bt_q <= beat_tag_i;
+        bi_q <= beat_idx_i;
+        bl_q <= beat_last_i;
+        bd_q <= beat_data_i;
+      end
+      assign {b_valid, b_tag, b_idx, b_last, b_data} = {bv_q, bt_q, bi_q, bl_q, bd_q};
+    end else begin : g_beat_in
+      assign {b_valid, b_tag, b_idx, b_last, b_data} =
+          {beat_valid_i, beat_tag_i, beat_idx_i, beat_last_i, beat_data_i};
+    end
+  endgenerate
   wire [63:0] c_vtu_busy;
   wire        v_busy;
   vtu_unit #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE),
@@ -430,8 +468,8 @@ module rtu #(
     .cam_x_i(vtu_cam_i[0 +: W]), .cam_y_i(vtu_cam_i[W +: W]), .cam_z_i(vtu_cam_i[2*W +: W]),
     .node_count_i(node_count_i), .tri_count_i(tri_count_i),
     .req_take_i(req_valid_o & req_ready_i), .req_line_i(req_line_o), .req_tag_i(req_tag_o),
-    .beat_valid_i(beat_valid_i), .beat_tag_i(beat_tag_i), .beat_idx_i(beat_idx_i),
-    .beat_last_i(beat_last_i), .beat_data_i(beat_data_i),
+    .beat_valid_i(b_valid), .beat_tag_i(b_tag), .beat_idx_i(b_idx),
+    .beat_last_i(b_last), .beat_data_i(b_data),
     .fill_valid_o(fill_valid), .fill_tag_o(fill_tag), .fill_data_o(fill_data),
     .cnt_busy_o(c_vtu_busy), .busy_o(v_busy));
   wire unused_vtu = ^{v_busy, fill_data};  // a cache's line may be narrower than the widest

@@ -1,0 +1,61 @@
+#!/usr/bin/env bash
+# tb/rtl/run_chip.sh - a whole frame on chip.v (make chip): the chip top with its membus_if and one
+# RTU, closed-loop with tb_chip.v's memory, against the transaction model.
+#   1. `raycore simulate <frame> --rtl rtu` with RAYCORE_CHIP_DUMP: the frame's registers, the
+#      image and the frame's rays (pixel, kind, best record: bit-exact with the golden tracer);
+#   2. the transaction model of the same frame: its cycles;
+#   3. tb/rtl/tb_chip.v on chip.v, built with `verilator --binary --timing` (SIM=icarus: iverilog,
+#      about 30 cycles/s): passes only if its cycles are the model's and its rays the frame's.
+# Usage: run_chip.sh <raycore binary> <work dir> [simulate options; default corridor 20x12, VTU off]
+# The frame must fit chip.v's build: one RTU, --l2-kb 0, the model's defaults otherwise, FP24 rtz.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/../.." && pwd)
+raycore=$1 work=$2
+shift 2
+[ $# -gt 0 ] || set -- corridor --width 20 --height 12 --vtu off
+mkdir -p "$work"
+frame=("$@" --rtus 1 --l2-kb 0 --no-reference)
+lat=100
+for ((i = 1; i <= $#; i++)); do [ "${!i}" = --mem-latency ] && { j=$((i + 1)); lat=${!j}; }; done
+
+cycles_of() { sed -n 's/^hardware *\([0-9]*\) cycles.*/\1/p' "$1"; }
+RAYCORE_CHIP_DUMP="$work/frame" "$raycore" simulate "${frame[@]}" --rtl rtu > "$work/rtu.log"
+"$raycore" simulate "${frame[@]}" > "$work/model.log"
+model=$(cycles_of "$work/model.log")
+rtu=$(cycles_of "$work/rtu.log")
+grep -q '^golden *match' "$work/rtu.log" || { echo "run_chip: --rtl rtu frame is not golden" >&2; exit 1; }
+img=$(wc -l < "$work/frame.img")
+
+mapfile -t srcs < <(
+  for m in fp_pipe fp_round fp_add fp_add3 fp_mul fp_div fp_sqrt fp_rcp fp_cmp fp_op2_nt fp_add3_nt fp_cmp_nt; do
+    echo "$root/rtl/fp/$m.v"; done
+  for m in spawn_ops hit rgu_walk rgu_ray rgu rgu_unit trv trv_pass trv_unit ist ist_unit hit_unit \
+           ascache_ram ascache_victim ascache_touch ascache vtu vtu_unit slot_ram rtu membus_if chip; do
+    echo "$root/rtl/units/$m.v"; done)
+defs=(-DDUMP="\"$work/frame\"" -DIMG="$img" -DLAT="$lat")
+start=$(date +%s)
+if [ "${SIM:-verilator}" = icarus ]; then
+  iverilog -g2005 -Wno-timescale "${defs[@]}" -o "$work/tb_chip.vvp" -s tb_chip "${srcs[@]}" \
+    "$root/tb/rtl/tb_chip.v"
+  vvp -n "$work/tb_chip.vvp" > "$work/chip.log"
+else
+  # The build is cached by the sources' and defines' hash (the image size is a define).
+  key=$(cat "${srcs[@]}" "$root/tb/rtl/tb_chip.v" <(echo "${defs[@]}") | sha1sum | cut -c1-12)
+  if [ ! -x "$work/obj_$key/tb_chip" ]; then
+    verilator --binary --timing -Wno-fatal -Wno-lint -Wno-style --default-language 1364-2005 -O3 \
+      --x-assign fast --x-initial unique "${defs[@]}" --Mdir "$work/obj_$key" -o tb_chip \
+      --top-module tb_chip "$root/rtl/lint/waivers.vlt" "${srcs[@]}" "$root/tb/rtl/tb_chip.v" \
+      -j "${JOBS:-2}" > "$work/verilator.log" 2>&1 ||
+      { tail -20 "$work/verilator.log" >&2; exit 1; }
+  fi
+  "$work/obj_$key/tb_chip" > "$work/chip.log"
+fi
+secs=$(( $(date +%s) - start ))
+line=$(grep '^RESULT ' "$work/chip.log" || true)
+chip=$(sed -n 's/^RESULT cycles=\([0-9]*\).*/\1/p' <<<"$line")
+norm() { awk '{ for (i = 1; i <= 3; i++) { sub(/^0+/, "", $i); if ($i == "") $i = "0" } print }' "$1" | sort; }
+same=no
+cmp -s <(norm "$work/frame.px") <(norm "$work/frame.chip.px") && same=yes
+echo "run_chip: ${*}: model $model cycles, --rtl rtu $rtu, chip.v (${SIM:-verilator}, ${secs} s) ${chip:-none};" \
+     "rays $(wc -l < "$work/frame.chip.px") of $(wc -l < "$work/frame.px"), equal: $same"
+[ -n "$chip" ] && [ "$chip" = "$model" ] && [ "$same" = yes ]
