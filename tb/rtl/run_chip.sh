@@ -26,12 +26,10 @@ rtu=$(cycles_of "$work/rtu.log")
 grep -q '^golden *match' "$work/rtu.log" || { echo "run_chip: --rtl rtu frame is not golden" >&2; exit 1; }
 img=$(wc -l < "$work/frame.img")
 
-mapfile -t srcs < <(
-  for m in fp_pipe fp_round fp_add fp_add3 fp_mul fp_div fp_sqrt fp_rcp fp_cmp fp_op2_nt fp_add3_nt fp_cmp_nt; do
-    echo "$root/rtl/fp/$m.v"; done
-  for m in spawn_ops hit rgu_walk rgu_ray rgu rgu_unit trv trv_pass trv_unit ist ist_unit hit_unit \
-           ascache_ram ascache_victim ascache_touch ascache vtu vtu_unit slot_ram rtu membus_if chip; do
-    echo "$root/rtl/units/$m.v"; done)
+# chip.v's sources, as rtl/units/rtu.cmake lists them (written at configure time beside raycore's build).
+list=$(dirname "$raycore")/../rtl/chip_sources.txt
+[ -f "$list" ] || { echo "run_chip: $list not found (configure with RAYCORE_RTL=ON)" >&2; exit 1; }
+mapfile -t srcs < "$list"
 defs=(-DDUMP="\"$work/frame\"" -DIMG="$img" -DLAT="$lat")
 start=$(date +%s)
 if [ "${SIM:-verilator}" = icarus ]; then

@@ -815,6 +815,7 @@ void expect_rtu_rtl(const scenes::Scene& s, const sim::TraceConfig& tc, sc::SimC
   const Summary p = expect_match(s, tc, cfg);
   expect_same_counts(model, p, what);
   EXPECT_EQ(p.issued, model.issued) << what;
+  EXPECT_EQ(p.primary, model.primary) << what;
   EXPECT_EQ(p.shadow, model.shadow) << what;
   EXPECT_EQ(p.retired, model.retired) << what;
 }
