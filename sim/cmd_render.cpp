@@ -42,7 +42,7 @@ void run_render(const sim::RunOptions& o) {
   sim::FrameErrors fe;
   const bool have_ref = o.reference && !p.scene.tris.empty();
   if (have_ref) {
-    fe = sim::measure_errors(f, p.scene, p.image, cfg.anchor, cfg.threads);
+    fe = sim::measure_errors(f, p.scene, p.image, cfg);
     sim::add_errors_json(j, fe, cfg.spawn.any_hit);
   }
   std::filesystem::create_directories(std::filesystem::path(png).parent_path().empty()

@@ -55,7 +55,7 @@ void run_simulate(const sim::RunOptions& o, const sc::SimOptions& so) {
   sim::FrameErrors fe;
   const bool have_ref = o.reference && !p.scene.tris.empty();
   if (have_ref) {
-    fe = sim::measure_errors(r.frame, p.scene, p.image, cfg.anchor, cfg.threads);
+    fe = sim::measure_errors(r.frame, p.scene, p.image, cfg);
     sim::add_errors_json(j, fe, cfg.spawn.any_hit);
   }
   make_parent(png);

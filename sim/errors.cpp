@@ -1,54 +1,68 @@
 // sim/errors.cpp - see errors.h.
 #include "sim/errors.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
 #include "hls/ist.h"
+#include "hls/vtu.h"
 #include "hls/wald.h"
 #include "sim/reference/reference.h"
 
 namespace raycore::sim {
 
-scenes::Scene stored_scene(const scenes::Scene& scene, const hls::Image& image, const hls::Vec3& anchor) {
-  if (image.vtu_applied()) throw std::invalid_argument("stored_scene: the image is VTU-translated");
+namespace {
+
+// The triangles of `image`'s records (each recovered from its Wald constants taken as exact
+// numbers), plus `offset` (in long double), into s.tris by scene index.
+template <class A>
+void records_to_tris(scenes::Scene& s, const scenes::Scene& scene, const hls::Image& image, const hls::Vec3& offset) {
+  using F = typename A::Fmt;
   if (image.tri_count() != scene.tris.size())
     throw std::invalid_argument("stored_scene: the image has " + std::to_string(image.tri_count()) +
                                 " triangle records, the scene " + std::to_string(scene.tris.size()));
+  auto ld = [](uint32_t x) { return static_cast<long double>(A::to_double(x)); };
+  for (uint32_t i = 0; i < image.tri_count(); ++i) {
+    const hls::WaldTri<F> w = hls::decode_tri<F>(image.tri(i));
+    if (w.id >= s.tris.size()) throw std::invalid_argument("stored_scene: record id out of range");
+    hls::Tri& t = s.tris[w.id];
+    const hls::Vec3 fallback = scene.tris[w.id][0];
+    const long double nu = ld(w.c[hls::kNU]), nv = ld(w.c[hls::kNV]), nd = ld(w.c[hls::kND]);
+    const long double bu = ld(w.c[hls::kBNU]), bv = ld(w.c[hls::kBNV]), bd = ld(w.c[hls::kBD]);
+    const long double cu = ld(w.c[hls::kCNU]), cv = ld(w.c[hls::kCNV]), cd = ld(w.c[hls::kCD]);
+    const long double det = bu * cv - bv * cu;
+    if (w.degenerate() || det == 0 || !std::isfinite(double(det))) {
+      t = {fallback, fallback, fallback};
+      continue;
+    }
+    const int k = int(w.k), a_u = (k + 1) % 3, a_v = (k + 2) % 3;
+    // beta = bu u + bv v + bd, gamma = cu u + cv v + cd: vertex A at (0, 0), B at (1, 0), C at (0, 1).
+    const long double bg[3][2] = {{0, 0}, {1, 0}, {0, 1}};
+    for (int j = 0; j < 3; ++j) {
+      const long double rb = bg[j][0] - bd, rg = bg[j][1] - cd;
+      const long double u = (rb * cv - bv * rg) / det, v = (bu * rg - rb * cu) / det;
+      hls::Vec3 p;
+      p[k] = double(nd - nu * u - nv * v + static_cast<long double>(offset[k]));
+      p[a_u] = double(u + static_cast<long double>(offset[a_u]));
+      p[a_v] = double(v + static_cast<long double>(offset[a_v]));
+      t[size_t(j)] = p;
+    }
+  }
+}
+
+}  // namespace
+
+scenes::Scene stored_scene(const scenes::Scene& scene, const hls::Image& image, const hls::Vec3& anchor) {
+  if (image.vtu_applied()) throw std::invalid_argument("stored_scene: the image is VTU-translated");
   scenes::Scene s = scene;
   hls::visit_format(image.format(), image.rounding(), [&](auto fmt, auto rnd) {
-    using F = decltype(fmt);
-    using A = hls::Arith<F, decltype(rnd)::value>;
-    auto ld = [](uint32_t x) { return static_cast<long double>(A::to_double(x)); };
-    for (uint32_t i = 0; i < image.tri_count(); ++i) {
-      const hls::WaldTri<F> w = hls::decode_tri<F>(image.tri(i));
-      if (w.id >= s.tris.size()) throw std::invalid_argument("stored_scene: record id out of range");
-      hls::Tri& t = s.tris[w.id];
-      const hls::Vec3 fallback = scene.tris[w.id][0];
-      const long double nu = ld(w.c[hls::kNU]), nv = ld(w.c[hls::kNV]), nd = ld(w.c[hls::kND]);
-      const long double bu = ld(w.c[hls::kBNU]), bv = ld(w.c[hls::kBNV]), bd = ld(w.c[hls::kBD]);
-      const long double cu = ld(w.c[hls::kCNU]), cv = ld(w.c[hls::kCNV]), cd = ld(w.c[hls::kCD]);
-      const long double det = bu * cv - bv * cu;
-      if (w.degenerate() || det == 0 || !std::isfinite(double(det))) {
-        t = {fallback, fallback, fallback};
-        continue;
-      }
-      const int k = int(w.k), a_u = (k + 1) % 3, a_v = (k + 2) % 3;
-      // beta = bu u + bv v + bd, gamma = cu u + cv v + cd: vertex A at (0, 0), B at (1, 0), C at (0, 1).
-      const long double bg[3][2] = {{0, 0}, {1, 0}, {0, 1}};
-      for (int j = 0; j < 3; ++j) {
-        const long double rb = bg[j][0] - bd, rg = bg[j][1] - cd;
-        const long double u = (rb * cv - bv * rg) / det, v = (bu * rg - rb * cu) / det;
-        hls::Vec3 p;
-        p[k] = double(nd - nu * u - nv * v + static_cast<long double>(anchor[k]));
-        p[a_u] = double(u + static_cast<long double>(anchor[a_u]));
-        p[a_v] = double(v + static_cast<long double>(anchor[a_v]));
-        t[size_t(j)] = p;
-      }
-    }
+    using A = hls::Arith<decltype(fmt), decltype(rnd)::value>;
+    records_to_tris<A>(s, scene, image, anchor);
     for (int i = 0; i < 3; ++i) {
       s.camera.position[i] = anchor[i] + A::to_double(A::from_double(scene.camera.position[i] - anchor[i]));
       s.light.position[i] = anchor[i] + A::to_double(A::from_double(scene.light.position[i] - anchor[i]));
@@ -56,6 +70,201 @@ scenes::Scene stored_scene(const scenes::Scene& scene, const hls::Image& image, 
   });
   s.name = scene.name + " (stored)";
   return s;
+}
+
+scenes::Scene datapath_scene(const scenes::Scene& scene, const hls::Image& image, const TraceConfig& cfg) {
+  if (image.vtu_applied()) throw std::invalid_argument("datapath_scene: the image is VTU-translated already");
+  if (!cfg.vtu) return stored_scene(scene, image, cfg.anchor);
+  scenes::Scene s = scene;
+  hls::visit_format(image.format(), image.rounding(), [&](auto fmt, auto rnd) {
+    using F = decltype(fmt);
+    constexpr hls::Rounding R = decltype(rnd)::value;
+    using A = hls::Arith<F, R>;
+    const auto setup = hls::FrameSetup<F, R>::make(scene.camera.position, scene.light.position, true, cfg.anchor);
+    const hls::Vec3 offset{setup.offset[0], setup.offset[1], setup.offset[2]};
+    records_to_tris<A>(s, scene, hls::transform_image(image, setup.vtu), offset);
+    for (int i = 0; i < 3; ++i) {
+      s.camera.position[i] = offset[i] + A::to_double(setup.origin[i]);
+      s.light.position[i] = offset[i] + A::to_double(setup.light[i]);
+    }
+  });
+  s.name = scene.name + " (datapath)";
+  return s;
+}
+
+namespace {
+
+using reference::PixelError;
+
+// A shadow ray's filter: skips the triangle the hardware skips (skip-origin and the strategies
+// built on it).
+class SkipOne final : public reference::HitFilter {
+ public:
+  explicit SkipOne(int32_t id) : id_(id) {}
+  bool skip(int32_t tri) const override { return tri == id_; }
+
+ private:
+  int32_t id_;
+};
+
+// The exact trace of a primary ray over (tmin, tmax) against `ref`'s scene, the exact shadow test
+// from its hit point (as Reference::trace, with the ray's interval).
+PixelResult exact_pixel(const reference::Reference& ref, const reference::Ray& ray, double tmin, double tmax) {
+  PixelResult px;
+  const reference::TriHit h = ref.closest(ray, tmin, tmax);
+  if (h.tri < 0) return px;
+  px.tri = h.tri;
+  px.t = h.t;
+  px.hit = ref.hit_point(h);
+  const reference::ShadowResult s = ref.shadow(ray.org, h);
+  px.front = px.shadow_ray = s.shadow_ray;
+  px.lit = s.lit;
+  px.shadow_tri = s.shadow_tri;
+  return px;
+}
+
+// Where `ray` meets the plane of triangle `tri` (exact inputs, long double: ~2^-64 relative), as
+// barycentrics of that triangle (outside [0, 1] when the point is off it). False if the plane is
+// degenerate or the ray parallel to it.
+bool plane_hit(const reference::Reference& ref, const reference::Ray& ray, int32_t tri, reference::TriHit* h) {
+  using LD = long double;
+  const hls::Tri& t = ref.bvh().triangle(tri);
+  LD v0[3], e1[3], e2[3], o[3], d[3];
+  for (int i = 0; i < 3; ++i) {
+    v0[i] = t[0][i];
+    e1[i] = LD(t[1][i]) - v0[i];
+    e2[i] = LD(t[2][i]) - v0[i];
+    o[i] = ray.org[i];
+    d[i] = ray.dir[i];
+  }
+  const LD n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+  const LD den = n[0] * d[0] + n[1] * d[1] + n[2] * d[2];
+  if (den == 0) return false;
+  const LD tt = (n[0] * (v0[0] - o[0]) + n[1] * (v0[1] - o[1]) + n[2] * (v0[2] - o[2])) / den;
+  int k = 0;
+  if (std::fabs(n[1]) > std::fabs(n[k])) k = 1;
+  if (std::fabs(n[2]) > std::fabs(n[k])) k = 2;
+  const int u = (k + 1) % 3, v = (k + 2) % 3;
+  const LD pu = o[u] + tt * d[u] - v0[u], pv = o[v] + tt * d[v] - v0[v];
+  const LD det = e1[u] * e2[v] - e1[v] * e2[u];
+  if (det == 0 || !std::isfinite(double(tt))) return false;
+  const LD b1 = (pu * e2[v] - pv * e2[u]) / det, b2 = (e1[u] * pv - e1[v] * pu) / det;
+  h->tri = tri;
+  h->t = double(tt);
+  h->b1 = double(b1);
+  h->b2 = double(b2);
+  h->b0 = double(1 - b1 - b2);
+  return true;
+}
+
+}  // namespace
+
+StageBudget stage_budget(const Frame& f, const scenes::Scene& scene, const hls::Image& image,
+                         const TraceConfig& cfg, const Frame& ref, const Frame& ref_stored,
+                         const reference::Reference& stored, const reference::Reference* datapath) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const size_t n = size_t(f.width) * size_t(f.height);
+  if (ref.width != f.width || ref.height != f.height || ref_stored.width != f.width ||
+      ref_stored.height != f.height || f.px.size() != n || ref.px.size() != n || ref_stored.px.size() != n)
+    throw std::invalid_argument("stage_budget: the frames differ in size");
+  if (cfg.width != f.width || cfg.height != f.height)
+    throw std::invalid_argument("stage_budget: the frame is not of the configuration's size");
+  StageBudget b;
+  b.pixel.assign(n, Stage::none);
+  std::vector<size_t> err;
+  for (size_t i = 0; i < n; ++i)
+    if (reference::classify_pixel(f.px[i], ref.px[i]) != PixelError::none) err.push_back(i);
+  const HardwareRays rays(image, scene.camera, scene.light, cfg);
+  auto departs = [&](const PixelResult& p, size_t i) {
+    return reference::classify_pixel(p, ref.px[i]) != PixelError::none;
+  };
+  // One error pixel: the first partial pipeline that is an error against P0 (and, for
+  // traversal_intersection with the VTU on, whether the exact trace of the same ray against the
+  // datapath's geometry already departs: vtu set).
+  auto charge = [&](size_t i, bool& vtu) -> Stage {
+    const PixelResult& hw = f.px[i];
+    if (departs(ref_stored.px[i], i)) return Stage::storage;  // P1
+    const int x = int(i % size_t(f.width)), y = int(i / size_t(f.width));
+    const PixelRays r = rays.pixel(x, y, hw);
+    const reference::Ray primary{r.org, r.dir};
+    const PixelResult p2 = exact_pixel(stored, primary, r.tmin, r.tmax);  // P2
+    if (departs(p2, i)) return Stage::ray_generation;
+    PixelResult p3;  // P3: the hardware's hit, the exact shadow from its exact point
+    if (hw.tri >= 0) {
+      p3 = p2;
+      p3.tri = hw.tri;
+      p3.t = hw.t;
+      if (p2.tri != hw.tri) {
+        p3.front = p3.shadow_ray = p3.lit = false;
+        p3.shadow_tri = -1;
+        reference::TriHit h;
+        if (plane_hit(stored, primary, hw.tri, &h)) {
+          const reference::ShadowResult s = stored.shadow(primary.org, h);
+          p3.front = p3.shadow_ray = s.shadow_ray;
+          p3.lit = s.lit;
+          p3.shadow_tri = s.shadow_tri;
+        }
+      }
+    }
+    if (departs(p3, i)) {
+      vtu = datapath && departs(exact_pixel(*datapath, primary, r.tmin, r.tmax), i);
+      return Stage::traversal_primary;
+    }
+    // P4: the hardware's shadow ray traced exactly.
+    auto shadow_traced = [&](const reference::Reference& scene_ref) {
+      PixelResult p4 = hw;
+      p4.lit = false;
+      p4.shadow_tri = -1;
+      if (r.shadow) {
+        const SkipOne skip(r.shadow_skip);
+        const reference::TriHit occ = scene_ref.closest(reference::Ray{r.shadow_org, r.shadow_dir}, r.shadow_tmin,
+                                                        r.shadow_tmax, r.shadow_skip >= 0 ? &skip : nullptr);
+        p4.lit = r.front && occ.tri < 0;
+        p4.shadow_tri = occ.tri;
+      }
+      return p4;
+    };
+    if (departs(shadow_traced(stored), i)) return Stage::spawn;
+    vtu = datapath && departs(shadow_traced(*datapath), i);
+    return Stage::traversal_shadow;  // P5: the hardware frame, an error
+  };
+  std::vector<Stage> st(err.size());
+  std::vector<uint8_t> by_vtu(err.size(), 0);
+  constexpr int kChunk = 64;
+  const int chunks = int((err.size() + kChunk - 1) / kChunk);
+  if (chunks > 0)
+    reference::parallel_rows(chunks, cfg.threads, [&](int c) {
+      for (size_t j = size_t(c) * kChunk; j < std::min(err.size(), size_t(c + 1) * kChunk); ++j) {
+        bool vtu = false;
+        st[j] = charge(err[j], vtu);
+        by_vtu[j] = vtu;
+      }
+    });
+  for (size_t j = 0; j < err.size(); ++j) {
+    const size_t i = err[j];
+    b.pixel[i] = st[j];
+    const bool primary = reference::is_primary_error(reference::classify_pixel(f.px[i], ref.px[i]));
+    (primary ? b.primary_errors : b.shadow_errors)++;
+    StageCount* c = nullptr;
+    switch (st[j]) {
+      case Stage::storage: c = &b.storage; break;
+      case Stage::ray_generation: c = &b.ray_generation; break;
+      case Stage::traversal_primary:
+        c = &b.traversal_intersection;
+        if (!primary) ++b.traversal_shadow_by_primary_ray;
+        break;
+      case Stage::spawn: c = &b.spawn; break;
+      case Stage::traversal_shadow:
+        c = &b.traversal_intersection;
+        ++b.traversal_shadow_by_shadow_ray;
+        break;
+      case Stage::none: throw std::logic_error("stage_budget: an error pixel without a stage");
+    }
+    (primary ? c->primary : c->shadow)++;
+    if (by_vtu[j]) (primary ? b.traversal_vtu_primary : b.traversal_vtu_shadow)++;
+  }
+  b.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return b;
 }
 
 FrameErrors measure_errors(const Frame& f, const scenes::Scene& scene, const hls::Image& image,
@@ -71,6 +280,52 @@ FrameErrors measure_errors(const Frame& f, const scenes::Scene& scene, const hls
   return e;
 }
 
+FrameErrors measure_errors(const Frame& f, const scenes::Scene& scene, const hls::Image& image,
+                           const TraceConfig& cfg) {
+  const auto t0 = std::chrono::steady_clock::now();
+  FrameErrors e;
+  const Frame ref = reference::render(scene, f.width, f.height, cfg.threads);
+  e.total = reference::compute_errors(f, ref, scene.tris);
+  const scenes::Scene st = stored_scene(scene, image, cfg.anchor);
+  const reference::Reference stored(st);
+  const Frame ref_st = stored.render(f.width, f.height, cfg.threads);
+  e.stored = reference::compute_errors(f, ref_st, st.tris);
+  try {
+    std::unique_ptr<reference::Reference> datapath;
+    if (cfg.vtu) datapath = std::make_unique<reference::Reference>(datapath_scene(scene, image, cfg));
+    e.stages = stage_budget(f, scene, image, cfg, ref, ref_st, stored, datapath.get());
+    e.has_stages = true;
+  } catch (const std::runtime_error& x) {  // a frame that is not the golden tracer's (simulate reports it)
+    e.stages_note = x.what();
+  }
+  if (e.has_stages &&
+      (e.stages.primary_errors != e.total.primary_errors || e.stages.shadow_errors != e.total.shadow_errors))
+    throw std::logic_error("stage_budget: the stages do not add up to the totals");
+  e.reference_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return e;
+}
+
+nlohmann::json stages_json(const StageBudget& b) {
+  auto c = [](const StageCount& s) {
+    return nlohmann::json{{"primary", s.primary}, {"shadow", s.shadow}, {"total", s.total()}};
+  };
+  nlohmann::json j;
+  j["order"] = {"storage", "ray_generation", "traversal_intersection", "spawn"};
+  j["storage"] = c(b.storage);
+  j["ray_generation"] = c(b.ray_generation);
+  j["traversal_intersection"] = c(b.traversal_intersection);
+  j["traversal_intersection"]["shadow_by_primary_ray"] = b.traversal_shadow_by_primary_ray;
+  j["traversal_intersection"]["shadow_by_shadow_ray"] = b.traversal_shadow_by_shadow_ray;
+  j["traversal_intersection"]["vtu_primary"] = b.traversal_vtu_primary;
+  j["traversal_intersection"]["vtu_shadow"] = b.traversal_vtu_shadow;
+  j["spawn"] = c(b.spawn);
+  j["primary_errors"] = b.primary_errors;
+  j["shadow_errors"] = b.shadow_errors;
+  j["error_pixels"] = b.primary_errors + b.shadow_errors;
+  j["wall_seconds"] = b.seconds;
+  return j;
+}
+
 void add_errors_json(nlohmann::json& j, const FrameErrors& e, bool any_hit) {
   j["errors"] = reference::to_json(e.total);
   j["errors_stored"] = reference::to_json(e.stored);
@@ -82,6 +337,8 @@ void add_errors_json(nlohmann::json& j, const FrameErrors& e, bool any_hit) {
   j["errors_storage"] = d;
   for (const char* k : {"errors", "errors_stored"})
     j[k]["shadow_hit"] = any_hit ? "any" : "closest";  // what shadow_tri means
+  if (e.has_stages) j["errors_by_stage"] = stages_json(e.stages);
+  if (!e.stages_note.empty()) j["errors_by_stage"] = {{"error", e.stages_note}};
   j["reference"] = {{"wall_seconds", e.reference_seconds}};
 }
 
@@ -96,6 +353,19 @@ void print_errors(const FrameErrors& e, bool any_hit) {
   };
   line("errors    total (vs the scene):      ", e.total);
   line("          arithmetic (vs the stored):", e.stored);
+  if (!e.stages_note.empty()) std::printf("          by stage: not measured (%s)\n", e.stages_note.c_str());
+  if (!e.has_stages) return;
+  const StageBudget& b = e.stages;
+  auto two = [](const StageCount& c) {
+    return std::to_string(c.primary) + " + " + std::to_string(c.shadow);
+  };
+  std::printf("          by stage (primary + shadow):  storage %s, ray generation %s, traversal/intersection "
+              "%s (shadow: %llu by the primary ray's hit, %llu by the shadow ray's; the VTU's geometry "
+              "%llu + %llu), spawn %s\n",
+              two(b.storage).c_str(), two(b.ray_generation).c_str(), two(b.traversal_intersection).c_str(),
+              (unsigned long long)b.traversal_shadow_by_primary_ray,
+              (unsigned long long)b.traversal_shadow_by_shadow_ray, (unsigned long long)b.traversal_vtu_primary,
+              (unsigned long long)b.traversal_vtu_shadow, two(b.spawn).c_str());
 }
 
 }  // namespace raycore::sim

@@ -15,12 +15,17 @@
 // The primary rays are scenes::primary_direction's in both (the reference's own rays).
 #pragma once
 
+#include <string>
+#include <vector>
+
 #include <nlohmann/json.hpp>
 
 #include "hls/image.h"
 #include "scenes/scene.h"
 #include "sim/frame.h"
+#include "sim/golden/golden.h"
 #include "sim/reference/metrics.h"
+#include "sim/reference/reference.h"
 
 namespace raycore::sim {
 
@@ -32,22 +37,113 @@ namespace raycore::sim {
 // recovered vertex (in double), and the registers are rounded relative to it.
 scenes::Scene stored_scene(const scenes::Scene& scene, const hls::Image& image, const hls::Vec3& anchor = {});
 
+// The geometry as the datapath holds it, in world space: with the VTU on, the records translated by
+// the VTU (hls::transform_image) taken as exact numbers plus FrameSetup's offset, the camera at the
+// rays' origin plus the offset, the light register (translated) plus the offset; with it off, the
+// stored scene. The budget traces the hardware's rays exactly against it to tell how much of
+// traversal_intersection the VTU's rounding of the geometry is.
+scenes::Scene datapath_scene(const scenes::Scene& scene, const hls::Image& image, const TraceConfig& cfg);
+
+// ---- error budget by stage (issue 27) -----------------------------------------------------------
+//
+// Every error pixel of the total (`errors`: primary_errors + shadow_errors against the scene) is
+// charged to the first stage of the pipeline at which the hardware's result departs from the exact
+// one. Per pixel, partial pipelines P1..P5 take the hardware's stages up to one point and exact
+// ones after it; each is judged against the exact frame P0 with the same per-pixel metric as the
+// totals (reference::classify_pixel: miss/hit, 1% distance, lit/shadowed where the surface agrees):
+//   P0  the reference: the ideal ray (scenes::primary_direction from the camera) traced exactly
+//       against the scene, the exact shadow test from its exact hit point (the `errors` reference).
+//   P1  the same against the stored scene (stored_scene: the records' constants, the camera and
+//       light registers as exact numbers; the `errors_stored` reference).
+//   P2  the hardware's primary ray (the rgu's origin and direction bit patterns as exact numbers,
+//       its interval t_min .. the format's largest number; sim::HardwareRays) traced exactly
+//       against the stored scene, with the exact shadow test from its exact hit point.
+//   P3  the hardware's primary hit (triangle, t); its shadow by the exact test from the point
+//       where the hardware's primary ray meets that triangle's stored plane (= P2's when the
+//       triangle is P2's).
+//   P4  the hardware's primary hit and light-side decision; its shadow ray as the hit unit spawned
+//       it (origin, direction, interval, skipped triangle) traced exactly against the stored
+//       scene: lit iff the hardware says the light is in front and no triangle is hit.
+//   P5  the hardware frame.
+// The pixel is charged to the first k in 1..5 whose P_k is an error (any kind) against P0:
+//   1 storage, 2 ray_generation, 3 traversal_intersection (the primary ray's), 4 spawn,
+//   5 traversal_intersection (the shadow ray's),
+// and counted as a primary or a shadow error by its kind in the hardware frame. P5 is the
+// hardware frame, so every error pixel is charged exactly once: per kind, the stages sum to the
+// totals. A primary error is always charged at stage 3 or before (P3 has the hardware's primary
+// result). The VTU is not a stage of its own: its rounding of the geometry shows in
+// traversal_intersection (the hardware's hit against the exact trace of its ray on the untranslated
+// stored scene; StageBudget::traversal_vtu_* say how much of it), its rounding of the light in
+// spawn (the shadow ray's direction and length).
+//
+// Why double is wide enough for the "exact" traces: every input is exact in double (format
+// numbers, and their sums with the offset when the anchor is 0; the stored vertices recovered in
+// long double and rounded once, 2^-53 relative), and the reference decides hits with exactly
+// signed edge functions on the sheared vertices and the light side with exact orient3d (the
+// plane point of P3 is solved in long double). What is rounded is the vertices' translation to
+// the ray origin and the shear, a few units of 2^-53 relative to the coordinates, against the
+// format's rounding that the stages measure, 2^-17 (FP24) or 2^-24 (FP32) relative: 2^34 / 2^27
+// times finer. So only a ray passing within a few 2^-53 of the coordinates' magnitude of an edge
+// can be decided otherwise than in exact arithmetic (exactly on an edge counts as a hit, for the
+// stored and the hardware's rays alike). The reference's shadow test (P0..P3) ignores occluders
+// within twice its hit point's error bound (reference.h: ~1e-15 relative; by 1/|cos| more at
+// grazing light); P4 traces the hardware's shadow ray with its own interval only.
+enum class Stage : uint8_t { none = 0, storage, ray_generation, traversal_primary, spawn, traversal_shadow };
+
+struct StageCount {
+  uint64_t primary = 0, shadow = 0;
+  uint64_t total() const { return primary + shadow; }
+};
+
+struct StageBudget {
+  StageCount storage, ray_generation, traversal_intersection, spawn;
+  // traversal_intersection's shadow errors split by the ray whose hit departed (informative).
+  uint64_t traversal_shadow_by_primary_ray = 0, traversal_shadow_by_shadow_ray = 0;
+  // Of traversal_intersection's primary / shadow errors, those where the exact trace of the same
+  // hardware ray against the datapath's geometry (datapath_scene: the VTU's translated records)
+  // already departs: the VTU's rounding of the geometry, not the trv's or ist's (0 with the VTU off).
+  uint64_t traversal_vtu_primary = 0, traversal_vtu_shadow = 0;
+  uint64_t primary_errors = 0, shadow_errors = 0;  // = the totals' (errors.primary_errors, shadow_errors)
+  std::vector<Stage> pixel;                        // per pixel (row-major): the stage charged, none if no error
+  double seconds = 0;
+};
+
+// The budget of a hardware frame f (trace_golden's, or the cycle model's when it matches it) made
+// from `image` with `cfg`, given the two reference frames (P0: the scene's, P1: the stored
+// scene's), a reference built on the stored scene and (VTU on; else nullptr) one on
+// datapath_scene. Throws if a pixel's hit cannot be the hardware's (HardwareRays).
+StageBudget stage_budget(const Frame& f, const scenes::Scene& scene, const hls::Image& image,
+                         const TraceConfig& cfg, const Frame& ref, const Frame& ref_stored,
+                         const reference::Reference& stored, const reference::Reference* datapath = nullptr);
+
 struct FrameErrors {
   reference::ErrorMetrics total;   // against the scene
   reference::ErrorMetrics stored;  // against the stored scene (arithmetic)
-  double reference_seconds = 0;    // both references
+  bool has_stages = false;
+  StageBudget stages;              // error pixels by stage (with the configuration only)
+  std::string stages_note;         // why there is no budget (the frame is not the golden tracer's)
+  double reference_seconds = 0;    // both references and the budget
 };
 
 // Renders both references at the frame's size and compares. `threads` as the tracers' (0: all).
 FrameErrors measure_errors(const Frame& f, const scenes::Scene& scene, const hls::Image& image,
                            const hls::Vec3& anchor, int threads);
+// The same and the budget by stage: f must be the frame trace_golden(image, scene.camera,
+// scene.light, cfg) makes (the cycle model's when it matches).
+FrameErrors measure_errors(const Frame& f, const scenes::Scene& scene, const hls::Image& image,
+                           const TraceConfig& cfg);
 
 // Adds `errors` (total), `errors_stored` (arithmetic, the same keys) and `errors_storage`
-// (total - arithmetic for every count key) to a report.
+// (total - arithmetic for every count key) to a report, and `errors_by_stage` when measured:
+// {"storage"|"ray_generation"|"traversal_intersection"|"spawn": {"primary", "shadow", "total"},
+// traversal_intersection also "shadow_by_primary_ray", "shadow_by_shadow_ray", "vtu_primary" and
+// "vtu_shadow", "primary_errors", "shadow_errors", "error_pixels", "order" (the stage names in
+// pipeline order), "wall_seconds"}; {"error": why} when the frame is not the golden tracer's.
 void add_errors_json(nlohmann::json& j, const FrameErrors& e, bool any_hit);
+nlohmann::json stages_json(const StageBudget& b);
 
 // The report's two `errors` lines on stdout: total (against the scene) and arithmetic (against the
-// stored scene).
+// stored scene), and the budget by stage when measured.
 void print_errors(const FrameErrors& e, bool any_hit);
 
 }  // namespace raycore::sim

@@ -226,6 +226,97 @@ Frame trace_t(const hls::Image& image_in, const scenes::Camera& cam, const scene
 
 }  // namespace
 
+struct HardwareRays::Impl {
+  virtual ~Impl() = default;
+  virtual PixelRays pixel(int x, int y, const PixelResult& p) const = 0;
+};
+
+namespace {
+
+template <class A>
+class RaysT final : public HardwareRays::Impl {
+  using F = typename A::Fmt;
+  static constexpr hls::Rounding R = A::rounding;
+
+ public:
+  RaysT(const hls::Image& image, const scenes::Camera& cam, const scenes::Light& light, const TraceConfig& cfg)
+      : setup_(hls::FrameSetup<F, R>::make(cam.position, light.position, cfg.vtu, cfg.anchor)),
+        margins_(frame_margins<A>(cfg)),
+        tmin_(A::from_double(cfg.tmin)),
+        sp_(resolved_spawn(cfg)),
+        cam_(hls::rgu_camera<A>(setup_.origin, cam.forward, cam.right, cam.up, cam.yfov, cfg.width, cfg.height)) {
+    // The records as the datapath sees them (VTU-translated as trace_t does), by scene index.
+    const hls::Image moved = cfg.vtu ? hls::transform_image(image, setup_.vtu) : hls::Image{};
+    const hls::Image& img = cfg.vtu ? moved : image;
+    const uint32_t n = img.tri_count();
+    for (uint32_t i = 0; i < n; ++i) {
+      const hls::WaldTri<F> w = hls::decode_tri<F>(img.tri(i));
+      if (w.id >= tris_.size()) tris_.resize(size_t(w.id) + 1);
+      tris_[w.id] = w;
+    }
+  }
+
+  PixelRays pixel(int x, int y, const PixelResult& p) const override {
+    PixelRays out;
+    const hls::Ray pr = hls::rgu_primary<A>(cam_, uint32_t(x), uint32_t(y), tmin_);
+    world_ray(pr, out.org, out.dir, out.tmin, out.tmax);
+    if (p.tri < 0) return out;
+    out.hit = true;
+    if (size_t(p.tri) >= tris_.size())
+      throw std::runtime_error("hardware rays: pixel's triangle " + std::to_string(p.tri) + " has no record");
+    const hls::WaldTri<F>& tri = tris_[size_t(p.tri)];
+    const hls::IstOut o = hls::ist_wald<A>(tri.k, tri.c, pr.o, pr.d, pr.tmin, pr.tmax, margins_);
+    if (o.t != p.t_bits)
+      throw std::runtime_error("hardware rays: pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                               "): the ist gives another t for its triangle than the frame holds");
+    const hls::HitTri ht{tri.id, tri.k, tri.c[hls::kNU], tri.c[hls::kNV], tri.c[hls::kND], o.den};
+    const hls::ShadowSetup ss = hls::hit_shadow<A>(pr, o.t, ht, setup_.light, tmin_, sp_);
+    if (ss.spawn != p.shadow_ray || ss.front != p.front)
+      throw std::runtime_error("hardware rays: pixel (" + std::to_string(x) + ", " + std::to_string(y) +
+                               "): the hit unit decides another spawn than the frame holds");
+    out.front = ss.front;
+    out.shadow = ss.spawn;
+    if (!ss.spawn) return out;
+    world_ray(ss.ray, out.shadow_org, out.shadow_dir, out.shadow_tmin, out.shadow_tmax);
+    out.shadow_skip = ss.skip_id == ~0u ? -1 : int32_t(ss.skip_id);
+    return out;
+  }
+
+ private:
+  void world_ray(const hls::Ray& r, hls::Vec3& org, hls::Vec3& dir, double& tmin, double& tmax) const {
+    for (int i = 0; i < 3; ++i) {
+      org[i] = A::to_double(r.o[i]) + setup_.offset[i];
+      dir[i] = A::to_double(r.d[i]);
+    }
+    tmin = A::to_double(r.tmin);
+    tmax = A::to_double(r.tmax);
+  }
+
+  hls::FrameSetup<F, R> setup_;
+  hls::Margins margins_;
+  uint32_t tmin_;
+  hls::SpawnParams sp_;
+  hls::RguCamera cam_;
+  std::vector<hls::WaldTri<F>> tris_;
+};
+
+}  // namespace
+
+HardwareRays::HardwareRays(const hls::Image& image, const scenes::Camera& cam, const scenes::Light& light,
+                           const TraceConfig& cfg) {
+  if (image.format() != cfg.format || image.rounding() != cfg.rounding)
+    throw std::invalid_argument("hardware rays: memory image format/rounding differ from the configuration");
+  if (image.vtu_applied()) throw std::invalid_argument("hardware rays: the image is VTU-translated already");
+  impl_ = hls::visit_format(cfg.format, cfg.rounding, [&](auto f, auto r) -> Impl* {
+    using A = hls::Arith<decltype(f), decltype(r)::value>;
+    return new RaysT<A>(image, cam, light, cfg);
+  });
+}
+
+HardwareRays::~HardwareRays() { delete impl_; }
+
+PixelRays HardwareRays::pixel(int x, int y, const PixelResult& p) const { return impl_->pixel(x, y, p); }
+
 std::string to_string(hls::Spawn s) {
   switch (s) {
     case hls::Spawn::none: return "none";

@@ -38,6 +38,45 @@ using hls::TraceConfig;
 Frame trace_golden(const hls::Image& image, const scenes::Camera& cam, const scenes::Light& light,
                    const TraceConfig& cfg, TraceStats* stats = nullptr);
 
+// The rays the hardware traced for one pixel of a golden (or cycle-model) frame, as exact numbers
+// in world space: each bit pattern of the format converted exactly to double, positions moved back
+// by hls::FrameSetup's offset (anchor + the camera register with the VTU on, the anchor without;
+// exact in double when the anchor is 0: a sum of two format numbers fits double's 53 bits unless
+// their exponents differ by more than 53 - (M + 1); with --store anchored, within 2^-53 relative).
+// t along each ray is in units of its direction (as the datapath's), the interval is the ray's.
+struct PixelRays {
+  bool hit = false;           // the primary ray hit (frame pixel's tri >= 0)
+  hls::Vec3 org, dir;         // primary ray (the rgu's)
+  double tmin = 0, tmax = 0;  //   its interval (t_min register, the format's largest number)
+  bool front = false;         // the hit unit's light-side decision
+  bool shadow = false;        // a shadow ray was spawned (then the fields below)
+  hls::Vec3 shadow_org, shadow_dir;
+  double shadow_tmin = 0, shadow_tmax = 0;
+  int32_t shadow_skip = -1;   // the triangle (scene index) the shadow ray skips, -1 none
+};
+
+// Replays the rgu and the hit unit of a frame that trace_golden made from the same arguments: per
+// pixel, the primary ray, and from the frame's hit (triangle, t bits) the ist's n.d and the hit
+// unit's shadow ray, through the same hls/ functions (FrameSetup, rgu_primary, ist_wald,
+// hit_shadow), so the rays are the golden tracer's and the cycle model's bit for bit.
+class HardwareRays {
+ public:
+  HardwareRays(const hls::Image& image, const scenes::Camera& cam, const scenes::Light& light,
+               const TraceConfig& cfg);
+  ~HardwareRays();
+  HardwareRays(const HardwareRays&) = delete;
+  HardwareRays& operator=(const HardwareRays&) = delete;
+  // Pixel (x, y); p is that pixel of the frame. Throws std::runtime_error if the frame's hit cannot
+  // be the golden tracer's (the ist gives another t for that triangle, or the hit unit another
+  // spawn decision).
+  PixelRays pixel(int x, int y, const PixelResult& p) const;
+
+  struct Impl;
+
+ private:
+  Impl* impl_ = nullptr;
+};
+
 std::string to_string(hls::Spawn s);
 hls::Spawn spawn_from_string(const std::string& s);  // throws std::invalid_argument
 std::string spawn_choices();  // "none, skip-origin, ..." (every --spawn value)

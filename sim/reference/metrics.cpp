@@ -21,6 +21,19 @@ double pct(uint64_t n, uint64_t of) { return of ? 100.0 * double(n) / double(of)
 
 }  // namespace
 
+PixelError classify_pixel(const sim::PixelResult& a, const sim::PixelResult& r) {
+  // Primary: the visible surface.
+  if (a.tri >= 0 && r.tri < 0) return PixelError::primary_hit_vs_miss;
+  if (a.tri < 0 && r.tri >= 0) return PixelError::primary_miss_vs_hit;
+  if (a.tri < 0) return PixelError::none;  // both miss
+  if (!(std::fabs(a.t - r.t) <= kPrimaryDistanceTolerance * r.t)) return PixelError::primary_distance;
+  // Shadow: same visible surface.
+  const bool la = lit(a), lr = lit(r);
+  if (!la && lr) return PixelError::false_shadow;
+  if (la && !lr) return PixelError::light_leak;
+  return PixelError::none;
+}
+
 ErrorMetrics compute_errors(const sim::Frame& test, const sim::Frame& ref, const std::vector<hls::Tri>& tris) {
   if (test.width != ref.width || test.height != ref.height)
     throw std::invalid_argument("compute_errors: frame sizes differ: test " + std::to_string(test.width) +
@@ -45,32 +58,22 @@ ErrorMetrics compute_errors(const sim::Frame& test, const sim::Frame& ref, const
     if (self) ++m.self_intersections;
     if (self && a.front) ++m.self_intersections_front;
 
-    // Primary: the visible surface.
-    if (a.tri >= 0 && r.tri < 0) {
-      ++m.primary_hit_vs_miss;
-      continue;
-    }
-    if (a.tri < 0 && r.tri >= 0) {
-      ++m.primary_miss_vs_hit;
-      continue;
+    switch (classify_pixel(a, r)) {
+      case PixelError::primary_hit_vs_miss: ++m.primary_hit_vs_miss; continue;
+      case PixelError::primary_miss_vs_hit: ++m.primary_miss_vs_hit; continue;
+      case PixelError::primary_distance: ++m.primary_distance; continue;
+      case PixelError::false_shadow:
+        ++m.false_shadow;
+        if (self) ++m.false_shadow_self;
+        if (!a.front) ++m.false_shadow_no_ray;
+        break;
+      case PixelError::light_leak: ++m.light_leak; break;
+      case PixelError::none: break;
     }
     if (a.tri < 0) continue;  // both miss
-    if (!(std::fabs(a.t - r.t) <= kPrimaryDistanceTolerance * r.t)) {
-      ++m.primary_distance;
-      continue;
-    }
-    if (a.tri != r.tri) ++m.primary_other_tri;
-
-    // Shadow: same visible surface.
+    // Same visible surface: its shadow was compared.
     ++m.shadow_compared;
-    const bool la = lit(a), lr = lit(r);
-    if (!la && lr) {
-      ++m.false_shadow;
-      if (self) ++m.false_shadow_self;
-      if (!a.front) ++m.false_shadow_no_ray;
-    } else if (la && !lr) {
-      ++m.light_leak;
-    }
+    if (a.tri != r.tri) ++m.primary_other_tri;
   }
   m.primary_errors = m.primary_hit_vs_miss + m.primary_miss_vs_hit + m.primary_distance;
   m.shadow_errors = m.false_shadow + m.light_leak;

@@ -62,6 +62,15 @@ struct ErrorMetrics {
 // The relative distance tolerance of primary_distance (1%).
 constexpr double kPrimaryDistanceTolerance = 0.01;
 
+// One pixel's verdict under the definitions above (compute_errors counts these): the primary kinds
+// first; a shadow kind only where the visible surface agrees.
+enum class PixelError : uint8_t { none, primary_hit_vs_miss, primary_miss_vs_hit, primary_distance, false_shadow, light_leak };
+PixelError classify_pixel(const sim::PixelResult& test, const sim::PixelResult& ref);
+constexpr bool is_primary_error(PixelError e) {
+  return e == PixelError::primary_hit_vs_miss || e == PixelError::primary_miss_vs_hit || e == PixelError::primary_distance;
+}
+constexpr bool is_shadow_error(PixelError e) { return e == PixelError::false_shadow || e == PixelError::light_leak; }
+
 // Throws std::invalid_argument if the frames differ in size or a triangle index is outside
 // `tris` (the scene's triangles, which both frames index).
 ErrorMetrics compute_errors(const sim::Frame& test, const sim::Frame& ref, const std::vector<hls::Tri>& tris);

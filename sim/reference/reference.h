@@ -54,9 +54,11 @@ class Reference {
   // no light or a coordinate is not finite.
   explicit Reference(const scenes::Scene& scene);
 
-  // The closest hit of a ray with t in (t_min, t_max), tri = -1 for a miss.
-  TriHit closest(const Ray& ray, double t_min = 0, double t_max = HUGE_VAL) const {
-    return bvh_.closest(ray, t_min, t_max);
+  // The closest hit of a ray with t in (t_min, t_max), tri = -1 for a miss; `filter` skips
+  // candidates (bvh.h).
+  TriHit closest(const Ray& ray, double t_min = 0, double t_max = HUGE_VAL,
+                 const HitFilter* filter = nullptr) const {
+    return bvh_.closest(ray, t_min, t_max, filter);
   }
 
   // Hit point of a hit (barycentric form) and its componentwise error bound.

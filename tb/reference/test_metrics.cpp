@@ -106,6 +106,25 @@ TEST(ReferenceMetrics, EachCaseAlone) {
   }
 }
 
+TEST(ReferenceMetrics, ClassifyPixelIsWhatTheCountsCount) {
+  // classify_pixel (the per-pixel verdict the error budget by stage uses) touches exactly the
+  // counter compute_errors counts for the case.
+  const auto c = cases();
+  for (size_t i = 0; i < c.size(); ++i) {
+    sim::Frame test, ref;
+    frames({c[i]}, &test, &ref);
+    const ErrorMetrics m = compute_errors(test, ref, kTris);
+    const PixelError e = classify_pixel(c[i].test, c[i].ref);
+    EXPECT_EQ(m.primary_hit_vs_miss, e == PixelError::primary_hit_vs_miss ? 1u : 0u) << "case " << i;
+    EXPECT_EQ(m.primary_miss_vs_hit, e == PixelError::primary_miss_vs_hit ? 1u : 0u) << "case " << i;
+    EXPECT_EQ(m.primary_distance, e == PixelError::primary_distance ? 1u : 0u) << "case " << i;
+    EXPECT_EQ(m.false_shadow, e == PixelError::false_shadow ? 1u : 0u) << "case " << i;
+    EXPECT_EQ(m.light_leak, e == PixelError::light_leak ? 1u : 0u) << "case " << i;
+    EXPECT_EQ(m.primary_errors, is_primary_error(e) ? 1u : 0u) << "case " << i;
+    EXPECT_EQ(m.shadow_errors, is_shadow_error(e) ? 1u : 0u) << "case " << i;
+  }
+}
+
 TEST(ReferenceMetrics, IdenticalFramesHaveNoErrors) {
   sim::Frame test, ref;
   frames(cases(), &test, &ref);
