@@ -408,6 +408,21 @@ Row read_row(const Job& job, const nlohmann::json& r) {
                  d(w.primary_errors, w.stored.primary_errors), d(w.error_pixels, w.stored.error_pixels)};
     w.has_stored = true;
   }
+  if (r.contains("errors_by_stage") && !r["errors_by_stage"].contains("error")) {
+    const auto& b = r["errors_by_stage"];
+    try {
+      auto st = [&](const char* k) { return StageErrors{b.at(k).at("primary").get<uint64_t>(), b.at(k).at("shadow").get<uint64_t>()}; };
+      w.stages.storage = st("storage");
+      w.stages.ray_generation = st("ray_generation");
+      w.stages.traversal_intersection = st("traversal_intersection");
+      w.stages.spawn = st("spawn");
+      const auto& t = b.at("traversal_intersection");
+      w.stages.traversal_vtu = t.value("vtu_primary", uint64_t(0)) + t.value("vtu_shadow", uint64_t(0));
+    } catch (const nlohmann::json::exception& x) {
+      throw std::runtime_error("report '" + job.json + "': errors_by_stage: " + x.what());
+    }
+    w.has_stages = true;
+  }
   w.ok = true;
   return w;
 }
@@ -471,6 +486,16 @@ std::string two(uint64_t total, uint64_t arith, bool has) {
   return std::to_string(total) + (has ? " (" + std::to_string(arith) + ")" : std::string());
 }
 
+// "storage / ray gen. / trav.+int. (of which the VTU's geometry) / spawn" error pixels (primary +
+// shadow), "-" for a report without errors_by_stage.
+std::string stages_str(const Row& r) {
+  if (!r.has_stages) return "-";
+  const StageBudgetCounts& b = r.stages;
+  auto t = [](const StageErrors& e) { return std::to_string(e.primary + e.shadow); };
+  return t(b.storage) + " / " + t(b.ray_generation) + " / " + t(b.traversal_intersection) + " (" +
+         std::to_string(b.traversal_vtu) + ") / " + t(b.spawn);
+}
+
 }  // namespace
 
 std::string csv(const std::vector<Row>& rows) {
@@ -481,7 +506,10 @@ std::string csv(const std::vector<Row>& rows) {
         "self_intersections_stored,shadow_errors_stored,primary_errors_stored,error_pixels_stored,error_pct_stored,"
         "self_intersections_storage,shadow_errors_storage,primary_errors_storage,error_pixels_storage,"
         "cycles,rays_per_cycle,mrays_per_s,golden_match,cells_format,cells_vtu,"
-        "cells_spawn,cells_added,pareto,sim_wall_seconds\n";
+        "cells_spawn,cells_added,pareto,sim_wall_seconds,"
+        "storage_primary,storage_shadow,ray_generation_primary,ray_generation_shadow,"
+        "traversal_intersection_primary,traversal_intersection_shadow,traversal_intersection_vtu,"
+        "spawn_primary,spawn_shadow\n";
   for (const auto& r : rows) {
     const Job& j = r.job;
     auto u = [&](uint64_t v) { return r.has_stored ? std::to_string(v) : std::string(); };
@@ -500,7 +528,13 @@ std::string csv(const std::vector<Row>& rows) {
        << num(r.rays_per_cycle, 6) << "," << num(r.mrays_per_s, 3) << ","
        << (r.golden_match ? "true" : "false") << "," << num(r.cells.format, 0) << ","
        << num(r.cells.vtu, 0) << "," << num(r.cells.spawn, 0) << "," << num(r.cells.total, 0) << ","
-       << (r.pareto ? 1 : 0) << "," << num(r.sim_seconds, 2) << "\n";
+       << (r.pareto ? 1 : 0) << "," << num(r.sim_seconds, 2);
+    const StageBudgetCounts& b = r.stages;
+    for (uint64_t v : {b.storage.primary, b.storage.shadow, b.ray_generation.primary, b.ray_generation.shadow,
+                       b.traversal_intersection.primary, b.traversal_intersection.shadow, b.traversal_vtu,
+                       b.spawn.primary, b.spawn.shadow})
+      os << "," << (r.has_stages ? std::to_string(v) : std::string());
+    os << "\n";
   }
   return os.str();
 }
@@ -519,12 +553,24 @@ nlohmann::json rows_json(const std::vector<Row>& rows) {
                  {"shadow_errors", r.storage.shadow_errors}, {"primary_errors", r.storage.primary_errors},
                  {"error_pixels", r.storage.error_pixels}};
     }
+    nlohmann::json stages = nullptr;
+    if (r.has_stages) {
+      auto st = [](const StageErrors& e) {
+        return nlohmann::json{{"primary", e.primary}, {"shadow", e.shadow}, {"total", e.primary + e.shadow}};
+      };
+      stages = {{"storage", st(r.stages.storage)},
+                {"ray_generation", st(r.stages.ray_generation)},
+                {"traversal_intersection", st(r.stages.traversal_intersection)},
+                {"spawn", st(r.stages.spawn)}};
+      stages["traversal_intersection"]["vtu"] = r.stages.traversal_vtu;
+    }
     a.push_back({{"scene", j.scene},
                  {"config", {{"format", j.format}, {"rounding", j.rounding}, {"vtu", j.vtu},
                              {"spawn", j.spawn}, {"store", j.store}, {"shadow_spawn", j.shadow_spawn},
                              {"width", j.width}, {"height", j.height}}},
                  {"errors_stored", stored},
                  {"errors_storage", storage},
+                 {"errors_by_stage", stages},
                  {"errors", {{"pixels", r.pixels}, {"shadow_rays", r.shadow_rays},
                              {"self_intersections", r.self_intersections},
                              {"self_intersections_front", r.self_intersections_front},
@@ -556,8 +602,9 @@ std::string markdown(const std::vector<Row>& rows) {
     os << "#### " << scene << " (" << first->job.width << " x " << first->job.height << ")\n\n"
        << "| format | VTU | spawn | store | self-int. | shadow err. (false / of which self / no ray / leak) | "
           "arith. shadow err. | primary err. (arith.) | error pixels (arith.) | error % (arith.) | cycles | "
-          "rays/cycle | golden match | added cells (format + VTU + spawn) | Pareto |\n"
-          "|---|---|---|---|---:|---|---:|---:|---:|---:|---:|---:|---|---|---|\n";
+          "rays/cycle | golden match | added cells (format + VTU + spawn) | Pareto | error pixels by stage: "
+          "storage / ray gen. / trav.+int. (VTU) / spawn |\n"
+          "|---|---|---|---|---:|---|---:|---:|---:|---:|---:|---:|---|---|---|---|\n";
     for (const auto& r : rows) {
       if (r.job.scene != scene) continue;
       const Job& j = r.job;
@@ -570,7 +617,8 @@ std::string markdown(const std::vector<Row>& rows) {
          << (r.has_stored ? " (" + num(r.stored.error_pct, 3) + ")" : "") << " | " << r.cycles
          << " | " << num(r.rays_per_cycle, 4) << " | " << (r.golden_match ? "yes" : "**NO**") << " | "
          << cells_str(r.cells.total) << " (" << cells_str(r.cells.format) << " + " << cells_str(r.cells.vtu)
-         << " + " << cells_str(r.cells.spawn) << ") | " << (r.pareto ? "**P**" : "") << " |\n";
+         << " + " << cells_str(r.cells.spawn) << ") | " << (r.pareto ? "**P**" : "") << " | " << stages_str(r)
+         << " |\n";
     }
     os << "\n";
   }

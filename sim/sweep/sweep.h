@@ -122,6 +122,16 @@ struct StorageCounts {
   int64_t self_intersections = 0, shadow_errors = 0, primary_errors = 0, error_pixels = 0;
 };
 
+// The error pixels by stage (sim/errors.h, the report's errors_by_stage): primary + shadow per
+// stage; the four stages sum to the total's primary_errors and shadow_errors.
+struct StageErrors {
+  uint64_t primary = 0, shadow = 0;
+};
+struct StageBudgetCounts {
+  StageErrors storage, ray_generation, traversal_intersection, spawn;
+  uint64_t traversal_vtu = 0;  // of traversal_intersection (primary + shadow): the VTU's geometry
+};
+
 struct Row {
   Job job;
   bool ok = false;  // the report was there and complete
@@ -135,6 +145,10 @@ struct Row {
   bool has_stored = false;
   ErrorCounts stored;
   StorageCounts storage;  // total - stored
+  // errors_by_stage of the report (has_stages false: a report from before issue 27; the columns
+  // are then empty).
+  bool has_stages = false;
+  StageBudgetCounts stages;
   uint64_t cycles = 0;
   double rays_per_cycle = 0, mrays_per_s = 0, sim_seconds = 0;
   bool golden_match = false;

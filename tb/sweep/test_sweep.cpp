@@ -425,6 +425,12 @@ TEST(Collect, ArithmeticAndStorageColumnsFromFixtureReports) {
                                       {"mrays_per_s", 100.0}}},
                         {"golden_match", true}};
     if (i != 1) r["errors_stored"] = e(v[i][3], v[i][4], v[i][5]);  // job 1: a report from before issue 15
+    if (i == 0)  // job 0 with the budget by stage (issue 27): 7074 primary, 3395 shadow errors
+      r["errors_by_stage"] = {{"storage", {{"primary", 7000}, {"shadow", 3000}}},
+                              {"ray_generation", {{"primary", 0}, {"shadow", 5}}},
+                              {"traversal_intersection", {{"primary", 74}, {"shadow", 300}, {"vtu_primary", 4},
+                                                          {"vtu_shadow", 6}}},
+                              {"spawn", {{"primary", 0}, {"shadow", 90}}}};
     std::ofstream os(jobs[i].json);
     os << r.dump(1);
   }
@@ -461,12 +467,20 @@ TEST(Collect, ArithmeticAndStorageColumnsFromFixtureReports) {
     EXPECT_EQ(f[col("self_intersections_storage")], "0");
   }
   EXPECT_EQ(csv[4][col("shadow_errors_storage")], "-2") << "storage can be negative";
+  EXPECT_EQ(csv[1][col("storage_primary")], "7000");
+  EXPECT_EQ(csv[1][col("ray_generation_shadow")], "5");
+  EXPECT_EQ(csv[1][col("traversal_intersection_shadow")], "300");
+  EXPECT_EQ(csv[1][col("traversal_intersection_vtu")], "10");
+  EXPECT_EQ(csv[1][col("spawn_shadow")], "90");
+  EXPECT_EQ(csv[2][col("spawn_shadow")], "") << "no errors_by_stage in the report";
   const auto j = nlohmann::json::parse(read_file(out / "sweep.json"));
   EXPECT_EQ(j["shadow_spawn"], "front");
   EXPECT_EQ(j["rows"][2]["config"]["store"], "anchored");
   EXPECT_EQ(j["rows"][0]["errors_stored"]["shadow_errors"], 20);
   EXPECT_EQ(j["rows"][0]["errors_storage"]["shadow_errors"], 3375);
   EXPECT_TRUE(j["rows"][1]["errors_stored"].is_null());
+  EXPECT_EQ(j["rows"][0]["errors_by_stage"]["storage"]["total"], 10000);
+  EXPECT_TRUE(j["rows"][1]["errors_by_stage"].is_null());
   const std::string md = read_file(out / "sweep.md");
   EXPECT_NE(md.find("| fp24-rtz | off | none | world | 1071 | 3395 (3395 / 1071 / 0 / 0) | 20 | 7074 (7) | "
                     "10469 (27) |"),
@@ -475,6 +489,7 @@ TEST(Collect, ArithmeticAndStorageColumnsFromFixtureReports) {
   EXPECT_NE(md.find("| fp24-rtz | off | skip-slab:2 | anchored | 0 | 3 (3 / 0 / 0 / 0) | 5 | 15 (16) | 18 (21) |"),
             std::string::npos)
       << md;
+  EXPECT_NE(md.find("| ? (? + ? + ?) |  | 10000 / 5 / 374 (10) / 90 |"), std::string::npos) << md;
   const std::string hard = read_file(out / "sweep-hard.md");
   EXPECT_NE(hard.find("| fp24-rtz | off | none | anchored | ? | 15 / 188 (190) / 203 (205) / 0.1400 |"),
             std::string::npos)
