@@ -105,7 +105,7 @@ struct StageBudget {
   uint64_t traversal_vtu_primary = 0, traversal_vtu_shadow = 0;
   uint64_t primary_errors = 0, shadow_errors = 0;  // = the totals' (errors.primary_errors, shadow_errors)
   std::vector<Stage> pixel;                        // per pixel (row-major): the stage charged, none if no error
-  double seconds = 0;
+  double seconds = 0;                              // wall time (measure_errors: with the datapath scene's BVH)
 };
 
 // The budget of a hardware frame f (trace_golden's, or the cycle model's when it matches it) made
