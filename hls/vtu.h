@@ -109,6 +109,9 @@ Image transform_image(const Image& img, const Vtu<F, R>& vtu) {
 // The host's set-up registers of a frame, formed once for every consumer (golden tracer, cycle
 // model, analyses): the camera and the light rounded once with the policy; with the VTU on, the
 // light translated by the VTU and rays starting at 0, else rays starting at the camera.
+// `light_stored` is the light before the VTU, in the memory image's coordinates (relative to the
+// anchor): what a VTU at pin level or in RTL is given to translate at set-up, so that every view
+// starts from the same register.
 // `anchor` (--store anchored; 0 = world) is the point the memory image is stored relative to: the
 // camera and the light are taken relative to it in double on the host, then rounded, so the VTU
 // translates by camera - anchor and its hardware is unchanged.
@@ -120,6 +123,7 @@ struct FrameSetup {
   bool vtu_on = false;
   uint32_t origin[3] = {0, 0, 0};
   uint32_t light[3] = {0, 0, 0};
+  uint32_t light_stored[3] = {0, 0, 0};
   double offset[3] = {0, 0, 0};
 
   static FrameSetup make(const Vec3& camera, const Vec3& light_pos, bool vtu_on, const Vec3& anchor = {}) {
@@ -127,7 +131,8 @@ struct FrameSetup {
     s.vtu = Vtu<F, R>::from_camera(camera - anchor);
     s.vtu_on = vtu_on;
     for (int i = 0; i < 3; ++i) {
-      s.light[i] = A::from_double(light_pos[i] - anchor[i]);
+      s.light_stored[i] = A::from_double(light_pos[i] - anchor[i]);
+      s.light[i] = s.light_stored[i];
       s.origin[i] = vtu_on ? A::zero : s.vtu.c[i];
       s.offset[i] = anchor[i] + (vtu_on ? A::to_double(s.vtu.c[i]) : 0.0);
     }

@@ -16,6 +16,8 @@
 #   BENCH_JOBS          parallel test processes (default: nproc)
 #   SHARED_SCENES       where sponza-paper.glb is (default: ../shared/scenes next to the repo)
 #   RAYCORE_RANDOM_CONFIGS  configurations of the random_configs section (default 1000)
+#   RAYCORE_RANDOM_VIEW_CONFIGS  configurations with random unit views (--pins / --rtl subsets,
+#                       --rtl rtu) against the model in the random_configs section (default 200)
 set -uo pipefail
 
 SECTIONS=(fp_bench frames throughput cosim random_configs fp_oracle)
@@ -235,7 +237,20 @@ section_random_configs() {
       "$bin" > "$OUT/random_configs-$seed.log" 2>&1 || rc=1
     grep -E 'RANDOMCONFIGSUM|Failure|RAYCORE_RANDOM_CONFIG_SEED=' "$OUT/random_configs-$seed.log" | head -8
   done
-  echo "wall time: $((SECONDS - t0)) s; logs: $OUT/random_configs-*.log"
+  # The same draws with random unit views (tb/systemc/test_random_config.cpp, RandomViews): each
+  # view runs the frame exactly as the transaction model or refuses it with what it is built for.
+  local views=${RAYCORE_RANDOM_VIEW_CONFIGS:-200} vbin="$BUILD/bin/test_random_config_rtl"
+  if [ -x "$vbin" ]; then
+    for seed in 103 104; do
+      echo "command: RAYCORE_RANDOM_VIEW_CONFIGS=$((views / 2)) RAYCORE_RANDOM_CONFIG_SEED=$seed $vbin"
+      SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1 RAYCORE_RANDOM_VIEW_CONFIGS=$((views / 2)) RAYCORE_RANDOM_CONFIG_SEED=$seed \
+        "$vbin" > "$OUT/random_views-$seed.log" 2>&1 || rc=1
+      grep -E 'RANDOMVIEWSUM|Failure|RAYCORE_RANDOM_CONFIG_SEED=' "$OUT/random_views-$seed.log" | head -8
+    done
+  else
+    echo "test_random_config_rtl not built (RAYCORE_RTL=OFF): the unit views are not drawn"
+  fi
+  echo "wall time: $((SECONDS - t0)) s; logs: $OUT/random_configs-*.log, $OUT/random_views-*.log"
   return $rc
 }
 

@@ -6,7 +6,7 @@ PKGS=(
   build-essential cmake ninja-build pkg-config git
   libgtest-dev googletest libbenchmark-dev
   libmpfr-dev libgmp-dev
-  verilator yosys iverilog
+  verilator yosys iverilog opensta qflow-tech-osu018
   libsystemc-dev
   libtinygltf-dev nlohmann-json3-dev libstb-dev libcli11-dev libfmt-dev
   libembree-dev

@@ -66,9 +66,13 @@ void run_simulate(const sim::RunOptions& o, const sc::SimOptions& so) {
     const auto& hw = j["hardware"];
     std::printf("scene     %s: %zu triangles, image %zu bytes\n", p.scene.name.c_str(),
                 p.scene.tris.size(), p.image.bytes.size());
-    std::printf("config    %s, %dx%d, %d RTUs at %g MHz (assumed), memory %u cycles, %u B/cycle\n",
+    std::printf("config    %s, %dx%d, %d RTUs at %.0f MHz (%s), memory %u cycles, %u B/cycle\n",
                 sim::config_tag(cfg).c_str(), cfg.width, cfg.height, scfg.rtus, scfg.clock_mhz,
+                scfg.clock_source == "timing"   ? "the RTU's clock from static timing, 28 nm"
+                : scfg.clock_source == "option" ? "given"
+                                                : "assumed",
                 scfg.mem_latency, scfg.mem_bandwidth);
+    if (!scfg.clock_note.empty()) std::printf("clock     %s\n", scfg.clock_note.c_str());
     std::printf("hardware  %llu cycles, %llu primary + %llu shadow rays, %.3f rays/cycle "
                 "(%.3f per RTU), %.1f Mrays/s\n",
                 (unsigned long long)r.cycles, (unsigned long long)r.primary_rays,

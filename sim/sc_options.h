@@ -15,6 +15,7 @@
 #include "sim/cli.h"
 #include "systemc/config.h"
 #include "systemc/simulate.h"
+#include "systemc/timing.h"
 
 namespace raycore::sc {
 
@@ -36,7 +37,20 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
         });
   };
   opt("--rtus", &SimConfig::rtus, "ray-tracing units sharing the memory bus", 1, 64);
-  opt("--clock-mhz", &SimConfig::clock_mhz, "assumed clock for Mrays/s and GB/s", 1.0, 1e5);
+  {
+    auto value = std::make_shared<double>(o.cfg.clock_mhz);
+    c.add_option("--clock-mhz", *value,
+                 "clock for Mrays/s and GB/s (default: the RTU's clock from static timing, "
+                 "docs/timing.json)")
+        ->check(CLI::Range(1.0, 1e5))
+        ->each([&o, value](const std::string&) {
+          o.overrides.push_back([value](SimConfig& s) {
+            s.clock_mhz = *value;
+            s.clock_source = "option";
+            s.clock_note.clear();
+          });
+        });
+  }
   opt("--mem-latency", &SimConfig::mem_latency, "memory latency in cycles", 0u, 100000u);
   opt("--mem-bandwidth", &SimConfig::mem_bandwidth, "memory bus bytes per cycle", 1u, 4096u);
   opt("--mem-queue", &SimConfig::mem_queue_depth, "outstanding memory requests", 1u, 4096u);
@@ -157,6 +171,7 @@ inline SimConfig finish_sim_options(const SimOptions& o) {
     c.trace_file = o.cfg.trace_file;
   }
   for (const auto& f : o.overrides) f(c);
+  apply_timed_clock(c);  // no clock given: the RTU's clock from static timing (systemc/timing.h)
   return c;
 }
 

@@ -41,7 +41,12 @@ const char* unit_view_name(UnitView v);  // "model" / "twin" / "rtl"
 
 struct SimConfig {
   int rtus = 6;
-  double clock_mhz = 500;  // an assumption, stated in the report
+  // The clock of Mrays/s and GB/s (systemc/timing.h): "assumed" (500 MHz, the library default),
+  // "option" (--clock-mhz, a --config file's clock_mhz) or "timing" (the RTU's clock from
+  // docs/timing.json, which the CLI applies when no clock is given); the report says which.
+  double clock_mhz = 500;
+  std::string clock_source = "assumed";
+  std::string clock_note;  // what the clock rests on, for the report
   // membus: DRAM + bus shared by all RTUs.
   uint32_t mem_latency = 100;     // cycles from accepting a request to its first data beat
   uint32_t mem_bandwidth = 16;    // bytes per cycle on the shared data bus

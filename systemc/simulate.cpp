@@ -8,6 +8,7 @@
 #include <stdexcept>
 
 #include "systemc/rtu_rtl.h"
+#include "systemc/timing.h"
 #include "systemc/top.h"
 
 namespace raycore::sc {
@@ -46,9 +47,9 @@ SimResult run(const hls::Image& image, const scenes::Camera& cam, const scenes::
   image.box(fc.box_lo, fc.box_hi);
   fc.vtu_on = tc.vtu;
   for (int i = 0; i < 3; ++i) {
-    fc.box_world_lo[i] = fc.box_lo[i];
-    fc.box_world_hi[i] = fc.box_hi[i];
-    fc.light_world[i] = A::from_double(light.position[i]);
+    fc.box_stored_lo[i] = fc.box_lo[i];
+    fc.box_stored_hi[i] = fc.box_hi[i];
+    fc.light_stored[i] = setup.light_stored[i];  // relative to the anchor, as the image
   }
   if (tc.vtu) vtu.box_outward(fc.box_lo, fc.box_hi);  // as transform_image translates the box
   for (int i = 0; i < 3; ++i) {
@@ -227,7 +228,7 @@ nlohmann::json hardware_json(const SimResult& r, const SimConfig& cfg) {
   return {
       {"cycles", r.cycles},
       {"clock_mhz", cfg.clock_mhz},
-      {"clock_note", "assumed clock (not from a synthesis result)"},
+      {"clock", clock_json(cfg)},
       {"rtus", r.rtus.size()},
       {"rays_per_cycle", cyc ? rays / cyc : 0.0},
       {"rays_per_cycle_per_rtu", unit_cycles ? rays / unit_cycles : 0.0},
@@ -366,7 +367,7 @@ void config_from_json(const nlohmann::json& j, SimConfig& c) {
   for (auto it = j.begin(); it != j.end(); ++it) {
     const std::string& k = it.key();
     if (k == "rtus") c.rtus = int(u32(*it, k));
-    else if (k == "clock_mhz") c.clock_mhz = num(*it, k);
+    else if (k == "clock_mhz") c.clock_mhz = num(*it, k), c.clock_source = "option";
     else if (k == "mem_latency") c.mem_latency = u32(*it, k);
     else if (k == "mem_bandwidth") c.mem_bandwidth = u32(*it, k);
     else if (k == "mem_queue_depth") c.mem_queue_depth = u32(*it, k);

@@ -70,9 +70,10 @@ struct FrameCtx {
   hls::RguCamera rgu_cam;  // the rgu's camera registers (hls::rgu_camera: ray origin, d00, dx, dy)
   uint32_t light[3] = {0, 0, 0};
   uint32_t box_lo[3] = {0, 0, 0}, box_hi[3] = {0, 0, 0};
-  // Before the VTU (world space, in the format): a pin-level VTU translates these at set-up.
+  // Before the VTU, in the memory image's coordinates (world, or relative to the anchor with
+  // --store anchored; in the format): a VTU at pin level or in RTL translates these at set-up.
   bool vtu_on = false;
-  uint32_t light_world[3] = {0, 0, 0}, box_world_lo[3] = {0, 0, 0}, box_world_hi[3] = {0, 0, 0};
+  uint32_t light_stored[3] = {0, 0, 0}, box_stored_lo[3] = {0, 0, 0}, box_stored_hi[3] = {0, 0, 0};
   double offset[3] = {0, 0, 0};
   uint32_t tmin = 0;
   uint32_t stack_depth = kStackDepth;  // entries per ray the trv's stack SRAM holds

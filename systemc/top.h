@@ -292,9 +292,9 @@ class Top : public sc_core::sc_module {
     uint32_t* dst[9];
     uint32_t src[9];
     for (int i = 0; i < 3; ++i) {
-      src[i] = fc_.box_world_lo[i], dst[i] = &fc_.box_lo[i];
-      src[3 + i] = fc_.box_world_hi[i], dst[3 + i] = &fc_.box_hi[i];
-      src[6 + i] = fc_.light_world[i], dst[6 + i] = &fc_.light[i];
+      src[i] = fc_.box_stored_lo[i], dst[i] = &fc_.box_lo[i];
+      src[3 + i] = fc_.box_stored_hi[i], dst[3 + i] = &fc_.box_hi[i];
+      src[6 + i] = fc_.light_stored[i], dst[6 + i] = &fc_.light[i];
     }
     int sent = 0, got = 0;
     for (int cycle = 0; got < 9; ++cycle) {

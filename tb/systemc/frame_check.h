@@ -35,6 +35,7 @@ using hls::Vec3;
 
 struct Summary {
   bool ok = false;
+  bool refused = false;   // the error is a sc::ConfigError: a configuration the view is not built for
   char error[1024] = {};  // the refusals list every built model
   uint64_t cycles = 0, issued = 0, retired = 0, primary = 0, shadow = 0;
   uint64_t mismatches = 0, bad_retire = 0;  // pixels retired other than exactly once per ray
@@ -124,6 +125,9 @@ inline Summary run_child(const Case& c, const sim::Frame& golden) {
         if (r.primary_retired[i] != 1 || r.shadow_retired[i] != (r.frame.px[i].shadow_ray ? 1 : 0))
           ++s.bad_retire;
       s.ok = true;
+    } catch (const sc::ConfigError& e) {
+      s.refused = true;
+      std::strncpy(s.error, e.what(), sizeof s.error - 1);
     } catch (const std::exception& e) {
       std::strncpy(s.error, e.what(), sizeof s.error - 1);
     }
@@ -208,6 +212,17 @@ inline Summary expect_match(const scenes::Scene& s, const sim::TraceConfig& tc, 
   EXPECT_EQ(r.primary, uint64_t(tc.width) * uint64_t(tc.height)) << what;
   EXPECT_GT(r.cycles, 0u) << what;
   return r;
+}
+
+// The same frame twice (the transaction model's, then another view's): equal cycles, image, bus
+// bytes, tests and every work counter.
+inline void expect_same_counts(const Summary& model, const Summary& p, const std::string& what) {
+  EXPECT_EQ(p.cycles, model.cycles) << what;
+  EXPECT_EQ(p.hash, model.hash) << what;
+  EXPECT_EQ(p.bus_bytes, model.bus_bytes) << what;
+  EXPECT_EQ(p.tri_tests, model.tri_tests) << what;
+  for (int i = 0; i < Summary::kWork; ++i)
+    EXPECT_EQ(p.work[i], model.work[i]) << what << ": " << kWorkNames[i];
 }
 
 // The cycle model refuses cfg (in the child) with an error that contains `message`.

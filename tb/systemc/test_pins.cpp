@@ -54,16 +54,6 @@ using namespace raycore::tb;  // NOLINT: the frame-check helpers
 namespace pins = raycore::sc::pins;
 using raycore::sc::UnitView;
 
-// The same frame twice (the transaction model's, then another view's): equal cycles, image, bus
-// bytes, tests and every work counter.
-void expect_same_counts(const Summary& model, const Summary& p, const std::string& what) {
-  EXPECT_EQ(p.cycles, model.cycles) << what;
-  EXPECT_EQ(p.hash, model.hash) << what;
-  EXPECT_EQ(p.bus_bytes, model.bus_bytes) << what;
-  EXPECT_EQ(p.tri_tests, model.tri_tests) << what;
-  for (int i = 0; i < Summary::kWork; ++i)
-    EXPECT_EQ(p.work[i], model.work[i]) << what << ": " << kWorkNames[i];
-}
 
 // The transaction model's frame, then the same configuration with the given views: equal.
 void expect_same_frame(const scenes::Scene& s, const sim::TraceConfig& tc, sc::SimConfig cfg,
@@ -147,6 +137,16 @@ hls::SpawnParams spawn(hls::Spawn s, bool all = false, bool segment = false) {
   sp.spawn_all = all;
   sp.segment = segment;
   return sp;
+}
+
+// --store anchored (the image relative to the scene's box centre, the VTU translating by camera -
+// anchor): the VTU at pin level translates the set-up registers (box, light) from the image's
+// coordinates, as the model does. Issue 24: it was given the light in world coordinates.
+sim::TraceConfig anchored_config(const scenes::Scene& s, Rounding r, int w, int h) {
+  auto tc = config(FormatId::fp24, r, true, w, h);
+  tc.anchored = true;
+  tc.anchor = hls::store_anchor(s.tris);
+  return tc;
 }
 
 #ifndef RAYCORE_TEST_RTL
@@ -236,6 +236,10 @@ TEST(PinsFrame, RguLatencyAndTileRefused) {
   cfg.tile = 6;
   expect_refused(tiny_scene(), tc, cfg, "tile must be a power of two");
 }
+TEST(PinsFrame, VtuTwinAnchoredStore) {
+  expect_same_frame(corridor(), anchored_config(corridor(), Rounding::rtz, 32, 20), {}, UnitView::twin,
+                    UnitView::model);
+}
 TEST(PinsFrame, LatencyNotAMultipleOfTheLevelsIsRefused) {
   const auto tc = config(FormatId::fp24, Rounding::rtz, true, 8, 8);
   sc::SimConfig cfg;
@@ -251,6 +255,16 @@ TEST(PinsFrame, LatencyNotAMultipleOfTheLevelsIsRefused) {
 #else  // RAYCORE_TEST_RTL
 
 TEST(PinsFrameRtl, VtuAndIstFp24RtzVtuOn) { expect_both_units(UnitView::rtl); }
+// Issue 24: --store anchored with the VTU in RTL, alone and with every unit of the RTUs.
+TEST(PinsFrameRtl, AnchoredStoreVtuOn) {
+  const auto tc = anchored_config(corridor(), Rounding::rtz, 32, 20);
+  expect_same_frame(corridor(), tc, {}, UnitView::rtl, UnitView::model);
+  const Summary model = expect_match(corridor(), tc, {});
+  sc::SimConfig cfg;
+  cfg.vtu_view = cfg.ist_view = cfg.trv_view = cfg.ascache_view = cfg.hit_view = cfg.rgu_view =
+      UnitView::rtl;
+  expect_same_counts(model, expect_match(corridor(), tc, cfg), "--rtl all --store anchored");
+}
 TEST(PinsFrameRtl, WithMargins) {
   expect_same_frame(corridor(), margins_config(Rounding::rtz, true), {}, UnitView::rtl,
                     UnitView::rtl);
@@ -874,6 +888,13 @@ TEST(RtuRtlFrame, RegistersAwayFromTheDefaults) {
   cfg.trv_fuse = false;
   cfg.ist_queue = 6;
   expect_rtu_rtl(corridor(), tc, cfg, "corridor, registers away from the defaults");
+}
+// Issue 24: --store anchored, the VTU on (rtu.v takes the host's translated registers).
+TEST(RtuRtlFrame, AnchoredStoreVtuOn) {
+  sc::SimConfig cfg;
+  cfg.rtus = 2;
+  expect_rtu_rtl(corridor(), anchored_config(corridor(), Rounding::rtz, 32, 20), cfg,
+                 "corridor 32x20, VTU on, --store anchored");
 }
 TEST(RtuRtlFrame, SponzaPaperSmallFrame) {
   const std::string path = std::string(RAYCORE_SHARED_SCENES_DIR) + "/sponza-paper.glb";

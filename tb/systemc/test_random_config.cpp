@@ -26,117 +26,13 @@
 #include <sstream>
 #include <string>
 
-#include "scenes/generate.h"
-#include "tb/systemc/frame_check.h"
+#include "tb/systemc/random_config.h"
 
 namespace {
 
 using namespace raycore::tb;  // NOLINT: the frame-check helpers
 
-uint64_t env_u64(const char* name, uint64_t def) {
-  const char* e = std::getenv(name);
-  return e && *e ? std::strtoull(e, nullptr, 10) : def;
-}
-
-const scenes::Scene& scene_by_index(int i) {
-  static const char* names[] = {"corridor", "far", "grazing", "slivers", "coplanar", "origin-far-camera"};
-  static std::map<int, scenes::Scene> cache;
-  if (!cache.count(i)) cache[i] = i == 6 ? tiny_scene() : scenes::generate(names[i]);
-  return cache[i];
-}
-
-struct Drawn {
-  int scene = 0;
-  sim::TraceConfig tc;
-  sc::SimConfig cfg;
-  std::string line;  // what was drawn, for the failure message
-};
-
-Drawn draw(uint64_t seed, uint64_t index) {
-  std::mt19937_64 g(seed * 0x9E3779B97F4A7C15ull + index);
-  auto pick = [&](uint64_t lo, uint64_t hi) { return lo + g() % (hi - lo + 1); };
-  auto pow2 = [&](int lo, int hi) { return uint32_t(1) << pick(uint64_t(lo), uint64_t(hi)); };
-  Drawn d;
-  d.scene = int(pick(0, 6));
-  const FormatId f = pick(0, 2) ? FormatId::fp24 : FormatId::fp32;
-  Rounding r = pick(0, 1) ? Rounding::rtz : Rounding::rne;
-  // Every third fp24 rtz draw runs RayCore's arithmetic instead (by index: the random stream,
-  // and so every other draw, stays as it was).
-  if (f == FormatId::fp24 && r == Rounding::rtz && index % 3 == 2) r = Rounding::raycore;
-  d.tc = config(f, r, pick(0, 1) == 1, int(pick(8, 40)), int(pick(6, 28)));
-  const hls::Spawn spawns[] = {hls::Spawn::none,        hls::Spawn::skip_origin, hls::Spawn::ulp_offset,
-                               hls::Spawn::error_bound, hls::Spawn::skip_offset, hls::Spawn::skip_slab,
-                               hls::Spawn::skip_back};
-  d.tc.spawn.spawn = spawns[pick(0, 6)];
-  d.tc.spawn.ulps = sim::default_spawn_ulps(f, d.tc.spawn.spawn);
-  d.tc.spawn.segment = pick(0, 3) == 0;
-  d.tc.spawn.any_hit = pick(0, 1) == 1;
-  sc::SimConfig& c = d.cfg;
-  c.rtus = int(pick(1, 8));
-  c.mem_latency = uint32_t(pick(0, 3) == 0 ? pick(1, 8) : pick(20, 300));
-  c.mem_bandwidth = uint32_t(pick(1, 64));
-  c.mem_queue_depth = uint32_t(pick(1, 48));
-  c.seed = pick(0, 1) ? pick(1, 1000000) : 0;
-  auto cache = [&](sc::CacheConfig& k) {
-    k.line_bytes = pow2(5, 7);
-    k.ways = pow2(0, 3);
-    const uint32_t sets = pow2(1, 6);
-    k.size_bytes = sets * k.ways * k.line_bytes;
-    k.mshrs = uint32_t(pick(1, 12));
-    k.hit_latency = uint32_t(pick(1, 3));
-  };
-  cache(c.node_cache);
-  cache(c.list_cache);
-  cache(c.tri_cache);
-  if (pick(0, 1)) {
-    c.l2.line_bytes = pow2(6, 7);
-    c.l2.ways = pow2(0, 4);
-    c.l2.size_bytes = pow2(2, 8) * c.l2.ways * c.l2.line_bytes;
-    c.l2.latency = uint32_t(pick(1, 40));
-    c.l2.bandwidth = uint32_t(pick(4, 64));
-  }
-  c.rays_in_flight = uint32_t(pick(0, 3) == 0 ? pick(1, 8) : pick(9, 160));
-  c.stack_depth = uint32_t(pick(0, 7) == 0 ? pick(1, 12) : pick(13, 64));
-  c.vtu_depth = uint32_t(pick(0, 12));
-  c.trv_latency = uint32_t(pick(1, 8));
-  c.trv_pipes = uint32_t(pick(1, 6));
-  c.trv_fuse = pick(0, 1) == 1;
-  c.ist_units = uint32_t(pick(1, 4));
-  c.mailbox = pick(0, 1) ? uint32_t(pick(1, 16)) : 0;
-  c.ist_latency = uint32_t(pick(1, 40));
-  c.ist_queue = uint32_t(pick(1, 64));
-  c.hit_latency = uint32_t(pick(1, 30));
-  c.tile = uint32_t(pick(1, 16));
-  // Drawn last: the earlier draws of a seed stay as they were.
-  d.tc.spawn.spawn_all = pick(0, 2) == 0;
-  d.tc.anchored = pick(0, 3) == 0;
-  d.tc.anchor = d.tc.anchored ? hls::store_anchor(scene_by_index(d.scene).tris) : hls::Vec3{};
-  // The watertightness margins, drawn after every earlier pick (hls/margins.h).
-  const double margins[] = {0.0, 0.008, std::ldexp(1.0, -12), 0.03};
-  d.tc.bary_margin = pick(0, 1) == 0 ? 0.0 : margins[pick(0, 3)];
-  d.tc.trv_widen = pick(0, 1) == 0 ? 0 : int32_t(pick(0, 8));
-  c.rgu_latency = uint32_t(pick(0, 40));  // the rgu's datapath latency (start-up)
-  std::ostringstream os;
-  os << "scene " << scene_by_index(d.scene).name << " " << d.tc.width << "x" << d.tc.height << " "
-     << hls::format_name(f) << "-" << hls::rounding_name(r) << (d.tc.vtu ? " vtu" : " novtu") << " spawn "
-     << sim::to_string(d.tc.spawn.spawn) << (d.tc.spawn.segment ? " segment" : " unit")
-     << (d.tc.spawn.any_hit ? " any-hit" : " closest-hit") << (d.tc.spawn.spawn_all ? " spawn-all" : "")
-     << (d.tc.anchored ? " anchored" : "") << " margin " << d.tc.bary_margin << " widen "
-     << d.tc.trv_widen << " | rtus " << c.rtus << " mem " << c.mem_latency
-     << "/" << c.mem_bandwidth << "B/q" << c.mem_queue_depth << " seed " << c.seed << " caches "
-     << c.node_cache.size_bytes << "/" << c.node_cache.ways << "w/" << c.node_cache.line_bytes << "B/"
-     << c.node_cache.mshrs << "m/" << c.node_cache.hit_latency << " " << c.list_cache.size_bytes << "/"
-     << c.list_cache.ways << "w/" << c.list_cache.line_bytes << "B/" << c.list_cache.mshrs << "m/"
-     << c.list_cache.hit_latency << " " << c.tri_cache.size_bytes << "/" << c.tri_cache.ways << "w/"
-     << c.tri_cache.line_bytes << "B/" << c.tri_cache.mshrs << "m/" << c.tri_cache.hit_latency << " l2 "
-     << c.l2.size_bytes << "/" << c.l2.ways << "w/" << c.l2.line_bytes << "B/" << c.l2.latency << "c/"
-     << c.l2.bandwidth << "B | rays " << c.rays_in_flight << " stack " << c.stack_depth << " vtu "
-     << c.vtu_depth << " trv " << c.trv_latency << "x" << c.trv_pipes << (c.trv_fuse ? " fuse" : "")
-     << " mailbox " << c.mailbox << " ist " << c.ist_latency << "x" << c.ist_units << " q" << c.ist_queue << " hit " << c.hit_latency
-     << " tile " << c.tile << " rgu " << c.rgu_latency;
-  d.line = os.str();
-  return d;
-}
+#ifndef RAYCORE_TEST_RTL
 
 TEST(RandomConfig, GoldenMatchAndNoHang) {
   const uint64_t seed = env_u64("RAYCORE_RANDOM_CONFIG_SEED", 1);
@@ -177,6 +73,66 @@ TEST(RandomConfig, GoldenMatchAndNoHang) {
               (unsigned long long)livelocked);
   EXPECT_LT(refused + livelocked, n / 2 + 1) << "most configurations refused: the draw is too tight";
 }
+
+#else  // RAYCORE_TEST_RTL
+
+// The unit views (draw_views: each unit the model, its twin or its RTL, or the whole RTU in RTL)
+// of the same configurations: the transaction model's frame first (checked against the golden
+// tracer as above), then the views'. A view runs the frame exactly (golden match, the model's
+// cycles, bus bytes, tests and every work counter) or refuses it with a sc::ConfigError naming
+// what it is built for; any other error, a crash or a hang fails. At least half must run.
+//   RAYCORE_RANDOM_VIEW_CONFIGS (default 32)  configurations in this run (make bench: more)
+//   RAYCORE_RANDOM_CONFIG_SEED (default 1)    the run's seed
+TEST(RandomViews, ExactOrRefused) {
+  const uint64_t seed = env_u64("RAYCORE_RANDOM_CONFIG_SEED", 1);
+  const uint64_t n = env_u64("RAYCORE_RANDOM_VIEW_CONFIGS", 32);
+  uint64_t ran = 0, refused = 0, model_stopped = 0;
+  for (uint64_t i = 0; i < n; ++i) {
+    const Drawn d = draw_views(seed, i, true);
+    SCOPED_TRACE("RAYCORE_RANDOM_CONFIG_SEED=" + std::to_string(seed) + " view configuration " +
+                 std::to_string(i) + ": " + d.line);
+    std::printf("views %llu: %s\n", (unsigned long long)i, d.line.c_str());
+    std::fflush(stdout);
+    const scenes::Scene& s = scene_by_index(d.scene);
+    const hls::Image img = hls::build_image(d.tc.anchored ? hls::relative_to(s.tris, d.tc.anchor) : s.tris,
+                                            d.tc.format, d.tc.rounding);
+    const sim::Frame golden = sim::trace_golden(img, s.camera, s.light, d.tc);
+    sc::SimConfig model_cfg = d.cfg;
+    model_cfg.vtu_view = model_cfg.ist_view = model_cfg.trv_view = model_cfg.ascache_view =
+        model_cfg.hit_view = model_cfg.rgu_view = model_cfg.membus_view = model_cfg.rtu_view =
+            sc::UnitView::model;
+    const Summary m = run_child({&s, &img, d.tc, model_cfg}, golden);
+    if (!m.ok) {  // the model's own stops (stack depth, livelock): RandomConfig counts them
+      const std::string e = m.error;
+      EXPECT_TRUE(e.find("--stack-depth") != std::string::npos || e.find("livelock") != std::string::npos) << e;
+      std::printf("  the model stopped: %.160s\n", m.error);
+      ++model_stopped;
+      continue;
+    }
+    ASSERT_EQ(m.mismatches, 0u) << "the transaction model differs from golden";
+    const Summary v = run_child({&s, &img, d.tc, d.cfg}, golden);
+    if (v.refused) {
+      EXPECT_GT(std::string(v.error).size(), 20u) << "a refusal says what is built: " << v.error;
+      std::printf("  refused: %s\n", v.error);
+      ++refused;
+      continue;
+    }
+    EXPECT_TRUE(v.ok) << v.error;
+    EXPECT_EQ(v.mismatches, 0u) << "first differing pixel (" << v.first_x << ", " << v.first_y << ")";
+    EXPECT_EQ(v.bad_retire, 0u);
+    EXPECT_EQ(v.issued, v.retired);
+    expect_same_counts(m, v, "views against the model");
+    EXPECT_EQ(v.shadow, m.shadow);
+    ++ran;
+    if (HasFailure()) break;  // the first failing configuration is the one to reproduce
+  }
+  std::printf("RANDOMVIEWSUM seed %llu configurations %llu ran exactly %llu refused %llu model stopped %llu\n",
+              (unsigned long long)seed, (unsigned long long)n, (unsigned long long)ran,
+              (unsigned long long)refused, (unsigned long long)model_stopped);
+  EXPECT_GE(2 * ran, n - model_stopped) << "most views refused: the draw is too far from what is built";
+}
+
+#endif  // RAYCORE_TEST_RTL
 
 }  // namespace
 

@@ -22,11 +22,52 @@
 #include "systemc/ascache.h"
 #include "systemc/membus.h"
 #include "systemc/simulate.h"
+#include "systemc/timing.h"
 #include "tb/systemc/frame_check.h"
 
 namespace {
 
 using namespace raycore::tb;  // NOLINT: the frame-check helpers
+
+// The clock of Mrays/s (systemc/timing.h): the RTU's clock from a docs/timing.json, applied only
+// when no clock was given; a missing or clock-less rtu entry keeps the assumed clock and says why.
+TEST(TimedClock, FromTimingJsonOnlyWhenNoClockIsGiven) {
+  const sc::TimedClock t = sc::timed_rtu_clock(
+      R"({"fo4_ns": 0.0995, "designs": {"rtu": {"clock_mhz_28nm": 123.5, "worst_fo4": 385.6,
+          "start": "trv_unit.slot_q", "end": "trv_unit.stack_q"}}})");
+  ASSERT_TRUE(t.found) << t.why_not;
+  EXPECT_DOUBLE_EQ(t.mhz, 123.5);
+  EXPECT_DOUBLE_EQ(t.worst_fo4, 385.6);
+  sc::SimConfig c;
+  sc::apply_timed_clock(c, t);
+  EXPECT_DOUBLE_EQ(c.clock_mhz, 123.5);
+  EXPECT_EQ(c.clock_source, "timing");
+  EXPECT_NE(c.clock_note.find("trv_unit.slot_q -> trv_unit.stack_q"), std::string::npos) << c.clock_note;
+  EXPECT_EQ(sc::clock_json(c)["source"], "timing");
+  sc::SimConfig given;
+  given.clock_mhz = 250;
+  given.clock_source = "option";
+  sc::apply_timed_clock(given, t);
+  EXPECT_DOUBLE_EQ(given.clock_mhz, 250);
+  EXPECT_EQ(given.clock_source, "option");
+  nlohmann::json j = nlohmann::json::parse(R"({"clock_mhz": 300})");
+  sc::SimConfig from_file;
+  sc::config_from_json(j, from_file);
+  EXPECT_EQ(from_file.clock_source, "option");
+  for (const char* bad : {"", "{", R"({"designs": {}})", R"({"designs": {"rtu": {"status": "timed out"}}})",
+                          R"({"rtu": {"clock_mhz_28nm": -1}})"}) {
+    const sc::TimedClock n = sc::timed_rtu_clock(bad);
+    EXPECT_FALSE(n.found) << bad;
+    EXPECT_FALSE(n.why_not.empty()) << bad;
+    sc::SimConfig a;
+    sc::apply_timed_clock(a, n);
+    EXPECT_DOUBLE_EQ(a.clock_mhz, 500);
+    EXPECT_EQ(a.clock_source, "assumed");
+    EXPECT_NE(a.clock_note.find("assumed clock, not from timing"), std::string::npos) << a.clock_note;
+  }
+  EXPECT_NE(sc::timed_rtu_clock(R"({"designs": {"rtu": {"status": "timed out"}}})").why_not.find("timed out"),
+            std::string::npos);
+}
 
 TEST(GoldenMatch, Fp24RtzCorridor) {
   const Summary r = expect_match(corridor(), config(FormatId::fp24, Rounding::rtz, false, 64, 40));
