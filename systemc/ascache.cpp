@@ -2,6 +2,7 @@
 #include "systemc/ascache.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <cstring>
 #include <stdexcept>
 #include <string>
@@ -16,6 +17,7 @@ Ascache::Ascache(sc_core::sc_module_name name, const CacheConfig& cfg, uint64_t 
   sets_ = std::max<uint32_t>(1, cfg.size_bytes / (line_ * ways_));
   tag_.assign(size_t(sets_) * ways_, 0);
   stamp_.assign(size_t(sets_) * ways_, 0);
+  pin_.assign(size_t(sets_) * ways_, 0);
   data_.assign(size_t(sets_) * ways_ * line_, 0);
   hit_latency = cfg.hit_latency;
   mshr_.resize(cfg.mshrs);
@@ -41,6 +43,7 @@ const uint8_t* Ascache::access(uint64_t line) {
       ++st_.hits;
       ++probe_.hits;
       stamp_[set + w] = ++clock_;
+      pin_[set + w] = 0;
       return data_.data() + (set + w) * line_;
     }
   ++st_.misses;
@@ -54,8 +57,20 @@ const uint8_t* Ascache::access(uint64_t line) {
     ++st_.mshr_full;
     return nullptr;
   }
+  if (set_full(line)) {
+    ++st_.set_full;
+    return nullptr;
+  }
   allocate(line);
   return nullptr;
+}
+
+bool Ascache::set_full(uint64_t line) const {
+  const uint64_t s = line % sets_;
+  uint32_t n = 0;
+  for (uint32_t w = 0; w < ways_; ++w) n += pin_[size_t(s) * ways_ + w];
+  for (const auto& m : mshr_) n += m.valid && m.line % sets_ == s;
+  return n >= ways_;
 }
 
 uint32_t Ascache::allocate(uint64_t line) {
@@ -82,17 +97,23 @@ void Ascache::fill(uint32_t tag) {
     ++st_.fills;
     return;
   }
+  // The victim: the first invalid way, else the least recently used way that is not pinned (there
+  // is one: a miss takes an MSHR only while pinned + awaited < ways in its set).
   const size_t set = size_t(m.line % sets_) * ways_;
-  size_t victim = set;
+  size_t victim = SIZE_MAX;
   for (uint32_t w = 0; w < ways_; ++w) {
     if (tag_[set + w] == 0) {
       victim = set + w;
       break;
     }
-    if (stamp_[set + w] < stamp_[victim]) victim = set + w;
+    if (!pin_[set + w] && (victim == SIZE_MAX || stamp_[set + w] < stamp_[victim])) victim = set + w;
   }
+  if (victim == SIZE_MAX)
+    throw std::logic_error(std::string(name()) + ": fill of line " + std::to_string(m.line) +
+                           " into a set whose every way is pinned");
   tag_[victim] = m.line + 1;
   stamp_[victim] = ++clock_;
+  pin_[victim] = 1;
   std::memcpy(data_.data() + victim * line_, m.buf.data(), line_);
   m.valid = false;
   --busy_;
@@ -100,7 +121,7 @@ void Ascache::fill(uint32_t tag) {
 }
 
 const CacheStats& Ascache::stats() const {
-  if (rtl_) rtl_->check(st_.hits, st_.misses, st_.mshr_merges, st_.mshr_full, st_.fills);
+  if (rtl_) rtl_->check(st_.hits, st_.misses, st_.mshr_merges, st_.mshr_full, st_.set_full, st_.fills);
   return st_;
 }
 
@@ -139,6 +160,9 @@ const uint8_t* Ascache::access_rtl(uint64_t line) {
   } else if (kind == AscacheRtl::Kind::full) {
     if (inflight || !full) throw differs("MSHRs full");
     ++st_.mshr_full;
+  } else if (kind == AscacheRtl::Kind::set_full) {  // its set's ways pinned or awaited (the RTL's)
+    if (inflight || full) throw differs("set full");
+    ++st_.set_full;
   } else {
     if (inflight || full) throw differs("a new MSHR");
     // The lowest free one, as the RTL's (checked when the bus takes the request).

@@ -4,6 +4,13 @@
 // (it retries later) while hits behind it proceed. A miss that finds every MSHR busy is retried as
 // well (counted as mshr_full). Lines are addressed by index within the cache's region of the image.
 // The fill comes back through the vtu (transformed or not), then fill(tag) installs it.
+//
+// Forward progress (no livelock of looping for the next chance): a filled line is pinned (never a
+// victim) until its first hit, and a miss gets an MSHR only while its set has a way neither pinned
+// nor awaited by an MSHR (pinned + awaited < ways; else it is refused and retried, counted as
+// set_full), so every fill finds an unpinned victim and installs at once. The requester whose
+// miss took the MSHR retries exactly that line until it hits it, so each fill is hit at least once
+// (systemc/README.md, "Utilisation and the livelock guard").
 #pragma once
 
 #include <systemc>
@@ -72,6 +79,7 @@ class Ascache : public sc_core::sc_module {
   uint64_t base_;
   std::vector<uint64_t> tag_;    // line + 1; 0 = invalid
   std::vector<uint64_t> stamp_;  // LRU: last use
+  std::vector<uint8_t> pin_;     // filled, not hit since: not a victim
   std::vector<uint8_t> data_;
   uint64_t clock_ = 0;
   std::vector<Mshr> mshr_;
@@ -82,6 +90,7 @@ class Ascache : public sc_core::sc_module {
   // taken as far as it knows (the bus pops req_ itself; sync_pops() passes those pops on).
   const uint8_t* access_rtl(uint64_t line);
   uint32_t allocate(uint64_t line);  // the lowest free MSHR takes the line, its request queued
+  bool set_full(uint64_t line) const;  // every way of the line's set pinned or awaited by an MSHR
   void sync_pops();
   std::unique_ptr<AscacheRtl> rtl_;
   std::deque<std::pair<uint64_t, uint32_t>> queued_;

@@ -50,6 +50,7 @@ class AscacheRtlT final : public AscacheRtl {
     *data = nullptr;
     if (get_bits(m_.rsp_merge_o, k, 1)) return Kind::merge;
     if (get_bits(m_.rsp_full_o, k, 1)) return Kind::full;
+    if (get_bits(m_.rsp_set_full_o, k, 1)) return Kind::set_full;
     return Kind::alloc;
   }
 
@@ -74,14 +75,14 @@ class AscacheRtlT final : public AscacheRtl {
     pop_ = true;
   }
 
-  void check(uint64_t hits, uint64_t misses, uint64_t merges, uint64_t full,
+  void check(uint64_t hits, uint64_t misses, uint64_t merges, uint64_t full, uint64_t set_full,
              uint64_t fills) override {
     if (pop_ || fill_ || n_acc_) edge();
-    const uint64_t rtl[5] = {m_.cnt_hits_o, m_.cnt_misses_o, m_.cnt_merges_o, m_.cnt_full_o,
-                             m_.cnt_fills_o};
-    const uint64_t model[5] = {hits, misses, merges, full, fills};
-    const char* names[5] = {"hits", "misses", "merges", "full", "fills"};
-    for (int i = 0; i < 5; ++i)
+    const uint64_t rtl[6] = {m_.cnt_hits_o, m_.cnt_misses_o, m_.cnt_merges_o, m_.cnt_full_o,
+                             m_.cnt_set_full_o, m_.cnt_fills_o};
+    const uint64_t model[6] = {hits, misses, merges, full, set_full, fills};
+    const char* names[6] = {"hits", "misses", "merges", "full", "set full", "fills"};
+    for (int i = 0; i < 6; ++i)
       if (rtl[i] != model[i])
         throw std::logic_error(name() + ": " + names[i] + " " + std::to_string(rtl[i]) +
                                " in the RTL, " + std::to_string(model[i]) + " counted");

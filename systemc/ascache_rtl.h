@@ -4,7 +4,7 @@
 // stepped from C++ by Ascache (systemc/ascache.h) in place of its own arrays.
 //
 // The Verilated cache holds the tags, valid bits, LRU ranks, the lines, the MSHRs' lines and the
-// request queue, and decides every access (hit, merge, full or a new MSHR). Ascache keeps what the
+// request queue, and decides every access (hit, merge, full, set full or a new MSHR). Ascache keeps what the
 // bus and the vtu need around it: the MSHR buffers the memory writes and the vtu transforms, the
 // request channel to the bus (Ascache::req()) and the counters, and checks the RTL against its
 // own bookkeeping (a merge needs the line in flight, a new MSHR a free one, the lowest free one;
@@ -25,7 +25,7 @@ namespace raycore::sc {
 
 class AscacheRtl {
  public:
-  enum class Kind { hit, merge, full, alloc };
+  enum class Kind { hit, merge, full, set_full, alloc };
   virtual ~AscacheRtl() = default;
   // One access (Ascache::access(line)): its kind and, on a hit, the line's bytes (valid until
   // the next access).
@@ -38,7 +38,7 @@ class AscacheRtl {
   // Clocks the pending edge, then compares the RTL's counters with these: throws
   // std::logic_error on a difference.
   virtual void check(uint64_t hits, uint64_t misses, uint64_t merges, uint64_t full,
-                     uint64_t fills) = 0;
+                     uint64_t set_full, uint64_t fills) = 0;
   virtual std::string name() const = 0;  // "Verilated ascache 64x4x64B, 8 MSHRs, 8 ports"
 };
 

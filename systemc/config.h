@@ -114,6 +114,8 @@ struct CacheStats {
   uint64_t accesses = 0, hits = 0, misses = 0;
   uint64_t mshr_merges = 0;    // misses on a line already being fetched
   uint64_t mshr_full = 0;      // misses that found no free MSHR (retried later)
+  uint64_t set_full = 0;       // misses refused an MSHR: every way of the set pinned (filled, not
+                               //   hit since) or awaited by an MSHR (retried later)
   uint64_t fills = 0;
   uint64_t cycles_lost = 0;    // issue slots of the requester wasted by misses
 };

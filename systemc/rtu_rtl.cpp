@@ -385,6 +385,7 @@ class RtuRtlRunner {
       cs[c]->mshr_merges = cnt(21 + 5 * c);
       cs[c]->mshr_full = cnt(22 + 5 * c);
       cs[c]->fills = cnt(23 + 5 * c);
+      cs[c]->set_full = cnt(34 + c);
       cs[c]->accesses = cs[c]->hits + cs[c]->misses;
       cs[c]->cycles_lost = cs[c]->misses;  // as the model counts: an issue slot per miss
     }

@@ -151,7 +151,8 @@ double ratio(uint64_t a, uint64_t b) { return b ? double(a) / double(b) : 0.0; }
 nlohmann::json cache_json(const CacheStats& c) {
   return {{"accesses", c.accesses}, {"hits", c.hits},          {"misses", c.misses},
           {"hit_rate", ratio(c.hits, c.accesses)}, {"mshr_merges", c.mshr_merges},
-          {"mshr_full", c.mshr_full}, {"fills", c.fills},      {"cycles_lost", c.cycles_lost}};
+          {"mshr_full", c.mshr_full}, {"set_full", c.set_full},  {"fills", c.fills},
+          {"cycles_lost", c.cycles_lost}};
 }
 void add(CacheStats& a, const CacheStats& b) {
   a.accesses += b.accesses;
@@ -159,6 +160,7 @@ void add(CacheStats& a, const CacheStats& b) {
   a.misses += b.misses;
   a.mshr_merges += b.mshr_merges;
   a.mshr_full += b.mshr_full;
+  a.set_full += b.set_full;
   a.fills += b.fills;
   a.cycles_lost += b.cycles_lost;
 }

@@ -223,18 +223,27 @@ class Top : public sc_core::sc_module {
       if (t > sc_core::sc_time_stamp()) wait(t - sc_core::sc_time_stamp());
       synced = c;
     };
-    // Livelock guard: looping for the next chance can thrash a cache that holds fewer lines than
-    // the rays competing for it (each fill evicts a line before its ray comes back for it). No ray
-    // retiring for this many cycles stops the frame with an error instead of running forever.
+    // Livelock guard, a safety net: looping for the next chance could thrash a cache that holds
+    // fewer lines than the rays competing for it (each fill evicting a line before its ray came
+    // back for it). The caches' pin rule (systemc/ascache.h: a fill is pinned until its first hit,
+    // a miss takes an MSHR only while its set has a way neither pinned nor awaited) guarantees
+    // progress, so this is not reached. No ray retired and no work done (a traversal pass that
+    // read its line, or a triangle test) for stall_limit cycles stops the frame with an error
+    // instead of running forever. The work is read only when no ray retired for stall_limit
+    // cycles (a ray may legitimately take longer: one ray of thousands of tests through a
+    // one-entry ist queue), so the stop comes within 2 x stall_limit cycles of the last work.
     const Cycle stall_limit = std::max<Cycle>(Cycle(1) << 20, Cycle(cfg_.mem_latency) * 4096);
-    uint64_t retired_seen = 0;
+    uint64_t retired_seen = 0, work_seen = 0;
     Cycle progress_at = 0;
     while (!all_done()) {
       if (fc_.retired != retired_seen) {
         retired_seen = fc_.retired;
         progress_at = now;
       } else if (now - progress_at > stall_limit) {
-        throw std::runtime_error(livelock_message(now, progress_at));
+        const uint64_t work = work_done();
+        if (work == work_seen) throw std::runtime_error(livelock_message(now, progress_at));
+        work_seen = work;
+        progress_at = now;
       }
       bool active = bus.tick(now);
       bool edge = false;
@@ -320,17 +329,28 @@ class Top : public sc_core::sc_module {
     }
   }
 
+  // Traversal passes that read their line and triangle tests issued, every RTU (the livelock guard).
+  uint64_t work_done() const {
+    uint64_t w = 0;
+    for (const auto& r : rtus) {
+      const RtuStats s = r->stats();
+      w += s.trv_busy + s.ist_busy;
+    }
+    return w;
+  }
+
   std::string livelock_message(Cycle now, Cycle since) const {
-    uint64_t node = 0, list = 0, tri = 0;
+    uint64_t node = 0, list = 0, tri = 0, full = 0;
     for (const auto& r : rtus) {
       const RtuStats s = r->stats();
       node += s.node.misses, list += s.list.misses, tri += s.tri.misses;
+      full += s.node.set_full + s.list.set_full + s.tri.set_full;
     }
-    return "cycle model: livelock: no ray retired from cycle " + std::to_string(since) + " to " +
-           std::to_string(now) + " (looping for the next chance thrashes a cache smaller than the " +
-           "lines its rays need at once: misses node " + std::to_string(node) + ", list " +
-           std::to_string(list) + ", tri " + std::to_string(tri) +
-           "; use larger caches or fewer rays in flight)";
+    return "cycle model: livelock: no ray retired and no traversal pass or triangle test from "
+           "cycle " + std::to_string(since) + " to " + std::to_string(now) + " (misses node " + std::to_string(node) + ", list " +
+           std::to_string(list) + ", tri " + std::to_string(tri) + ", set_full refusals " +
+           std::to_string(full) + "; the caches' pin rule should make this unreachable: a bug, " +
+           "please report the configuration)";
   }
 
   uint64_t count_primaries() const {

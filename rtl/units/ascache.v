@@ -8,15 +8,22 @@
 //   hit            rsp_hit_o, rsp_data_o = the line (byte i at bits [8i+7:8i]); LRU updated.
 //   miss, merged   rsp_merge_o: an MSHR already fetches the line (Ascache counts mshr_merges).
 //   miss, full     rsp_full_o: no MSHR free; nothing is fetched (Ascache counts mshr_full).
-//   miss           (none of the three) an MSHR was allocated (the lowest free index) and its
+//   miss, set full rsp_set_full_o: an MSHR is free, but every way of the line's set is pinned or
+//                  awaited by an MSHR (pinned + awaited = WAYS); nothing is fetched (set_full).
+//   miss           (none of the four) an MSHR was allocated (the lowest free index) and its
 //                  request queued: req_valid_o from the next cycle on, in allocation order.
 // Every miss kind returns "no data" (Ascache::access's nullptr): the requester retries later.
+// Forward progress: a filled line is pinned (pin_q) until its first hit and is never a victim
+// while pinned; a miss allocates only while pinned + awaited < WAYS in its set, so a fill always
+// has an unpinned victim. The requester that allocated retries the same line until it hits, so
+// every fill is hit at least once (systemc/ascache.h, systemc/README.md).
 // The accesses of one cycle act in port order, each seeing the LRU ranks and MSHRs as the earlier
 // ports leave them: Ascache::access called once per port, port 0 first.
 // A fill (fill_valid_i, fill_tag_i = the MSHR index, fill_data_i = the whole line) installs the
-// MSHR's line in the set's victim way (ascache_victim: first invalid way, else LRU) and frees the
-// MSHR; a fill of a free MSHR is ignored (Ascache::fill throws). Fill has no ready: it is always
-// taken, as Ascache::fill. A fill comes after its request was taken (req_valid_o && req_ready_i).
+// MSHR's line in the set's victim way (ascache_victim: first invalid way, else the LRU unpinned
+// way), pins it and frees the MSHR; a fill of a free MSHR is ignored (Ascache::fill throws). Fill
+// has no ready: it is always taken, as Ascache::fill. A fill comes after its request was taken
+// (req_valid_o && req_ready_i).
 //
 // Order within one clock edge (the cycle model ticks the vtu's fills before the requesters'
 // accesses): request pop, fill, then access. So an access sees the line installed by the fill of
@@ -30,8 +37,8 @@
 //   HIT_LATENCY 0, any PORTS (the frame's cache, systemc/ascache_rtl.h): the responses come in the
 //     access's own cycle, as Ascache::access answers the cycle model's requesters (which add the
 //     configured hit latency to their loop); the data array has PORTS asynchronous read ports.
-// Storage: tags, valid bits and LRU ranks in flip-flops (read combinationally); data SETS*WAYS
-// lines of 8*LINE_BYTES bits.
+// Storage: tags, valid bits, pin bits and LRU ranks in flip-flops (read combinationally); data
+// SETS*WAYS lines of 8*LINE_BYTES bits.
 //
 // Parameters: WAYS a power of two, SETS >= 2 (a power of two: the set is the line's low bits and
 // the tag the rest; otherwise the set is line % SETS and the tag the whole line, as Ascache's
@@ -63,6 +70,7 @@ module ascache #(
   output wire [PORTS-1:0]              rsp_hit_o,
   output wire [PORTS-1:0]              rsp_merge_o,
   output wire [PORTS-1:0]              rsp_full_o,
+  output wire [PORTS-1:0]              rsp_set_full_o,
   output wire [PORTS*TAG_BITS-1:0]     rsp_tag_o,
   output wire [PORTS*8*LINE_BYTES-1:0] rsp_data_o,
   // Line requests to memory (Ascache::req(): MemReq.addr = base + line * LINE_BYTES, tag).
@@ -80,6 +88,7 @@ module ascache #(
   output wire [CNT_BITS-1:0]           cnt_misses_o,
   output wire [CNT_BITS-1:0]           cnt_merges_o,
   output wire [CNT_BITS-1:0]           cnt_full_o,
+  output wire [CNT_BITS-1:0]           cnt_set_full_o,
   output wire [CNT_BITS-1:0]           cnt_fills_o
 );
 
@@ -89,6 +98,8 @@ module ascache #(
   localparam integer RW = WAYS > 1 ? $clog2(WAYS) : 1;    // way index / LRU rank bits
   localparam integer MW = $clog2(MSHRS);                  // MSHR index bits
   localparam integer CW = $clog2(MSHRS + 1);              // MSHR count bits
+  localparam integer PW = $clog2(WAYS + MSHRS + 1);       // pinned + awaited count bits
+  localparam [PW-1:0] NWAYS = WAYS[PW-1:0];
   localparam integer DW = 8 * LINE_BYTES;                 // line bits
   localparam integer NL = SETS * WAYS;                    // lines
   localparam integer AW = SW + (WAYS > 1 ? RW : 0);       // data array address bits
@@ -126,15 +137,17 @@ module ascache #(
   // State. The per-set arrays are flip-flops (yosys: mem2reg), read combinationally at the
   // access's and the fill's set; only the data array is an SRAM.
   reg [SETS*WAYS-1:0]             valid_q;              // way w of set s at [s*WAYS + w]
+  reg [SETS*WAYS-1:0]             pin_q;                // filled, not hit since: not a victim
   (* mem2reg *) reg [WAYS*TW-1:0] tag_q   [0:SETS-1];   // way w at [w*TW +: TW]
   reg [SETS*WAYS*RW-1:0]          rank_q;               // LRU ranks of set s at [s*WAYS*RW +: WAYS*RW]
   reg [MSHRS-1:0]        mv_q, mv_d;          // MSHR valid
   reg [MSHRS*LINE_W-1:0] ml_q, ml_d;          // MSHR line
+  reg [MSHRS*SW-1:0]     ms_q, ms_d;          // MSHR line's set
   reg [MSHRS*MW-1:0]     fifo_q, fifo_d;      // request queue: MSHR indices, allocation order
   reg [MW-1:0]           head_q, head_d, tail_q, tail_d;
   reg [CW-1:0]           count_q, count_d;
   reg [CNT_BITS-1:0]     hits_q, hits_d, misses_q, misses_d, merges_q, merges_d;
-  reg [CNT_BITS-1:0]     full_q, full_d, fills_q, fills_d;
+  reg [CNT_BITS-1:0]     full_q, full_d, sfull_q, sfull_d, fills_q, fills_d;
 
   // ---------------------------------------------------------------------------------------------
   // Fill side: the MSHR's line, its set and the victim way.
@@ -157,21 +170,31 @@ module ascache #(
   end
 
   wire [WAYS-1:0]    f_valid = valid_q[f_set*WAYS +: WAYS];
+  wire [WAYS-1:0]    f_pin   = pin_q[f_set*WAYS +: WAYS];
   wire [WAYS*RW-1:0] f_rank  = rank_q[f_set*WAYS*RW +: WAYS*RW];
 
   ascache_victim #(.WAYS(WAYS), .RW(RW)) u_victim (
-    .valid_i(f_valid), .rank_i(f_rank), .way_o(f_way));
+    .valid_i(f_valid), .pin_i(f_pin), .rank_i(f_rank), .way_o(f_way));
+  // The fill's way as a one-hot vector (its pin is set).
+  reg [WAYS-1:0] f_onehot;
+  integer fo;
+  always @* begin
+    f_onehot = {WAYS{1'b0}};
+    for (fo = 0; fo < WAYS; fo = fo + 1)
+      if (f_way == fo[RW-1:0]) f_onehot[fo] = 1'b1;
+  end
   ascache_touch #(.WAYS(WAYS), .RW(RW)) u_touch_fill (
     .rank_i(f_rank), .way_i(f_way), .rank_o(f_rank_new));
 
   // ---------------------------------------------------------------------------------------------
   // Access side: PORTS lookups chained in port order. Port k sees the set as the fill leaves it,
-  // the LRU ranks as the hits of ports 0 .. k-1 leave them, and the MSHRs after the fill and the
-  // allocations of ports 0 .. k-1 (Ascache::access called k times in a cycle).
+  // the LRU ranks and pins as the hits of ports 0 .. k-1 leave them, and the MSHRs after the fill
+  // and the allocations of ports 0 .. k-1 (Ascache::access called k times in a cycle).
   wire [PORTS-1:0]           a_hit_v;
   wire [PORTS-1:0]           a_miss_v;
   wire [PORTS-1:0]           a_merge_v;
   wire [PORTS-1:0]           a_full_v;
+  wire [PORTS-1:0]           a_sfull_v;
   wire [PORTS-1:0]           a_alloc_v;
   wire [PORTS*SW-1:0]        a_set_v;
   wire [PORTS*RW-1:0]        a_way_v;
@@ -179,6 +202,7 @@ module ascache #(
   wire [PORTS*WAYS*RW-1:0]   a_rank_out = a_rank_new_v;  // read at a run-time index
   wire [(PORTS+1)*MSHRS-1:0] mv_chain      /* verilator split_var */;   // MSHR valid after port k
   wire [(PORTS+1)*MSHRS*LINE_W-1:0] ml_chain /* verilator split_var */; // MSHR lines after port k
+  wire [(PORTS+1)*MSHRS*SW-1:0] ms_chain   /* verilator split_var */;   // their sets after port k
   wire [(PORTS+1)*MW-1:0]    tail_chain    /* verilator split_var */;   // queue tail after port k
   wire [(PORTS+1)*MSHRS*MW-1:0] fifo_chain /* verilator split_var */;   // queue entries after k
 
@@ -191,6 +215,7 @@ module ascache #(
   end
   assign mv_chain[MSHRS-1:0]          = mv_post;
   assign ml_chain[MSHRS*LINE_W-1:0]   = ml_q;
+  assign ms_chain[MSHRS*SW-1:0]       = ms_q;
   assign tail_chain[MW-1:0]           = tail_q;
   assign fifo_chain[MSHRS*MW-1:0]     = fifo_q;
 
@@ -237,6 +262,7 @@ module ascache #(
       // MSHRs as ports 0 .. k-1 leave them: merge, or allocate the lowest free one.
       wire [MSHRS-1:0]        mv = mv_chain[gk*MSHRS +: MSHRS];
       wire [MSHRS*LINE_W-1:0] ml = ml_chain[gk*MSHRS*LINE_W +: MSHRS*LINE_W];
+      wire [MSHRS*SW-1:0]     ms = ms_chain[gk*MSHRS*SW +: MSHRS*SW];
       wire [MW-1:0]           tl = tail_chain[gk*MW +: MW];
       wire [MSHRS*MW-1:0]     fq = fifo_chain[gk*MSHRS*MW +: MSHRS*MW];
       reg          inflight;
@@ -250,31 +276,64 @@ module ascache #(
           if (!mv[mk]) free = mk[MW-1:0];
         end
       end
-      wire alloc = av && !hit && !inflight && !(&mv);
+      // The set's pins as the fill and the hits of ports 0 .. k-1 leave them (a fill pins its way,
+      // a hit unpins its way), and how many of its ways are pinned or awaited by an MSHR.
+      wire [WAYS-1:0] pin_set = pin_q[set*WAYS +: WAYS] | (same_fill ? f_onehot : {WAYS{1'b0}});
+      wire [WAYS-1:0] pin_pre;
+      if (gk == 0) begin : g_pin_first
+        assign pin_pre = pin_set;
+      end else begin : g_pin_chain
+        reg [WAYS-1:0] clr;
+        integer pj, pw;
+        always @* begin
+          clr = {WAYS{1'b0}};
+          for (pj = 0; pj < gk; pj = pj + 1)
+            for (pw = 0; pw < WAYS; pw = pw + 1)
+              if (a_hit_v[pj] && a_set_v[pj*SW +: SW] == set && a_way_v[pj*RW +: RW] == pw[RW-1:0])
+                clr[pw] = 1'b1;
+        end
+        assign pin_pre = pin_set & ~clr;
+      end
+      reg [PW-1:0] held;
+      integer hk;
+      always @* begin
+        held = {PW{1'b0}};
+        for (hk = 0; hk < WAYS; hk = hk + 1)
+          if (pin_pre[hk]) held = held + 1'b1;
+        for (hk = 0; hk < MSHRS; hk = hk + 1)
+          if (mv[hk] && ms[hk*SW +: SW] == set) held = held + 1'b1;
+      end
+      wire set_full = held >= NWAYS;
+      wire alloc = av && !hit && !inflight && !(&mv) && !set_full;
       assign a_hit_v[gk]   = av && hit;
       assign a_miss_v[gk]  = av && !hit;
       assign a_merge_v[gk] = av && !hit && inflight;
       assign a_full_v[gk]  = av && !hit && !inflight && (&mv);
+      assign a_sfull_v[gk] = av && !hit && !inflight && !(&mv) && set_full;
       assign a_alloc_v[gk] = alloc;
       assign a_set_v[gk*SW +: SW] = set;
       assign a_way_v[gk*RW +: RW] = way;
       reg [MSHRS-1:0]        mv_n;
       reg [MSHRS*LINE_W-1:0] ml_n;
+      reg [MSHRS*SW-1:0]     ms_n;
       reg [MSHRS*MW-1:0]     fq_n;
       always @* begin
         mv_n = mv;
         ml_n = ml;
+        ms_n = ms;
         fq_n = fq;
         for (mk = 0; mk < MSHRS; mk = mk + 1) begin
           if (alloc && free == mk[MW-1:0]) begin
             mv_n[mk] = 1'b1;
             ml_n[mk*LINE_W +: LINE_W] = line;
+            ms_n[mk*SW +: SW] = set;
           end
           if (alloc && tl == mk[MW-1:0]) fq_n[mk*MW +: MW] = free;
         end
       end
       assign mv_chain[(gk+1)*MSHRS +: MSHRS] = mv_n;
       assign ml_chain[(gk+1)*MSHRS*LINE_W +: MSHRS*LINE_W] = ml_n;
+      assign ms_chain[(gk+1)*MSHRS*SW +: MSHRS*SW] = ms_n;
       assign fifo_chain[(gk+1)*MSHRS*MW +: MSHRS*MW] = fq_n;
       assign tail_chain[(gk+1)*MW +: MW] = !alloc ? tl : (tl == LAST_MSHR ? {MW{1'b0}} : tl + 1'b1);
     end
@@ -299,25 +358,28 @@ module ascache #(
 
   // How many of this cycle's accesses hit, missed, ...; how many requests were queued.
   reg [CW-1:0] n_alloc;
-  reg [CNT_BITS-1:0] n_hit, n_miss, n_merge, n_full;
+  reg [CNT_BITS-1:0] n_hit, n_miss, n_merge, n_full, n_sfull;
   always @* begin
     n_alloc = {CW{1'b0}};
     n_hit = {CNT_BITS{1'b0}};
     n_miss = {CNT_BITS{1'b0}};
     n_merge = {CNT_BITS{1'b0}};
     n_full = {CNT_BITS{1'b0}};
+    n_sfull = {CNT_BITS{1'b0}};
     for (i = 0; i < PORTS; i = i + 1) begin
       if (a_alloc_v[i]) n_alloc = n_alloc + 1'b1;
       if (a_hit_v[i])   n_hit   = n_hit + CNT_ONE;
       if (a_miss_v[i])  n_miss  = n_miss + CNT_ONE;
       if (a_merge_v[i]) n_merge = n_merge + CNT_ONE;
       if (a_full_v[i])  n_full  = n_full + CNT_ONE;
+      if (a_sfull_v[i]) n_sfull = n_sfull + CNT_ONE;
     end
   end
 
   always @* begin
     mv_d    = mv_chain[PORTS*MSHRS +: MSHRS];
     ml_d    = ml_chain[PORTS*MSHRS*LINE_W +: MSHRS*LINE_W];
+    ms_d    = ms_chain[PORTS*MSHRS*SW +: MSHRS*SW];
     fifo_d  = fifo_chain[PORTS*MSHRS*MW +: MSHRS*MW];
     tail_d  = tail_chain[PORTS*MW +: MW];
     head_d  = req_pop ? (head_q == LAST_MSHR ? {MW{1'b0}} : head_q + 1'b1) : head_q;
@@ -327,13 +389,16 @@ module ascache #(
     misses_d = misses_q + n_miss;
     merges_d = merges_q + n_merge;
     full_d   = full_q + n_full;
+    sfull_d  = sfull_q + n_sfull;
     fills_d  = fill_go ? fills_q + CNT_ONE : fills_q;
   end
 
-  // Reset: valid bits, LRU ranks (way w of every set has rank w), MSHR valid, queue, counters.
+  // Reset: valid and pin bits, LRU ranks (way w of every set has rank w), MSHR valid, queue,
+  // counters.
   // Tags, MSHR lines and queue entries are meaningful only under a valid bit and are not reset.
   // The set arrays take the fill's update, then the access's LRU update (a_rank_new already
-  // includes the fill's when both are in the same set, so the later assignment is the whole one).
+  // includes the fill's when both are in the same set, so the later assignment is the whole one);
+  // the fill's way is pinned, then every hit's way unpinned (a hit on the line just filled too).
   wire [WAYS*RW-1:0] rank_reset;
   genvar gw;
   generate
@@ -346,6 +411,7 @@ module ascache #(
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       valid_q  <= {SETS*WAYS{1'b0}};
+      pin_q    <= {SETS*WAYS{1'b0}};
       rank_q   <= {SETS{rank_reset}};
       mv_q     <= {MSHRS{1'b0}};
       head_q   <= {MW{1'b0}};
@@ -355,14 +421,18 @@ module ascache #(
       misses_q <= {CNT_BITS{1'b0}};
       merges_q <= {CNT_BITS{1'b0}};
       full_q   <= {CNT_BITS{1'b0}};
+      sfull_q  <= {CNT_BITS{1'b0}};
       fills_q  <= {CNT_BITS{1'b0}};
     end else begin
       if (fill_go) begin
         valid_q[f_set*WAYS +: WAYS]       <= f_valid_new;
         rank_q[f_set*WAYS*RW +: WAYS*RW]  <= f_rank_new;
+        pin_q[f_set*WAYS +: WAYS]         <= f_pin | f_onehot;
       end
       for (pk = 0; pk < PORTS; pk = pk + 1)  // in port order: a later hit's ranks include earlier
         if (a_hit_v[pk]) rank_q[a_set_v[pk*SW +: SW]*WAYS*RW +: WAYS*RW] <= a_rank_out[pk*WAYS*RW +: WAYS*RW];
+      for (pk = 0; pk < PORTS; pk = pk + 1)
+        if (a_hit_v[pk]) pin_q[addr_of(a_set_v[pk*SW +: SW], a_way_v[pk*RW +: RW])] <= 1'b0;
       mv_q     <= mv_d;
       head_q   <= head_d;
       tail_q   <= tail_d;
@@ -371,6 +441,7 @@ module ascache #(
       misses_q <= misses_d;
       merges_q <= merges_d;
       full_q   <= full_d;
+      sfull_q  <= sfull_d;
       fills_q  <= fills_d;
     end
   end
@@ -378,6 +449,7 @@ module ascache #(
   always @(posedge clk_i) begin
     if (fill_go) tag_q[f_set] <= f_tags_new;
     ml_q   <= ml_d;
+    ms_q   <= ms_d;
     fifo_q <= fifo_d;
   end
 
@@ -387,7 +459,7 @@ module ascache #(
   // (a register file), the line of a way the fill writes in this cycle is the fill's data.
   wire [AW-1:0] ram_waddr = addr_of(f_set, f_way);
 
-  localparam integer RSW = 3 + TAG_BITS;
+  localparam integer RSW = 4 + TAG_BITS;
   generate
     if (HIT_LATENCY == 0) begin : g_comb
       reg [DW-1:0] data_q [0:NL-1];
@@ -400,6 +472,7 @@ module ascache #(
       assign rsp_hit_o   = a_hit_v;
       assign rsp_merge_o = a_merge_v;
       assign rsp_full_o  = a_full_v;
+      assign rsp_set_full_o = a_sfull_v;
       assign rsp_tag_o   = acc_tag_i;
     end else begin : g_sram
       if (PORTS != 1) begin : g_bad
@@ -427,7 +500,8 @@ module ascache #(
           else         rv_q <= {rv_q[HIT_LATENCY-2:0], acc_valid_i[0]};
         end
         always @(posedge clk_i) begin
-          if (acc_valid_i[0]) rs_q[RSW-1:0] <= {a_hit_v[0], a_merge_v[0], a_full_v[0], acc_tag_i};
+          if (acc_valid_i[0])
+            rs_q[RSW-1:0] <= {a_hit_v[0], a_merge_v[0], a_full_v[0], a_sfull_v[0], acc_tag_i};
           for (k = 1; k < HIT_LATENCY; k = k + 1)
             if (rv_q[k-1]) rs_q[k*RSW +: RSW] <= rs_q[(k-1)*RSW +: RSW];
           if (rv_q[0] && rs_q[RSW-1]) rd_q[DW-1:0] <= ram_rdata;
@@ -441,12 +515,14 @@ module ascache #(
           else         rv_q <= acc_valid_i[0];
         end
         always @(posedge clk_i) begin
-          if (acc_valid_i[0]) rs_q <= {a_hit_v[0], a_merge_v[0], a_full_v[0], acc_tag_i};
+          if (acc_valid_i[0])
+            rs_q <= {a_hit_v[0], a_merge_v[0], a_full_v[0], a_sfull_v[0], acc_tag_i};
         end
         assign rsp_data_o = ram_rdata;
       end
       assign rsp_valid_o = rv_q[HIT_LATENCY-1];
-      assign {rsp_hit_o, rsp_merge_o, rsp_full_o, rsp_tag_o} = rs_q[(HIT_LATENCY-1)*RSW +: RSW];
+      assign {rsp_hit_o, rsp_merge_o, rsp_full_o, rsp_set_full_o, rsp_tag_o} =
+          rs_q[(HIT_LATENCY-1)*RSW +: RSW];
       wire unused_ports = ^{a_miss_v, a_alloc_v};
     end
   endgenerate
@@ -476,6 +552,7 @@ module ascache #(
   assign cnt_misses_o = misses_q;
   assign cnt_merges_o = merges_q;
   assign cnt_full_o   = full_q;
+  assign cnt_set_full_o = sfull_q;
   assign cnt_fills_o  = fills_q;
 
 endmodule

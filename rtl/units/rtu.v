@@ -24,7 +24,8 @@
 // 3 trv_list_miss, 4 trv_ist_full, 5 inner_steps, 6 leaf_visits, 7 pops, 8 list_steps,
 // 9 trv_fused, 10 stack_max, 11 ist_busy, 12 ist_tri_miss, 13 tri_tests, 14 hit_busy,
 // 15 primary_rays, 16 shadow_rays, 17 rgu_stall_no_slot, 18 vtu_busy, then per cache (node 19,
-// list 24, triangle 29): hits, misses, mshr_merges, mshr_full, fills; others 0.
+// list 24, triangle 29): hits, misses, mshr_merges, mshr_full, fills; set_full per cache (node 34,
+// list 35, triangle 36); others 0.
 //
 // Parameters: the cycle model's defaults (systemc/config.h SimConfig) for FP24: 128 slots (96 rays
 // in flight), 64 stack entries, 4 trv pipes, 2 ist units, 16 list words per read, an ist queue of
@@ -308,9 +309,10 @@ module rtu #(
   wire [2:0]        fill_valid;
   wire [3*MB_-1:0]  fill_tag;
   wire [3*8*MAXLB-1:0] fill_data;
-  wire [3*32-1:0]   c_hits, c_misses, c_merges, c_full, c_fills;
+  wire [3*32-1:0]   c_hits, c_misses, c_merges, c_full, c_sfull, c_fills;
   wire [NA-1:0]     n_unused_v, n_unused_m, n_unused_f, l_unused_v, l_unused_m, l_unused_f;
-  wire [IST-1:0]    t_unused_v, t_unused_m, t_unused_f;
+  wire [NA-1:0]     n_unused_s, l_unused_s;
+  wire [IST-1:0]    t_unused_v, t_unused_m, t_unused_f, t_unused_s;
   wire [NA-1:0]     n_unused_t, l_unused_t;
   wire [IST-1:0]    t_unused_t;
   wire [3*($clog2(MSHRS+1))-1:0] mshr_busy;
@@ -320,21 +322,22 @@ module rtu #(
     .clk_i(clk_i), .rst_ni(rst_ni),
     .acc_valid_i(t_acc_valid & ~t_acc_list), .acc_line_i(n_line), .acc_tag_i({NA{1'b0}}),
     .rsp_valid_o(n_unused_v), .rsp_hit_o(n_hit), .rsp_merge_o(n_unused_m),
-    .rsp_full_o(n_unused_f), .rsp_tag_o(n_unused_t), .rsp_data_o(n_data),
+    .rsp_full_o(n_unused_f), .rsp_set_full_o(n_unused_s), .rsp_tag_o(n_unused_t), .rsp_data_o(n_data),
     .req_valid_o(req_valid_o[0]), .req_ready_i(req_ready_i[0]),
     .req_line_o(req_line_o[0 +: LINE_W]), .req_tag_o(req_tag_o[0 +: MB_]),
     .fill_valid_i(fill_valid[0]), .fill_tag_i(fill_tag[0 +: MB_]),
     .fill_data_i(fill_data[0 +: 8*NODE_LB]),
     .mshr_busy_o(mshr_busy[0 +: $clog2(MSHRS+1)]),
     .cnt_hits_o(c_hits[0 +: 32]), .cnt_misses_o(c_misses[0 +: 32]),
-    .cnt_merges_o(c_merges[0 +: 32]), .cnt_full_o(c_full[0 +: 32]), .cnt_fills_o(c_fills[0 +: 32]));
+    .cnt_merges_o(c_merges[0 +: 32]), .cnt_full_o(c_full[0 +: 32]),
+    .cnt_set_full_o(c_sfull[0 +: 32]), .cnt_fills_o(c_fills[0 +: 32]));
 
   ascache #(.SETS(LIST_SETS), .WAYS(WAYS), .LINE_BYTES(LIST_LB), .MSHRS(MSHRS), .HIT_LATENCY(0),
             .PORTS(NA), .LINE_W(LINE_W), .TAG_BITS(1), .CNT_BITS(32)) u_list (
     .clk_i(clk_i), .rst_ni(rst_ni),
     .acc_valid_i(t_acc_valid & t_acc_list), .acc_line_i(l_line), .acc_tag_i({NA{1'b0}}),
     .rsp_valid_o(l_unused_v), .rsp_hit_o(l_hit), .rsp_merge_o(l_unused_m),
-    .rsp_full_o(l_unused_f), .rsp_tag_o(l_unused_t), .rsp_data_o(l_data),
+    .rsp_full_o(l_unused_f), .rsp_set_full_o(l_unused_s), .rsp_tag_o(l_unused_t), .rsp_data_o(l_data),
     .req_valid_o(req_valid_o[1]), .req_ready_i(req_ready_i[1]),
     .req_line_o(req_line_o[LINE_W +: LINE_W]), .req_tag_o(req_tag_o[MB_ +: MB_]),
     .fill_valid_i(fill_valid[1]), .fill_tag_i(fill_tag[MB_ +: MB_]),
@@ -342,7 +345,7 @@ module rtu #(
     .mshr_busy_o(mshr_busy[$clog2(MSHRS+1) +: $clog2(MSHRS+1)]),
     .cnt_hits_o(c_hits[32 +: 32]), .cnt_misses_o(c_misses[32 +: 32]),
     .cnt_merges_o(c_merges[32 +: 32]), .cnt_full_o(c_full[32 +: 32]),
-    .cnt_fills_o(c_fills[32 +: 32]));
+    .cnt_set_full_o(c_sfull[32 +: 32]), .cnt_fills_o(c_fills[32 +: 32]));
 
   // The triangle cache: one access per ist unit (the line of its entry's record).
   wire [IST*LINE_W-1:0] i_line;
@@ -358,7 +361,7 @@ module rtu #(
     .clk_i(clk_i), .rst_ni(rst_ni),
     .acc_valid_i(i_acc_valid), .acc_line_i(i_line), .acc_tag_i({IST{1'b0}}),
     .rsp_valid_o(t_unused_v), .rsp_hit_o(i_rsp_hit), .rsp_merge_o(t_unused_m),
-    .rsp_full_o(t_unused_f), .rsp_tag_o(t_unused_t), .rsp_data_o(i_rsp_data),
+    .rsp_full_o(t_unused_f), .rsp_set_full_o(t_unused_s), .rsp_tag_o(t_unused_t), .rsp_data_o(i_rsp_data),
     .req_valid_o(req_valid_o[2]), .req_ready_i(req_ready_i[2]),
     .req_line_o(req_line_o[2*LINE_W +: LINE_W]), .req_tag_o(req_tag_o[2*MB_ +: MB_]),
     .fill_valid_i(fill_valid[2]), .fill_tag_i(fill_tag[2*MB_ +: MB_]),
@@ -366,10 +369,10 @@ module rtu #(
     .mshr_busy_o(mshr_busy[2*$clog2(MSHRS+1) +: $clog2(MSHRS+1)]),
     .cnt_hits_o(c_hits[64 +: 32]), .cnt_misses_o(c_misses[64 +: 32]),
     .cnt_merges_o(c_merges[64 +: 32]), .cnt_full_o(c_full[64 +: 32]),
-    .cnt_fills_o(c_fills[64 +: 32]));
-  wire unused_cache = ^{n_unused_v, n_unused_m, n_unused_f, n_unused_t, l_unused_v, l_unused_m,
-                        l_unused_f, l_unused_t, t_unused_v, t_unused_m, t_unused_f, t_unused_t,
-                        mshr_busy};
+    .cnt_set_full_o(c_sfull[64 +: 32]), .cnt_fills_o(c_fills[64 +: 32]));
+  wire unused_cache = ^{n_unused_v, n_unused_m, n_unused_f, n_unused_s, n_unused_t, l_unused_v,
+                        l_unused_m, l_unused_f, l_unused_s, l_unused_t, t_unused_v, t_unused_m,
+                        t_unused_f, t_unused_s, t_unused_t, mshr_busy};
 
   // ---- ist --------------------------------------------------------------------------------------
   wire [IST*(32+8*W)-1:0] i_ray;
@@ -513,6 +516,9 @@ module rtu #(
       6'd31: cnt_o = {32'd0, c_merges[64 +: 32]};
       6'd32: cnt_o = {32'd0, c_full[64 +: 32]};
       6'd33: cnt_o = {32'd0, c_fills[64 +: 32]};
+      6'd34: cnt_o = {32'd0, c_sfull[0 +: 32]};
+      6'd35: cnt_o = {32'd0, c_sfull[32 +: 32]};
+      6'd36: cnt_o = {32'd0, c_sfull[64 +: 32]};
       default: cnt_o = 64'd0;
     endcase
   end

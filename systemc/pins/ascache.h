@@ -44,10 +44,10 @@ namespace raycore::sc::pins {
 template <unsigned LINE_BYTES>
 struct AscacheSignals {
   using Line = sc_dt::sc_bv<8 * LINE_BYTES>;
-  sc_core::sc_signal<bool> acc_valid, rsp_valid, rsp_hit, rsp_merge, rsp_full, req_valid, req_ready,
-      fill_valid;
+  sc_core::sc_signal<bool> acc_valid, rsp_valid, rsp_hit, rsp_merge, rsp_full, rsp_set_full,
+      req_valid, req_ready, fill_valid;
   sc_core::sc_signal<uint32_t> acc_line, acc_tag, rsp_tag, req_line, req_tag, fill_tag, mshr_busy;
-  sc_core::sc_signal<uint32_t> cnt_hits, cnt_misses, cnt_merges, cnt_full, cnt_fills;
+  sc_core::sc_signal<uint32_t> cnt_hits, cnt_misses, cnt_merges, cnt_full, cnt_set_full, cnt_fills;
   sc_core::sc_signal<Line> rsp_data, fill_data;
 };
 
@@ -65,6 +65,7 @@ void bind_ascache(M& m, AscacheSignals<LINE_BYTES>& s, sc_core::sc_signal<bool>&
   m.rsp_hit_o(s.rsp_hit);
   m.rsp_merge_o(s.rsp_merge);
   m.rsp_full_o(s.rsp_full);
+  m.rsp_set_full_o(s.rsp_set_full);
   m.rsp_tag_o(s.rsp_tag);
   m.rsp_data_o(s.rsp_data);
   m.req_valid_o(s.req_valid);
@@ -79,6 +80,7 @@ void bind_ascache(M& m, AscacheSignals<LINE_BYTES>& s, sc_core::sc_signal<bool>&
   m.cnt_misses_o(s.cnt_misses);
   m.cnt_merges_o(s.cnt_merges);
   m.cnt_full_o(s.cnt_full);
+  m.cnt_set_full_o(s.cnt_set_full);
   m.cnt_fills_o(s.cnt_fills);
 }
 
@@ -110,7 +112,7 @@ class AscacheTwin : public sc_core::sc_module {
   sc_core::sc_in<bool> clk_i, rst_ni;
   sc_core::sc_in<bool> acc_valid_i;
   sc_core::sc_in<uint32_t> acc_line_i, acc_tag_i;
-  sc_core::sc_out<bool> rsp_valid_o, rsp_hit_o, rsp_merge_o, rsp_full_o;
+  sc_core::sc_out<bool> rsp_valid_o, rsp_hit_o, rsp_merge_o, rsp_full_o, rsp_set_full_o;
   sc_core::sc_out<uint32_t> rsp_tag_o;
   sc_core::sc_out<Line> rsp_data_o;
   sc_core::sc_out<bool> req_valid_o;
@@ -120,7 +122,7 @@ class AscacheTwin : public sc_core::sc_module {
   sc_core::sc_in<uint32_t> fill_tag_i;
   sc_core::sc_in<Line> fill_data_i;
   sc_core::sc_out<uint32_t> mshr_busy_o, cnt_hits_o, cnt_misses_o, cnt_merges_o, cnt_full_o,
-      cnt_fills_o;
+      cnt_set_full_o, cnt_fills_o;
 
   SC_HAS_PROCESS(AscacheTwin);
   AscacheTwin(sc_core::sc_module_name name, const CacheConfig& cfg)
@@ -146,7 +148,7 @@ class AscacheTwin : public sc_core::sc_module {
 
  private:
   struct Rsp {
-    bool valid = false, hit = false, merge = false, full = false;
+    bool valid = false, hit = false, merge = false, full = false, set_full = false;
     uint32_t tag = 0;
     std::vector<uint8_t> data;
   };
@@ -186,6 +188,7 @@ class AscacheTwin : public sc_core::sc_module {
       in.hit = p != nullptr;
       in.merge = after.mshr_merges != before.mshr_merges;
       in.full = after.mshr_full != before.mshr_full;
+      in.set_full = after.set_full != before.set_full;
       in.tag = acc_tag_i.read();
       if (p) in.data.assign(p, p + LINE_BYTES);
     }
@@ -208,6 +211,7 @@ class AscacheTwin : public sc_core::sc_module {
     rsp_hit_o.write(held_.hit);
     rsp_merge_o.write(held_.merge);
     rsp_full_o.write(held_.full);
+    rsp_set_full_o.write(held_.set_full);
     rsp_tag_o.write(held_.tag);
     if (held_data_.size() == LINE_BYTES) {
       Line v;
@@ -228,6 +232,7 @@ class AscacheTwin : public sc_core::sc_module {
     cnt_misses_o.write(uint32_t(st.misses));
     cnt_merges_o.write(uint32_t(st.mshr_merges));
     cnt_full_o.write(uint32_t(st.mshr_full));
+    cnt_set_full_o.write(uint32_t(st.set_full));
     cnt_fills_o.write(uint32_t(st.fills));
   }
 

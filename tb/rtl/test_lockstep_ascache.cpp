@@ -14,13 +14,14 @@
 //     filled after a random 1..64 cycles (sometimes 150), out of order, at most one fill per
 //     cycle; the line's bytes are a hash of (line, fill number), so a stale line is caught.
 // Every cycle every output of both models is compared: rsp_valid_o and, for a response, hit /
-// merge / full / tag and (on a hit) the line; req_valid_o and, for a request, line and tag;
+// merge / full / set full / tag and (on a hit) the line; req_valid_o and, for a request, line and tag;
 // mshr_busy_o and the counters. The first difference stops the run and prints the cycle, the
 // field, both values and the inputs of the last cycles. Also checked against the stimulus's own
 // record: a hit's line is the last data filled for that line. At the end the counters (hits,
-// misses, merges, mshr_full, fills) of the twin (Ascache::stats()) and the RTL (cnt_*_o) are
-// compared, and each kind of transaction must have occurred (hits, misses, merges, mshr_full,
-// requests, fills, LRU evictions). Summary line: `ASCACHESUM <variant> cycles=... accesses=...`.
+// misses, merges, mshr_full, set_full, fills) of the twin (Ascache::stats()) and the RTL (cnt_*_o)
+// are compared, and each kind of transaction must have occurred (hits, misses, merges, mshr_full,
+// requests, fills, LRU evictions; set_full in the small caches). The requesters retry a missed line until it hits, as
+// the frame's do, so the pin rule holds (every fill is hit: ascache.v's forward progress). Summary line: `ASCACHESUM <variant> cycles=... accesses=...`.
 #include <gtest/gtest.h>
 #include <verilated.h>
 
@@ -68,8 +69,8 @@ struct Geometry {
 };
 
 struct Counts {
-  uint64_t accesses = 0, hits = 0, misses = 0, allocs = 0, merges = 0, full = 0, requests = 0,
-           fills = 0, evictions = 0, backpressure = 0;
+  uint64_t accesses = 0, hits = 0, misses = 0, allocs = 0, merges = 0, full = 0, set_full = 0,
+           requests = 0, fills = 0, evictions = 0, backpressure = 0;
 };
 
 template <class V, unsigned LB>
@@ -99,8 +100,8 @@ class Lockstep : public sc_core::sc_module {
   uint64_t cycles_run = 0;
   const AscacheTwin<LB>& twin() const { return twin_; }
   uint32_t rtl_cnt(int i) const {
-    const sc_core::sc_signal<uint32_t>* c[5] = {&sr_.cnt_hits, &sr_.cnt_misses, &sr_.cnt_merges,
-                                                &sr_.cnt_full, &sr_.cnt_fills};
+    const sc_core::sc_signal<uint32_t>* c[6] = {&sr_.cnt_hits, &sr_.cnt_misses, &sr_.cnt_merges,
+                                                &sr_.cnt_full, &sr_.cnt_fills, &sr_.cnt_set_full};
     return c[i]->read();
   }
 
@@ -202,6 +203,7 @@ class Lockstep : public sc_core::sc_module {
       if (!same("rsp_hit_o", st_.rsp_hit.read(), sr_.rsp_hit.read()) ||
           !same("rsp_merge_o", st_.rsp_merge.read(), sr_.rsp_merge.read()) ||
           !same("rsp_full_o", st_.rsp_full.read(), sr_.rsp_full.read()) ||
+          !same("rsp_set_full_o", st_.rsp_set_full.read(), sr_.rsp_set_full.read()) ||
           !same("rsp_tag_o", st_.rsp_tag.read(), sr_.rsp_tag.read()))
         return false;
       if (st_.rsp_hit.read() && !same_line("rsp_data_o", st_.rsp_data.read(), sr_.rsp_data.read()))
@@ -216,6 +218,7 @@ class Lockstep : public sc_core::sc_module {
            same("cnt_misses_o", st_.cnt_misses.read(), sr_.cnt_misses.read()) &&
            same("cnt_merges_o", st_.cnt_merges.read(), sr_.cnt_merges.read()) &&
            same("cnt_full_o", st_.cnt_full.read(), sr_.cnt_full.read()) &&
+           same("cnt_set_full_o", st_.cnt_set_full.read(), sr_.cnt_set_full.read()) &&
            same("cnt_fills_o", st_.cnt_fills.read(), sr_.cnt_fills.read());
   }
 
@@ -345,6 +348,8 @@ class Lockstep : public sc_core::sc_module {
             ++n.merges;
           else if (st_.rsp_full.read())
             ++n.full;
+          else if (st_.rsp_set_full.read())
+            ++n.set_full;
           else
             ++n.allocs;
           s.next = cycle_ + 1 + rnd(8);
@@ -384,11 +389,12 @@ void run_lockstep(const Geometry& g) {
   const Counts& n = top->n;
   const double rate = top->seconds_ > 0 ? double(top->cycles_run) / top->seconds_ : 0;
   std::printf("ASCACHESUM %s cycles=%llu accesses=%llu hits=%llu misses=%llu allocs=%llu merges=%llu "
-              "mshr_full=%llu requests=%llu fills=%llu backpressure_cycles=%llu cycles_per_s=%.0f\n",
+              "mshr_full=%llu set_full=%llu requests=%llu fills=%llu backpressure_cycles=%llu "
+              "cycles_per_s=%.0f\n",
               g.name, (unsigned long long)top->cycles_run, (unsigned long long)n.accesses,
               (unsigned long long)n.hits, (unsigned long long)n.misses,
               (unsigned long long)n.allocs, (unsigned long long)n.merges,
-              (unsigned long long)n.full, (unsigned long long)n.requests,
+              (unsigned long long)n.full, (unsigned long long)n.set_full, (unsigned long long)n.requests,
               (unsigned long long)n.fills, (unsigned long long)n.backpressure, rate);
   ASSERT_TRUE(top->mismatch.empty()) << top->mismatch;
   EXPECT_EQ(top->cycles_run, cycles);
@@ -399,6 +405,7 @@ void run_lockstep(const Geometry& g) {
   EXPECT_EQ(uint32_t(s.mshr_merges), top->rtl_cnt(2)) << "mshr merges";
   EXPECT_EQ(uint32_t(s.mshr_full), top->rtl_cnt(3)) << "mshr_full";
   EXPECT_EQ(uint32_t(s.fills), top->rtl_cnt(4)) << "fills";
+  EXPECT_EQ(uint32_t(s.set_full), top->rtl_cnt(5)) << "set_full";
   // ... and the stimulus's own count of the responses it received.
   EXPECT_LE(s.hits - n.hits, g.hit_latency) << "responses still in flight at the end";
   EXPECT_EQ(s.fills, n.fills);
@@ -408,6 +415,14 @@ void run_lockstep(const Geometry& g) {
   EXPECT_GE(n.allocs, min) << "too few allocating misses";
   EXPECT_GE(n.merges, min) << "too few merged misses";
   EXPECT_GE(n.full, min) << "too few MSHR-full misses";
+  // Every fill is hit before its line can go (pinned until its first hit: the requesters retry),
+  // but for lines still pinned at the end.
+  EXPECT_GE(s.hits + uint64_t(g.sets) * g.ways, s.fills) << "fills never hit";
+  // Sets full: with 12 requesters, only in the small caches (the 16 KB one: test_pins.cpp's
+  // AscacheRtlLockstep, 24 requesters and a hot set).
+  if (g.sets * g.ways <= 16) {
+    EXPECT_GE(n.set_full, 1u) << "no miss refused for a set whose ways are all pinned or awaited";
+  }
   EXPECT_GE(n.backpressure, min) << "too few cycles of request back-pressure";
   EXPECT_GE(n.evictions, min) << "too few evictions";
 }

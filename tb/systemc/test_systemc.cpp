@@ -275,7 +275,8 @@ TEST(Ascache, LruHitMissAndFill) {
   };
   fetch(0);
   fetch(1);
-  const uint8_t* p = c.access(0);  // 0 becomes the most recent
+  ASSERT_NE(c.access(1), nullptr);  // its first hit unpins it
+  const uint8_t* p = c.access(0);   // 0 becomes the most recent
   ASSERT_NE(p, nullptr);
   EXPECT_EQ(p[5], 5);
   fetch(2);  // evicts 1, the least recently used
@@ -284,10 +285,55 @@ TEST(Ascache, LruHitMissAndFill) {
   EXPECT_TRUE(c.present(2));
   ASSERT_NE(c.access(2), nullptr);
   EXPECT_EQ(c.access(2)[3], 2 * 16 + 3);
-  EXPECT_EQ(c.stats().accesses, 6u);
-  EXPECT_EQ(c.stats().hits, 3u);
+  EXPECT_EQ(c.stats().accesses, 7u);
+  EXPECT_EQ(c.stats().hits, 4u);
   EXPECT_EQ(c.stats().misses, 3u);
   EXPECT_EQ(c.stats().fills, 3u);
+  EXPECT_EQ(c.stats().set_full, 0u);
+}
+
+// Forward progress: a filled line is pinned (not a victim) until its first hit, and a miss takes
+// an MSHR only while its set has a way neither pinned nor awaited by an MSHR.
+TEST(Ascache, PinnedUntilFirstHit) {
+  // One set of two ways, 16-byte lines, three MSHRs.
+  sc::Ascache c("c", {32, 2, 16, 3, 1}, 0, 16);
+  ASSERT_EQ(c.sets(), 1u);
+  auto fill_next = [&] {
+    ASSERT_TRUE(c.req().can_pop(~0ull));
+    const sc::MemReq q = c.req().pop();
+    for (uint32_t i = 0; i < 16; ++i) q.data[i] = uint8_t(q.addr + i);
+    c.fill(q.tag);
+  };
+  EXPECT_EQ(c.access(0), nullptr);  // MSHR 0
+  EXPECT_EQ(c.access(1), nullptr);  // MSHR 1: both ways awaited
+  EXPECT_EQ(c.access(2), nullptr);  // an MSHR is free, but the set is not: refused
+  EXPECT_EQ(c.stats().set_full, 1u);
+  EXPECT_EQ(c.mshrs_busy(), 2u);
+  EXPECT_EQ(c.access(1), nullptr);  // merged (a merge needs no way)
+  EXPECT_EQ(c.stats().mshr_merges, 1u);
+  fill_next();                      // line 0 in, pinned; line 1 still awaited
+  EXPECT_EQ(c.access(2), nullptr);
+  EXPECT_EQ(c.stats().set_full, 2u);
+  fill_next();  // line 1 in, pinned: both ways pinned
+  EXPECT_EQ(c.access(2), nullptr);
+  EXPECT_EQ(c.stats().set_full, 3u);
+  ASSERT_NE(c.access(1), nullptr);  // line 1's first hit unpins it (line 0 stays pinned)
+  EXPECT_EQ(c.access(2), nullptr);  // now allocated
+  EXPECT_EQ(c.stats().set_full, 3u);
+  EXPECT_EQ(c.mshrs_busy(), 1u);
+  ASSERT_NE(c.access(1), nullptr);  // line 1 the most recent: line 0, pinned, is still not the victim
+  fill_next();
+  EXPECT_TRUE(c.present(0));
+  EXPECT_FALSE(c.present(1));
+  EXPECT_TRUE(c.present(2));
+  ASSERT_NE(c.access(0), nullptr);
+  ASSERT_NE(c.access(2), nullptr);
+  EXPECT_EQ(c.access(3), nullptr);  // nothing pinned: line 0, the least recent, goes
+  fill_next();
+  EXPECT_FALSE(c.present(0));
+  EXPECT_TRUE(c.present(2));
+  EXPECT_TRUE(c.present(3));
+  EXPECT_EQ(c.stats().fills, 4u);
 }
 
 TEST(Ascache, MshrMergeAndFull) {
