@@ -239,7 +239,7 @@ EOF
 # r2o.rpt, i2o.rpt (register to register, input to register, register to output, input to output;
 # the memories' RC_SRAM_* cells are registers here) and the TIMING_TOP worst register-to-register
 # end points (one path each) into top.rpt.
-TIMING_TOP=400
+TIMING_TOP=2000
 timing_sta_tcl() {  # NETLIST MODULE MACROLIB OUTDIR
   cat <<EOF
 read_liberty $TIMING_LIBERTY
@@ -267,37 +267,51 @@ EOF
 # Parses sta's reports in DIR (python3) with the netlist's src attributes (the RTL file and line of
 # each flip-flop) into DIR/paths.tsv: one line per kind (r2r i2r r2o i2o) and per distinct top path
 # (kind top): kind, length ns (period - slack), arrival ns, start, end, start src, end src, the
-# top-level instances the path crosses (hierarchical netlists; '-' for none), cells on the path.
+# top-level instances the path crosses, with their modules and the ns spent in each (hierarchical
+# netlists, the top module itself as its name; '-' for a flat one),
+# the cells on the path.
 # Start and end are RTL names: a flip-flop "<register>[bit]_reg" as "<register>[bit]", a port as
 # its name, a memory's timing cell as "<memory> (SRAM ...)". Fails when sta printed no path at all.
 TIMING_PARSE_PY='
 import os, re, sys
-d, net, period = sys.argv[1], sys.argv[2], float(sys.argv[3])
+d, net, period, top = sys.argv[1], sys.argv[2], float(sys.argv[3]), sys.argv[4]
 def leaf(n):
     return n.rsplit("/", 1)[-1]
-srcs = {}
-def load_srcs(names):
-    # the src attribute of each named cell (the line "(* src = ... *)" before its instance)
-    pend = None
+srcs, types = {}, {}  # (module, cell) -> src attribute; (module, instance) -> module
+def norm(m):
+    return m[1:] if m.startswith("\\") else m
+def load_srcs(names, insts):
+    # the src attribute of each named cell (the line "(* src = ... *)" before its instance) and the
+    # module of each named instance, per module
+    pend, mod = None, None
     cell_re = re.compile(r"^\s*(\S+)\s+(\S+)\s+\($")
     with open(net, errors="replace") as f:
         for line in f:
+            if line.startswith("module "):
+                mod = norm(re.match(r"module\s+(\S+?)\s*\(", line).group(1)); pend = None
+                continue
             s = line.strip()
             if s.startswith("(* src ="):
                 pend = s.split("\"")[1]
                 continue
             if s.startswith("(*"): continue
-            if pend is not None:
-                m = cell_re.match(line)
-                if m:
-                    n = m.group(2)
-                    if n.startswith("\\"): n = n[1:]
-                    if n in names: srcs.setdefault(n, pend)
+            m = cell_re.match(line)
+            if m:
+                n = norm(m.group(2))
+                if pend is not None and n in names: srcs.setdefault((mod, n), pend)
+                if n in insts: types[(mod, n)] = norm(m.group(1))
             pend = None
+def module_of(inst):
+    # the module holding the cell inst ("a/b/cell": the module of instance b in the module of a)
+    mod = top
+    for c in inst.split("/")[:-1]:
+        mod = types.get((mod, c))
+        if mod is None: return None
+    return mod
 def src_of(inst):
     # the src entry (file:line) that assigns the register: the one whose lines name it (the others
     # are the instances above it); else the last entry
-    s = srcs.get(leaf(inst))
+    s = srcs.get((module_of(inst), leaf(inst)))
     if not s: return "-"
     s = "|".join(e for e in s.split("|") if e.startswith("rtl/"))  # not the techmap file
     if not s: return "-"
@@ -343,13 +357,14 @@ def parse(fn):
         arr = re.search(r"^\s*(-?[\d.]+)\s+data arrival time", blk, re.M)
         sl = re.search(r"^\s*(-?[\d.]+)\s+slack", blk, re.M)
         if not arr or not sl: continue
-        pins = re.findall(r"^\s*-?[\d.]+\s+-?[\d.]+\s+[v^]\s+(\S+)\s+\((\S+)\)", blk, re.M)
-        tops = []
-        for pin, cell in pins:
-            if "/" in pin:
-                t = pin.split("/")[0]
-                if pin.count("/") >= 2 and (not tops or tops[-1] != t): tops.append(t)
-        ncell = sum(1 for pin, cell in pins if pin.endswith(("/Y", "/YC", "/YS", "/Q")))
+        pins = re.findall(r"^\s*(-?[\d.]+)\s+-?[\d.]+\s+[v^]\s+(\S+)\s+\((\S+)\)", blk, re.M)
+        tops = []  # [instance of the top module, ns spent in it]; "." for the top module itself
+        for dl, pin, cell in pins:
+            t = pin.split("/")[0] if pin.count("/") >= 2 else "."
+            if not tops or tops[-1][0] != t: tops.append([t, 0.0])
+            tops[-1][1] += float(dl)
+        if all(t == "." for t, _ in tops): tops = []
+        ncell = sum(1 for dl, pin, cell in pins if pin.endswith(("/Y", "/YC", "/YS", "/Q")))
         out.append((period - float(sl.group(1)), float(arr.group(1)), start, end, tops, ncell))
     return out
 rows = []
@@ -369,11 +384,18 @@ for n, a, s, e, t, c in parse(os.path.join(d, "top.rpt")):
     if len(seen) >= 10: break
 if not found:
     sys.exit("timing: sta reported no path (see %s)" % d)
-load_srcs(set(leaf(r[i]) for r in rows for i in (3, 4)))
+load_srcs(set(leaf(r[i]) for r in rows for i in (3, 4)),
+          set(c for r in rows for i in (3, 4) for c in r[i].split("/")[:-1]) | set(t for r in rows for t, _ in r[5]))
+def inst(t, ns):
+    # an instance of the top module with its module ("$paramod$<hash>\\<module>": <module>) and the
+    # time the path spends in it
+    m = types.get((top, t))
+    name = top if t == "." else ("%s (%s)" % (t, m.split("\\")[-1]) if m else t)
+    return "%s %.2f ns" % (name, ns)
 with open(os.path.join(d, "paths.tsv"), "w") as f:
     for k, n, a, s, e, t, c in rows:
         f.write("\t".join([k, "%.4f" % n, "%.4f" % a, rtl(s), rtl(e), src_of(s), src_of(e),
-                           ">".join(t) or "-", str(c)]) + "\n")
+                           ">".join(inst(x, ns) for x, ns in t) or "-", str(c)]) + "\n")
 '
 
 # Buffers the nets ABC does not see whole (python3: netlist in, netlist out): a flip-flop's output,
@@ -483,13 +505,14 @@ print("timing: %d buffers inserted" % nbuf)
 # file). Sets T_STATUS (ok, or timeout: yosys did not finish in TIMING_TIMEOUT s), T_SECS (yosys
 # wall seconds; TIMING_WHOLE_TIMEOUT for hier), T_STA_SECS (the buffering and sta), T_CELLS (standard cells of the netlist, 0 for hier) and T_PATHS (the
 # paths.tsv file, see TIMING_PARSE_PY). Exits on a yosys or sta error. Cached in TIMING_CACHE: the
-# netlist (gzip) by a hash of the yosys version, the script, the liberty and the sources; the paths
-# by that and sta's version, its Tcl and the macro library. A timeout is remembered (NKEY.timeout:
+# netlist (gzip) by a hash of the yosys version, the script, the liberty and the sources; sta's
+# reports by that and sta's version, its Tcl, the buffering and the macro library; the paths by
+# that and the parser. A timeout is remembered (NKEY.timeout:
 # the seconds): a later run with a timeout no longer than that reports it without rerunning.
 # RAYCORE_TIMING_CACHED_ONLY=1: a design whose netlist is not cached is not run (T_STATUS not_run).
 # shellcheck disable=SC2153  # TIMING_TMP: set by the caller
 timing_design() {
-  local name=$1 mod=$2 chp=$3 hier=${4:-} dir="$TIMING_TMP/$1" srcs script nkey skey t0 rc=0
+  local name=$1 mod=$2 chp=$3 hier=${4:-} dir="$TIMING_TMP/$1" srcs script nkey skey pkey t0 rc=0
   local flatten=-flatten stat="stat -liberty $TIMING_LIBERTY" to=$TIMING_TIMEOUT
   [ "$hier" = hier ] && { flatten=""; stat="stat -top $mod -liberty $TIMING_LIBERTY"; to=$TIMING_WHOLE_TIMEOUT; }
   mkdir -p "$dir"
@@ -545,26 +568,38 @@ timing_design() {
       echo "$T_SECS $T_CELLS" > "$TIMING_CACHE/$nkey.yosys"
     fi
   fi
-  timing_sta_tcl "$dir/net_buf.v" "$mod" "$TIMING_MACRO" "$dir" > "$dir/sta.tcl"
-  skey=$({ echo "$nkey"; sta -version; sed "s|$dir|DIR|g" "$dir/sta.tcl"; cat "$TIMING_MACRO"; echo "$TIMING_PARSE_PY";
+  timing_sta_tcl "$dir/net_buf.v" "$mod" "$dir/raycore_sram.lib" "$dir" > "$dir/sta.tcl"
+  skey=$({ echo "$nkey"; sta -version; sed "s|$dir|DIR|g" "$dir/sta.tcl"; cat "$TIMING_MACRO";
            echo "$TIMING_BUF_PY $TIMING_FANOUT"; } | sha256sum | cut -c1-16)
+  pkey=$({ echo "$skey"; echo "$TIMING_PARSE_PY"; } | sha256sum | cut -c1-16)
   T_PATHS="$dir/paths.tsv"
-  if [ "$TIMING_CACHE" != none ] && [ -s "$TIMING_CACHE/$skey.paths.tsv" ]; then
-    cp "$TIMING_CACHE/$skey.paths.tsv" "$T_PATHS"
+  if [ "$TIMING_CACHE" != none ] && [ -s "$TIMING_CACHE/$pkey.paths.tsv" ]; then
+    cp "$TIMING_CACHE/$pkey.paths.tsv" "$T_PATHS"
     T_STA_SECS=$(cat "$TIMING_CACHE/$skey.sta")
     return 0
   fi
   t0=$(date +%s)
   python3 -c "$TIMING_BUF_PY" "$dir/net.v" "$TIMING_LIBERTY,$TIMING_MACRO" "$dir/net_buf.v" "$TIMING_FANOUT" >&2
-  rc=0
-  sta -no_splash -exit "$dir/sta.tcl" > "$dir/sta.log" 2>&1 || rc=$?
-  T_STA_SECS=$(( $(date +%s) - t0 ))
-  if [ $rc -ne 0 ] || grep -q "^Error" "$dir/sta.log"; then
-    echo "timing: sta failed for $name (exit $rc), see $dir/sta.log:" >&2; tail -20 "$dir/sta.log" >&2; exit 1
+  # A top yosys derived from the parameters ("$paramod$<hash>\<module>", trv_unit) is named <module>.
+  grep -q "^module $mod(" "$dir/net_buf.v" ||
+    sed -i -E "s/^module \\\\\\\$paramod\\\$[0-9a-f]+\\\\$mod \(/module $mod(/" "$dir/net_buf.v"
+  if [ "$TIMING_CACHE" != none ] && [ -s "$TIMING_CACHE/$skey.rpt.tar.gz" ]; then
+    tar -xzf "$TIMING_CACHE/$skey.rpt.tar.gz" -C "$dir"   # sta's reports of this netlist
+    T_STA_SECS=$(cat "$TIMING_CACHE/$skey.sta")
+  else
+    rc=0
+    sta -no_splash -exit "$dir/sta.tcl" > "$dir/sta.log" 2>&1 || rc=$?
+    T_STA_SECS=$(( $(date +%s) - t0 ))
+    if [ $rc -ne 0 ] || grep -q "^Error" "$dir/sta.log"; then
+      echo "timing: sta failed for $name (exit $rc), see $dir/sta.log:" >&2; tail -20 "$dir/sta.log" >&2; exit 1
+    fi
+    if [ "$TIMING_CACHE" != none ]; then
+      mkdir -p "$TIMING_CACHE"
+      (cd "$dir" && tar -czf "$TIMING_CACHE/$skey.rpt.tar.gz.tmp" sta.log ./*.rpt)
+      mv "$TIMING_CACHE/$skey.rpt.tar.gz.tmp" "$TIMING_CACHE/$skey.rpt.tar.gz"
+      echo "$T_STA_SECS" > "$TIMING_CACHE/$skey.sta"
+    fi
   fi
-  python3 -c "$TIMING_PARSE_PY" "$dir" "$dir/net_buf.v" "$TIMING_PERIOD" || { tail -20 "$dir/sta.log" >&2; exit 1; }
-  if [ "$TIMING_CACHE" != none ]; then
-    cp "$T_PATHS" "$TIMING_CACHE/$skey.paths.tsv"
-    echo "$T_STA_SECS" > "$TIMING_CACHE/$skey.sta"
-  fi
+  python3 -c "$TIMING_PARSE_PY" "$dir" "$dir/net_buf.v" "$TIMING_PERIOD" "$mod" || { tail -20 "$dir/sta.log" >&2; exit 1; }
+  if [ "$TIMING_CACHE" != none ]; then cp "$T_PATHS" "$TIMING_CACHE/$pkey.paths.tsv"; fi
 }
