@@ -237,9 +237,10 @@ EOF
 
 # The Tcl run by sta on a design's netlist: the worst path of each kind into r2r.rpt, i2r.rpt,
 # r2o.rpt, i2o.rpt (register to register, input to register, register to output, input to output;
-# the memories' RC_SRAM_* cells are registers here) and the TIMING_TOP worst register-to-register
-# end points (one path each) into top.rpt.
-TIMING_TOP=2000
+# the memories' RC_SRAM_* cells are registers here) and into top.rpt the worst path to each of the
+# 10 first distinct end registers (bit and generate indices dropped) among the TIMING_TOP worst
+# register-to-register end points.
+TIMING_TOP=100000
 timing_sta_tcl() {  # NETLIST MODULE MACROLIB OUTDIR
   cat <<EOF
 read_liberty $TIMING_LIBERTY
@@ -256,7 +257,23 @@ set rc [all_registers -clock_pins]
 set rd [all_registers -data_pins]
 puts "timing: [llength \$ins] inputs, [llength [all_outputs]] outputs, [llength \$rc] register clock pins, [llength \$rd] register data pins"
 proc rep {file args} { report_checks -path_delay max -digits 4 -format full {*}\$args > $4/\$file }
-if {[llength \$rc] > 0 && [llength \$rd] > 0} { rep r2r.rpt -from \$rc -to \$rd; rep top.rpt -from \$rc -to \$rd -group_count $TIMING_TOP -endpoint_count 1 }
+if {[llength \$rc] > 0 && [llength \$rd] > 0} {
+  rep r2r.rpt -from \$rc -to \$rd
+  # the worst paths to distinct end registers (bit and generate indices dropped): the end points
+  # worst first (-format end), then one full path to each of the first 10 distinct ones
+  report_checks -path_delay max -from \$rc -to \$rd -group_count $TIMING_TOP -endpoint_count 1 -format end > $4/ends.rpt
+  set seen {}
+  set f [open $4/ends.rpt r]
+  while {[gets \$f line] >= 0 && [llength \$seen] < 10} {
+    if {![regexp {^(\S+)/(D|R|S) } \$line -> inst pin]} { continue }
+    regsub -all {\[[0-9]+\]} \$inst {} key
+    if {[lsearch -exact \$seen \$key] >= 0} { continue }
+    lappend seen \$key
+    set pat [string map {"[" "\\[" "]" "\\]"} \$inst/\$pin]
+    report_checks -path_delay max -from \$rc -to [get_pins \$pat] -digits 4 -format full >> $4/top.rpt
+  }
+  close \$f
+}
 if {[llength \$ins] > 0 && [llength \$rd] > 0} { rep i2r.rpt -from \$ins -to \$rd }
 if {[llength \$rc] > 0 && [llength [all_outputs]] > 0} { rep r2o.rpt -from \$rc -to [all_outputs] }
 if {[llength \$ins] > 0 && [llength [all_outputs]] > 0} { rep i2o.rpt -from \$ins -to [all_outputs] }
