@@ -224,29 +224,32 @@ section_throughput() {
 }
 
 # ---- random_configs: the randomised-configuration test, long -----------------------------------
+# random_runs BIN COUNT_VAR N LOG SUM SEED...: BIN with COUNT_VAR=N/2 configurations per seed.
+random_runs() {
+  local bin=$1 var=$2 n=$3 log=$4 sum=$5 seed rc=0
+  shift 5
+  for seed in "$@"; do
+    echo "command: $var=$((n / 2)) RAYCORE_RANDOM_CONFIG_SEED=$seed $bin"
+    env SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1 "$var=$((n / 2))" RAYCORE_RANDOM_CONFIG_SEED="$seed" \
+      "$bin" > "$OUT/$log-$seed.log" 2>&1 || rc=1
+    grep -E "$sum|Failure|RAYCORE_RANDOM_CONFIG_SEED=" "$OUT/$log-$seed.log" | head -8
+  done
+  return $rc
+}
+
 section_random_configs() {
   local n=${RAYCORE_RANDOM_CONFIGS:-1000}
   header "random_configs: $n random configurations of the cycle model, each against the golden tracer"
   local bin="$BUILD/bin/test_random_config"
   if [ ! -x "$bin" ]; then echo "test_random_config not built: skipped"; return 0; fi
   machine
-  local t0=$SECONDS rc=0 seed
-  for seed in 101 102; do
-    echo "command: RAYCORE_RANDOM_CONFIGS=$((n / 2)) RAYCORE_RANDOM_CONFIG_SEED=$seed $bin"
-    SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1 RAYCORE_RANDOM_CONFIGS=$((n / 2)) RAYCORE_RANDOM_CONFIG_SEED=$seed \
-      "$bin" > "$OUT/random_configs-$seed.log" 2>&1 || rc=1
-    grep -E 'RANDOMCONFIGSUM|Failure|RAYCORE_RANDOM_CONFIG_SEED=' "$OUT/random_configs-$seed.log" | head -8
-  done
+  local t0=$SECONDS rc=0
+  random_runs "$bin" RAYCORE_RANDOM_CONFIGS "$n" random_configs RANDOMCONFIGSUM 101 102 || rc=1
   # The same draws with random unit views (tb/systemc/test_random_config.cpp, RandomViews): each
   # view runs the frame exactly as the transaction model or refuses it with what it is built for.
   local views=${RAYCORE_RANDOM_VIEW_CONFIGS:-200} vbin="$BUILD/bin/test_random_config_rtl"
   if [ -x "$vbin" ]; then
-    for seed in 103 104; do
-      echo "command: RAYCORE_RANDOM_VIEW_CONFIGS=$((views / 2)) RAYCORE_RANDOM_CONFIG_SEED=$seed $vbin"
-      SYSTEMC_DISABLE_COPYRIGHT_MESSAGE=1 RAYCORE_RANDOM_VIEW_CONFIGS=$((views / 2)) RAYCORE_RANDOM_CONFIG_SEED=$seed \
-        "$vbin" > "$OUT/random_views-$seed.log" 2>&1 || rc=1
-      grep -E 'RANDOMVIEWSUM|Failure|RAYCORE_RANDOM_CONFIG_SEED=' "$OUT/random_views-$seed.log" | head -8
-    done
+    random_runs "$vbin" RAYCORE_RANDOM_VIEW_CONFIGS "$views" random_views RANDOMVIEWSUM 103 104 || rc=1
   else
     echo "test_random_config_rtl not built (RAYCORE_RTL=OFF): the unit views are not drawn"
   fi

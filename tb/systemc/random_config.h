@@ -154,12 +154,12 @@ inline Drawn draw(uint64_t seed, uint64_t index) {
 // from a stream of its own (the configuration's other draws stay as they were), a view for each
 // unit: the transaction model, its SystemC twin at pin level (--pins: vtu, ist, hit, rgu) or its
 // Verilated RTL (--rtl: vtu, ist, trv, ascache, hit, rgu, membus; or the whole RTU alone, --rtl
-// rtu), with `rtl` false only twins. A unit given a view then has, with probability 15/16 each, the
-// dimensions that view is built for set to one it is built for (the format and rounding of the
+// rtu). A unit given a view then has, with probability 15/16 each, the dimensions that view is
+// built for set to one it is built for (the format and rounding of the
 // built RTL, the model's pipeline depths, the cache geometries, no L2 for the bus in RTL, ...):
 // so most configurations run, and the rest keep dimensions drawn at random, which a view must
 // either run exactly or refuse with sc::ConfigError's message.
-inline Drawn draw_views(uint64_t seed, uint64_t index, bool rtl) {
+inline Drawn draw_views(uint64_t seed, uint64_t index) {
   Drawn d = draw(seed, index);
   std::mt19937_64 g((seed * 0x9E3779B97F4A7C15ull + index) ^ 0xD1B54A32D192ED03ull);
   auto pick = [&](uint64_t lo, uint64_t hi) { return lo + g() % (hi - lo + 1); };
@@ -170,11 +170,9 @@ inline Drawn draw_views(uint64_t seed, uint64_t index, bool rtl) {
   auto view = [&](bool twin) {  // model 1/3, twin / rtl the rest
     const uint64_t v = pick(0, 5);
     if (v < 2) return UnitView::model;
-    if (!rtl) return twin ? UnitView::twin : UnitView::model;
     return twin && v < 4 ? UnitView::twin : UnitView::rtl;
   };
-  const bool any_rtl = rtl;
-  if (rtl && pick(0, 5) == 0) {
+  if (pick(0, 5) == 0) {
     c.rtu_view = UnitView::rtl;
   } else {
     c.vtu_view = view(true);
@@ -189,9 +187,9 @@ inline Drawn draw_views(uint64_t seed, uint64_t index, bool rtl) {
   // The model's own stops are RandomConfig's to count: here a stack deep enough, mostly.
   if (snap()) c.stack_depth = std::max<uint32_t>(c.stack_depth, 16);
   auto is_rtl = [&](UnitView v) { return v == UnitView::rtl || rtu; };
-  const bool some_rtl = any_rtl && (rtu || is_rtl(c.vtu_view) || is_rtl(c.ist_view) || is_rtl(c.hit_view) ||
-                                    is_rtl(c.rgu_view) || is_rtl(c.trv_view) || is_rtl(c.ascache_view) ||
-                                    is_rtl(c.membus_view));
+  const bool some_rtl = rtu || is_rtl(c.vtu_view) || is_rtl(c.ist_view) || is_rtl(c.hit_view) ||
+                        is_rtl(c.rgu_view) || is_rtl(c.trv_view) || is_rtl(c.ascache_view) ||
+                        is_rtl(c.membus_view);
   // The formats and roundings the RTL is built for: FP24 rtz, rne, raycore and FP32 rne
   // (rtl/units/*.cmake); the whole RTU FP24 rtz.
   if (some_rtl && snap()) {

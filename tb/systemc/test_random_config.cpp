@@ -182,7 +182,7 @@ TEST(RandomViews, ExactOrRefused) {
   const uint64_t n = env_u64("RAYCORE_RANDOM_VIEW_CONFIGS", 32);
   uint64_t ran = 0, refused = 0, model_stopped = 0;
   for (uint64_t i = 0; i < n; ++i) {
-    const Drawn d = draw_views(seed, i, true);
+    const Drawn d = draw_views(seed, i);
     SCOPED_TRACE("RAYCORE_RANDOM_CONFIG_SEED=" + std::to_string(seed) + " view configuration " +
                  std::to_string(i) + ": " + d.line);
     std::printf("views %llu: %s\n", (unsigned long long)i, d.line.c_str());
