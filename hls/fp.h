@@ -372,6 +372,75 @@ constexpr uint32_t mul(uint32_t a, uint32_t b) {
   return round_pack<F, R>(sign, ua.exp + ub.exp - 2 * M, prod, false);
 }
 
+// Sum of two addends and two products with one rounding: a + b + x1*y1 + x2*y2 (the VTU's plane
+// and edge offsets, hls/vtu.h). A wide intermediate, the same way as add3's window:
+//  - every term exact: a number's M+1-bit significand, a product's exact 2M+2-bit one;
+//  - T = the top of the largest nonzero term, by exponents only (a number x < 2^(ex+1), a product
+//    x*y < 2^(ex+ey+2));
+//  - each term aligned to a signed accumulator whose lsb is 2^(T-S), S = 3M+7 (a product whose top
+//    is T keeps M+5 bits below its own lsb), the bits a term has below that lsb jammed (ORed into
+//    bit 0); the four signed terms added exactly (|sum| < 2^(S+2));
+//  - rounded once (round_pack).
+// So result = round(exact + d) with |d| < 4 * 2^(T-S) = 2^(T-3M-5): the exact sum rounded once
+// whenever no term lies below the window (and, as add, for two terms whatever their exponents: a
+// jammed second addend is below 2^(T-2M-6) while the sum is above 2^(T-2), the round-to-odd
+// argument); with several terms below it, an error of at most 2^(T-3M-5) before the rounding, about
+// 2^-(2M+4) of the largest term. The rounding policy's own step is round_pack's (raycore truncates,
+// as rtz). Zero terms (a zero number, or a zero factor) add nothing; every term zero gives -0 if
+// every one is -0 (a product's sign is the xor of its factors'), else +0; an exact zero sum is +0.
+template <class F, Rounding R>
+constexpr uint32_t sop(uint32_t a, uint32_t b, uint32_t x1, uint32_t y1, uint32_t x2, uint32_t y2) {
+  constexpr int M = F::man_bits;
+  constexpr int S = 3 * M + 7;
+  using SI = typename std::conditional<S + 3 <= 63, int64_t, detail::i128>::type;
+  using U = typename std::conditional<S + 3 <= 63, uint64_t, detail::u128>::type;
+  struct Term {
+    bool zero, sign;
+    int lsb, top;  // value = sig * 2^lsb < 2^top
+    uint64_t sig;
+  };
+  auto plain = [](uint32_t v) -> Term {
+    if (is_zero<F>(v)) return {true, sign_of<F>(v), 0, 0, 0};
+    const auto u = detail::unpack<F>(v);
+    return {false, u.sign, u.exp - M, u.exp + 1, u.sig};
+  };
+  auto product = [](uint32_t x, uint32_t y) -> Term {
+    const bool sign = sign_of<F>(x) != sign_of<F>(y);
+    if (is_zero<F>(x) || is_zero<F>(y)) return {true, sign, 0, 0, 0};
+    const auto ux = detail::unpack<F>(x), uy = detail::unpack<F>(y);
+    return {false, sign, ux.exp + uy.exp - 2 * M, ux.exp + uy.exp + 2, uint64_t(ux.sig) * uy.sig};
+  };
+  const Term t[4] = {plain(a), plain(b), product(x1, y1), product(x2, y2)};
+  bool any = false, all_neg = true;
+  int top = 0;
+  for (const Term& x : t) {
+    all_neg = all_neg && x.sign;
+    if (x.zero) continue;
+    top = any ? (x.top > top ? x.top : top) : x.top;
+    any = true;
+  }
+  if (!any) return signed_zero<F>(all_neg);
+  const int lsb = top - S;
+  SI sum = 0;
+  for (const Term& x : t) {
+    if (x.zero) continue;
+    const int sh = x.lsb - lsb;  // <= S - (M+1) for a number, S - (2M+2) for a product
+    U mag;
+    if (sh >= 0) {
+      mag = U(x.sig) << sh;
+    } else if (-sh < 64) {
+      const int s = -sh;
+      mag = U((x.sig >> s) | ((x.sig & ((uint64_t(1) << s) - 1u)) != 0));
+    } else {
+      mag = 1;  // entirely below the window: the jammed bit
+    }
+    sum += x.sign ? -SI(mag) : SI(mag);
+  }
+  if (sum == 0) return 0;  // exact zero: +0
+  const bool sign = sum < 0;
+  return round_pack<F, R>(sign, lsb, U(sign ? -sum : sum), false);
+}
+
 // Division: the quotient of the significands to M+3 bits plus a sticky remainder bit, rounded
 // once. x / 0 saturates with the sign of the quotient; 0 / 0 is +0 (there is no NaN).
 namespace detail {
@@ -607,6 +676,10 @@ struct Arith {
     return hls::add3<F, R>(a, b, c);
   }
   static constexpr uint32_t mul(uint32_t a, uint32_t b) { return hls::mul<F, R>(a, b); }
+  static constexpr uint32_t sop(uint32_t a, uint32_t b, uint32_t x1, uint32_t y1, uint32_t x2,
+                                uint32_t y2) {
+    return hls::sop<F, R>(a, b, x1, y1, x2, y2);
+  }
   static constexpr uint32_t div(uint32_t a, uint32_t b) { return hls::div<F, R>(a, b); }
   static constexpr uint32_t rcp(uint32_t a) { return hls::rcp<F, R>(a); }
   static constexpr uint32_t sqrt(uint32_t a) { return hls::sqrt<F, R>(a); }

@@ -2,17 +2,24 @@
 // in the format) as data comes off the memory bus, exactly the operations the hardware unit
 // performs, through hls::Arith<F, R> only.
 //
-//   node      inner: split' = sub(split, c[axis]); leaves pass through unchanged
-//   triangle  n_d' = sub(n_d, add3(c_k, mul(n_u, c_u), mul(n_v, c_v)))
-//             b_d' = add3(b_d, mul(b_nu, c_u), mul(b_nv, c_v))
-//             c_d' = add3(c_d, mul(c_nu, c_u), mul(c_nv, c_v))
+// Every translated value is one sop (hls/fp.h: a + b + x1*y1 + x2*y2, each product exact, the sum
+// in a window of 3M+7 bits, rounded once), the unit's only operator:
+//   node      inner: split' = sop(split, -c[axis], -0*0, -0*0); leaves pass through unchanged
+//   triangle  n_d' = sop(n_d, -c_k, -n_u * c_u, -n_v * c_v)
+//             b_d' = sop(b_d, -0, b_nu * c_u, b_nv * c_v)
+//             c_d' = sop(c_d, -0, c_nu * c_u, c_nv * c_v)
 //             n_u, n_v, b_nu, b_nv, c_nu, c_nv, k, flags and id unchanged
-//   box/light x' = sub(x, c)   (box_outward: one more step outward, see below)
-// Per triangle: 6 multipliers, 3 three-input adders, 1 two-input adder; per node one adder.
+//   box/light x' = sop(x, -c, -0*0, -0*0)   (box_outward: one more step outward, see below)
+// (-0 and -0*0 are absent terms: they leave an all-zero sum's sign to the others.) For rtz and
+// rne a two-term sop is sub(x, c) bit for bit (tb/fp: SopTest); for raycore it is the exact
+// difference truncated once (the VTU is this project's unit, not RayCore's).
+// Per triangle: 3 sops (6 exact products, no intermediate rounding); per node one.
 //
-// Error against constants computed in double from pre-translated vertices (docs/image.md derives
-// it): for each translated constant, |x' - exact| <= K ulp(m) + the stored constants' own
-// rounding, where m is the largest magnitude among the terms of its sum.
+// Why one rounding: in world coordinates far from the origin the terms of n_d' are large and
+// cancel (far at 10^5: products near 7 * 10^4, where the FP24 ulp is 1), so a rounded product or
+// partial sum loses the small offset that remains; here the offsets err by their own final
+// rounding plus at most 2^-(2M+4) of the largest term (hls/fp.h, sop). docs/image.md derives the
+// bound against constants computed in double from pre-translated vertices.
 #pragma once
 
 #include <cstdint>
@@ -35,10 +42,15 @@ struct Vtu {
     return v;
   }
 
+  // x - cam through the unit's operator: sop(x, -cam, -0*0, -0*0).
+  static uint32_t shift(uint32_t x, uint32_t cam) {
+    return A::sop(x, A::neg(cam), F::sign_mask, 0, F::sign_mask, 0);
+  }
+
   uint64_t node(uint64_t raw) const {
     Node n = decode_node(raw);
     if (n.leaf()) return raw;
-    n.split_or_count = A::sub(n.split_or_count, c[n.axis]);
+    n.split_or_count = shift(n.split_or_count, c[n.axis]);
     return (raw & ~uint64_t(0xFFFFFFFFu)) | n.split_or_count;
   }
 
@@ -48,25 +60,26 @@ struct Vtu {
     const uint32_t u = k == 2 ? 0 : k + 1, v = k == 0 ? 2 : k - 1;
     WaldTri<F> o = t;
     const uint32_t cu = c[u], cv = c[v];
-    o.c[W::ND] = A::sub(t.c[W::ND], A::add3(c[k], A::mul(t.c[W::NU], cu), A::mul(t.c[W::NV], cv)));
-    o.c[W::BD] = A::add3(t.c[W::BD], A::mul(t.c[W::BNU], cu), A::mul(t.c[W::BNV], cv));
-    o.c[W::CD] = A::add3(t.c[W::CD], A::mul(t.c[W::CNU], cu), A::mul(t.c[W::CNV], cv));
+    constexpr uint32_t absent = F::sign_mask;  // -0
+    o.c[W::ND] = A::sop(t.c[W::ND], A::neg(c[k]), A::neg(t.c[W::NU]), cu, A::neg(t.c[W::NV]), cv);
+    o.c[W::BD] = A::sop(t.c[W::BD], absent, t.c[W::BNU], cu, t.c[W::BNV], cv);
+    o.c[W::CD] = A::sop(t.c[W::CD], absent, t.c[W::CNU], cu, t.c[W::CNV], cv);
     return o;
   }
 
   // A record in place, as the fill path sees it (bytes in, bytes out).
   void tri_record(uint8_t* rec) const { encode_tri<F>(tri(decode_tri<F>(rec)), rec); }
 
-  // The scene box, in place: x' = sub(x, c).
+  // The scene box, in place: x' = x - c (shift).
   void box(uint32_t lo[3], uint32_t hi[3]) const {
     for (int i = 0; i < 3; ++i) {
-      lo[i] = A::sub(lo[i], c[i]);
-      hi[i] = A::sub(hi[i], c[i]);
+      lo[i] = shift(lo[i], c[i]);
+      hi[i] = shift(hi[i], c[i]);
     }
   }
   // The same, then one step outward (next_down / next_up: an incrementer on the bit pattern), so
-  // the translated box still contains everything the exact translation would: a correctly rounded
-  // sub (either policy) is within one ulp, on the right side after the step.
+  // the translated box still contains everything the exact translation would: the two-term sop is
+  // the exact difference rounded once (any policy), within one ulp, on the right side after the step.
   void box_outward(uint32_t lo[3], uint32_t hi[3]) const {
     box(lo, hi);
     for (int i = 0; i < 3; ++i) {
@@ -75,9 +88,9 @@ struct Vtu {
     }
   }
 
-  // A point (the light), in place: p' = sub(p, c).
+  // A point (the light), in place: p' = p - c (shift).
   void point(uint32_t p[3]) const {
-    for (int i = 0; i < 3; ++i) p[i] = A::sub(p[i], c[i]);
+    for (int i = 0; i < 3; ++i) p[i] = shift(p[i], c[i]);
   }
 };
 

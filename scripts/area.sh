@@ -22,7 +22,7 @@ command -v yosys >/dev/null || { echo "area: yosys is needed (make deps)" >&2; e
 STAGES=${RAYCORE_AREA_STAGES:-2}
 OUT=${1:-docs/area.md}
 area_check_units
-MODULES=(fp_add fp_add3 fp_mul fp_div fp_sqrt fp_rcp fp_cmp "${AREA_UNITS[@]}")
+MODULES=(fp_add fp_add3 fp_mul fp_sop fp_div fp_sqrt fp_rcp fp_cmp "${AREA_UNITS[@]}")
 AREA_TMP=$(mktemp -d "${TMPDIR:-/tmp}/raycore-area.XXXXXX")
 trap 'rm -rf "$AREA_TMP"' EXIT
 

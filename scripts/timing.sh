@@ -2,8 +2,8 @@
 # make timing: static timing of the RTL with yosys + OpenSTA on the OSU 0.18 um standard cells
 # (qflow-tech-osu018), written to docs/timing.md and docs/timing.json (or the files given as $1 $2).
 #
-# Designs: every operator of rtl/fp/ (fp_add fp_add3 fp_mul fp_div fp_sqrt fp_rcp fp_cmp; FP24,
-# rounding rtz where the module has RNE, STAGES 2 unless RAYCORE_TIMING_STAGES says otherwise),
+# Designs: every operator of rtl/fp/ (fp_add fp_add3 fp_mul fp_sop fp_div fp_sqrt fp_rcp fp_cmp;
+# FP24, rounding rtz where the module has RNE, STAGES 2 unless RAYCORE_TIMING_STAGES says otherwise),
 # every unit of AREA_UNITS (scripts/area_lib.sh; the parameters of make area's first table: module
 # defaults, FP24 rtz, STAGES 2, ascache the 16 KB node cache) and rtl/units/rtu.v whole at its
 # parameter defaults (the cycle model's), FP24 rtz, its hierarchy kept. One yosys + sta run per
@@ -63,7 +63,7 @@ design_params() {
   echo "${chp# }"
 }
 DESIGNS=()
-for mod in fp_add fp_add3 fp_mul fp_div fp_sqrt fp_rcp fp_cmp "${AREA_UNITS[@]}"; do
+for mod in fp_add fp_add3 fp_mul fp_sop fp_div fp_sqrt fp_rcp fp_cmp "${AREA_UNITS[@]}"; do
   DESIGNS+=("$mod|$mod|$(design_params "$mod")|flat")
 done
 # rtu.v whole: its defaults are the cycle model's (scripts/area_rtu.sh's "rtu whole"), FP24 rtz.

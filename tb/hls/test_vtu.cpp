@@ -85,12 +85,15 @@ void compare(const WaldTri<F>& got, const Tri& orig, const double cam[3], VtuErr
     bound[j] = u * std::fabs(c0[j]);
   }
   const double nuc = std::fabs(c0[0] * cam[ku]), nvc = std::fabs(c0[1] * cam[kv]);
+  // One sop per offset (hls/fp.h): the stored constants' own roundings, the window's
+  // 2^(T-3M-5) <= 2^(-3M-3) of the largest term, and the one final rounding of the result.
+  const double window = std::ldexp(1.0, -3 * F::man_bits - 3);
   mag[2] = std::max({std::fabs(c0[2]), std::fabs(cam[k]), nuc, nvc});
-  bound[2] = u * (2 * std::fabs(c0[2]) + 2 * std::fabs(cam[k]) + 4 * nuc + 4 * nvc);
+  bound[2] = u * (std::fabs(c0[2]) + nuc + nvc + std::fabs(c1[2])) + window * mag[2];
   for (int j : {5, 8}) {
     const double p = std::fabs(c0[j - 2] * cam[ku]), q = std::fabs(c0[j - 1] * cam[kv]);
     mag[j] = std::max({std::fabs(c0[j]), p, q});
-    bound[j] = u * (2 * std::fabs(c0[j]) + 3 * p + 3 * q);
+    bound[j] = u * (std::fabs(c0[j]) + p + q + std::fabs(c1[j])) + window * mag[j];
   }
   // Reference error (extended precision): a tiny multiple of the terms' size.
   double scale = 0;

@@ -6,15 +6,25 @@
 //      STAGES, checked),
 //   2. directed: the C++ tests' directed operand set (tb/fp/fp_check.h): all pairs (add: with
 //      sub_i 0 and 1; add3: all triples of the small set; sqrt: each value, and for FP24 every
-//      mantissa of six exponent fields),
+//      mantissa of six exponent fields; sop: families of six-operand sets built from the small
+//      set, see SopOp),
 //   3. random: RAYCORE_RTL_RANDOM (default 10^6) operand sets from the C++ tests' generator
-//      (fptest::Gen, seeded from the test name and RAYCORE_FP_SEED),
-// the last two with random input gaps and random output back-pressure.
+//      (fptest::Gen, seeded from the test name and RAYCORE_FP_SEED; sop: six operands drawn here
+//      from its pieces, sop_random),
+// the last two with random input gaps and random output back-pressure. fp_sop's six operands do
+// not fit rtl_cosim.h's Operands: its adapter runs the same three sets through Dut/stream() with
+// its own operand type (run_six, the loop of Cosim::run).
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <functional>
+#include <random>
 #include <string>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "hls/fp.h"
@@ -247,10 +257,251 @@ struct CmpOp : OpBase<F> {
   }
 };
 
+// ---- fp_sop: a + b + x1*y1 + x2*y2, rounded once ----------------------------------------------
+
+struct Six {
+  uint32_t a = 0, b = 0, x1 = 0, y1 = 0, x2 = 0, y2 = 0;
+};
+
+template <class F>
+struct SopGen {
+  using S = fptest::Spec<F>;
+  static constexpr uint32_t kNeg0 = S::sign_bit;  // -0: an absent addend; -0 * +0 an absent product
+  static int exp_of(uint32_t x) { return S::exp_field(x) - S::bias; }
+  static uint32_t neg(uint32_t x) { return x ^ S::sign_bit; }
+  // x moved by k ulps in its pattern, staying a nonzero magnitude (as Gen::step).
+  static uint32_t step(uint32_t x, int k) {
+    if (S::zero(x)) return x;
+    const int64_t mag = int64_t(x & S::max_mag) + k;
+    const int64_t lo = int64_t(S::make(false, S::emin, 0)), hi = int64_t(S::max_mag);
+    return (x & S::sign_bit) | uint32_t(mag < lo ? lo : (mag > hi ? hi : mag));
+  }
+  // A pair whose product has (unbiased) exponent about e (each factor's exponent in range).
+  static void product_near(Gen<F>& g, int e, uint32_t& x, uint32_t& y) {
+    int ex = g.range(S::emin, S::emax);
+    if (e - ex < S::emin) ex = e - S::emin;
+    if (e - ex > S::emax) ex = e - S::emax;
+    x = g.make(g.coin(), ex, g.mantissa());
+    y = g.make(g.coin(), e - ex, g.mantissa());
+  }
+  // A moderate operand (products of two stay far from flush and saturation).
+  static uint32_t moderate(Gen<F>& g) {
+    return g.make(g.coin(), g.range(S::emin / 2 + 2, S::emax / 2 - 2), g.mantissa());
+  }
+  // A signed zero of either sign, now and then an unflushed one (exponent field 0, mantissa != 0).
+  static uint32_t some_zero(Gen<F>& g) {
+    const uint32_t z = g.coin() ? S::sign_bit : 0u;
+    return g.below(4) == 0 ? (z | (uint32_t(g.bits()) & S::man_all)) : z;
+  }
+  // A distance below a term's top: the adders' distances, or beyond the window (S = 3M+7: jammed,
+  // or a term entirely below it) up to far below.
+  static int sop_distance(Gen<F>& g) {
+    switch (g.below(4)) {
+      case 0: return g.range(3 * S::M + 2, 3 * S::M + 12);
+      case 1: return g.range(0, 6 * S::M);
+      default: return g.distance();
+    }
+  }
+};
+
+// Six operands that reach every path of the sop: uniform patterns; terms at controlled distances
+// below the largest (exact, jammed, entirely below the window); the VTU's shapes with heavy
+// cancellation (a ~ -(x1*y1 + x2*y2) as rounded, products that cancel each other, a translated
+// triangle's constants near 10^5 with a camera near 10^5); zeros of either sign; products next to
+// flush and saturation; exact cancellations (zero sums).
+template <class F>
+Six sop_random(Gen<F>& g) {
+  using G = SopGen<F>;
+  using S = typename G::S;
+  constexpr Rounding rz = Rounding::rtz;  // stimulus only, not the reference
+  Six x;
+  const uint32_t k = g.below(16);
+  if (k < 2) {  // uniform-ish
+    x = {g.any(), g.any(), g.any(), g.any(), g.any(), g.any()};
+  } else if (k < 4) {  // every term at a controlled distance below an anchor
+    x.a = g.anchor();
+    const int ea = G::exp_of(x.a);
+    x.b = g.at_distance(x.a, G::sop_distance(g), g.below(8) == 0);
+    G::product_near(g, ea - G::sop_distance(g) + (g.below(4) == 0 ? g.range(1, 4) : 0), x.x1, x.y1);
+    G::product_near(g, ea - G::sop_distance(g), x.x2, x.y2);
+  } else if (k < 7) {  // the VTU's n_d: a ~ -(x1*y1 + x2*y2) as rounded, b small or absent
+    x.x1 = G::moderate(g);
+    x.y1 = G::moderate(g);
+    x.x2 = g.coin() ? G::moderate(g) : g.at_distance(x.x1, g.range(0, 8));
+    x.y2 = g.coin() ? G::moderate(g) : g.at_distance(x.y1, g.range(0, 8));
+    const uint32_t p = hls::add<F, rz>(hls::mul<F, rz>(x.x1, x.y1), hls::mul<F, rz>(x.x2, x.y2));
+    x.a = S::zero(p) ? g.any() : g.step(G::neg(p), g.range(-3, 3));
+    if (g.below(3) == 0) x.a = g.step(x.a, g.range(-1000, 1000));
+    switch (g.below(4)) {
+      case 0: x.b = G::kNeg0; break;
+      case 1: x.b = g.close_to(x.a); break;
+      default: x.b = g.at_distance(x.a, G::sop_distance(g)); break;
+    }
+  } else if (k < 9) {  // the products cancel each other (nearly), a and b below them or absent
+    x.x1 = G::moderate(g);
+    x.y1 = G::moderate(g);
+    x.x2 = g.step(G::neg(x.x1), g.range(-2, 2));
+    x.y2 = g.step(x.y1, g.range(-2, 2));
+    if (g.coin()) std::swap(x.x2, x.y2);
+    const uint32_t p = hls::mul<F, rz>(x.x1, x.y1);
+    x.a = g.coin() ? G::kNeg0 : g.at_distance(p, G::sop_distance(g));
+    x.b = g.coin() ? G::kNeg0 : g.at_distance(p, G::sop_distance(g));
+  } else if (k < 10) {  // a and b cancel, the products below them (often beyond the window)
+    x.a = g.anchor();
+    x.b = g.close_to(x.a);
+    const int ea = G::exp_of(x.a);
+    G::product_near(g, ea - G::sop_distance(g), x.x1, x.y1);
+    G::product_near(g, ea - G::sop_distance(g), x.x2, x.y2);
+  } else if (k < 12) {  // a translated triangle far from the origin (the VTU at 10^5)
+    auto val = [&](double lo, double hi) {
+      const double v = lo + (hi - lo) * double(g.bits() >> 11) * 0x1p-53;
+      return hls::from_double<F, rz>(g.coin() ? -v : v);
+    };
+    const double far = std::ldexp(1.0, g.range(10, 20));  // 10^3 .. 10^6
+    const uint32_t cu = val(far * 0.9, far * 1.1), cv = val(far * 0.9, far * 1.1);
+    const uint32_t ck = val(far * 0.9, far * 1.1);
+    const uint32_t nu = val(0.0, 2.0), nv = val(0.0, 2.0);
+    // n_d = n . p for a point p near the camera: c_k + nu c_u + nv c_v + a small offset.
+    const double off = std::ldexp(double(g.bits() >> 11) * 0x1p-53 - 0.5, g.range(-8, 8));
+    auto v = [](uint32_t b) { return fptest::ref_value<F>(b); };
+    const double nd = v(ck) + v(nu) * v(cu) + v(nv) * v(cv) + off;
+    x = {hls::from_double<F, rz>(nd), G::neg(ck), G::neg(nu), cu, G::neg(nv), cv};
+    if (g.coin()) x.b = G::kNeg0;  // b_d' / c_d': no c_k term
+  } else if (k < 13) {  // zeros: some operands (all, now and then) replaced by signed zeros
+    x = {g.any(), g.any(), g.any(), g.any(), g.any(), g.any()};
+    const bool all = g.below(4) == 0;
+    for (uint32_t* v : {&x.a, &x.b, &x.x1, &x.y1, &x.x2, &x.y2})
+      if (all || g.below(3) == 0) *v = G::some_zero(g);
+  } else if (k < 14) {  // products next to flush and saturation
+    g.pair(fptest::Op::mul, x.x1, x.y1);
+    g.pair(fptest::Op::mul, x.x2, x.y2);
+    x.a = g.below(3) == 0 ? G::kNeg0 : g.any();
+    x.b = g.below(3) == 0 ? G::kNeg0 : g.any();
+  } else if (k < 15) {  // exact cancellations: a = -b, x2*y2 = -x1*y1 (one of them perturbed)
+    x.a = g.any();
+    x.b = G::neg(x.a);
+    x.x1 = g.any();
+    x.y1 = g.any();
+    x.x2 = G::neg(x.x1);
+    x.y2 = x.y1;
+    if (g.coin()) {  // -(x1 * y1) as (-y1) * x1
+      x.x2 = G::neg(x.y1);
+      x.y2 = x.x1;
+    }
+    switch (g.below(4)) {
+      case 0: x.b = g.step(x.b, g.coin() ? 1 : -1); break;
+      case 1: x.y2 = g.step(x.y2, g.coin() ? 1 : -1); break;
+      default: break;
+    }
+  } else {
+    x = {g.structured(), g.structured(), g.structured(), g.structured(), g.structured(),
+         g.structured()};
+  }
+  // The adder's inputs are symmetric: random order of the addends and of the products' factors.
+  if (g.coin()) std::swap(x.a, x.b);
+  if (g.coin()) std::swap(x.x1, x.y1);
+  if (g.coin()) std::swap(x.x2, x.y2);
+  if (g.coin()) {
+    std::swap(x.x1, x.x2);
+    std::swap(x.y1, x.y2);
+  }
+  return x;
+}
+
+template <class F, Rounding R>
+struct SopOp {
+  using Fmt = F;
+  using Res = Result<F>;
+  using G = SopGen<F>;
+  static const char* name() { return "fp_sop"; }
+  template <class V>
+  static void drive(V& m, const Six& x) {
+    m.in_a_i = x.a;
+    m.in_b_i = x.b;
+    m.in_x1_i = x.x1;
+    m.in_y1_i = x.y1;
+    m.in_x2_i = x.x2;
+    m.in_y2_i = x.y2;
+  }
+  template <class V>
+  static Res read(const V& m) {
+    return Res::one(m.out_res_o);
+  }
+  static Res expect(const Six& x) {
+    return Res::one(hls::sop<F, R>(x.a, x.b, x.x1, x.y1, x.x2, x.y2));
+  }
+  static std::string describe(const Six& x) {
+    return hex<F>(x.a) + " + " + hex<F>(x.b) + " + " + hex<F>(x.x1) + " * " + hex<F>(x.y1) + " + " +
+           hex<F>(x.x2) + " * " + hex<F>(x.y2);
+  }
+  // Directed, from the small set d (n values), index k in five families of n^2 (i, j = the
+  // pair's indices) and 2 * 64 zero sets:
+  //   0: x1 * y1 alone (a, b, x2 * y2 absent)       1: a + b alone (the products absent)
+  //   2: a, x1 * y1 and two more terms picked from d by mixing i and j
+  //   3: cancellation: x1 * y1 with a = -(x1 * y1) as rounded +- 2 ulps, b and x2 * y2 from d
+  //   4: x1 * y1 + x2 * y2 with x2 * y2 = -(x1 * y1) +- 1 ulp of x2, a from d, b absent
+  //   then every sign combination of six zeros (plain, and unflushed).
+  static bool small_directed() { return true; }
+  static uint64_t directed_count(size_t n) { return 5 * uint64_t(n) * n + 128; }
+  static Six directed(const std::vector<uint32_t>& d, uint64_t k) {
+    const uint64_t n = d.size(), nn = n * n;
+    Six x;
+    if (k >= 5 * nn) {  // six zeros: the all-zero sign rule
+      const uint64_t z = k - 5 * nn;
+      const uint32_t m = z >= 64 ? 1u : 0u;  // unflushed: a mantissa field
+      uint32_t* v[6] = {&x.a, &x.b, &x.x1, &x.y1, &x.x2, &x.y2};
+      for (int i = 0; i < 6; ++i) *v[i] = (((z >> i) & 1u) ? G::kNeg0 : 0u) | (m << i);
+      return x;
+    }
+    const uint64_t f = k / nn, i = (k % nn) / n, j = k % n;
+    constexpr Rounding rz = Rounding::rtz;  // stimulus only
+    x = {G::kNeg0, G::kNeg0, G::kNeg0, 0u, G::kNeg0, 0u};
+    switch (f) {
+      case 0:
+        x.x1 = d[i];
+        x.y1 = d[j];
+        break;
+      case 1:
+        x.a = d[i];
+        x.b = d[j];
+        break;
+      case 2:
+        x.a = d[i];
+        x.x1 = d[j];
+        x.y1 = d[(7 * i + 3 * j + 1) % n];
+        x.b = d[(i + 5 * j + 2) % n];
+        x.x2 = d[(3 * i + j + 3) % n];
+        x.y2 = d[(11 * i + 7 * j + 5) % n];
+        break;
+      case 3: {
+        x.x1 = d[i];
+        x.y1 = d[j];
+        const uint32_t p = hls::mul<F, rz>(x.x1, x.y1);
+        x.a = fptest::Spec<F>::zero(p) ? d[(i + j) % n] : G::step(G::neg(p), int(k % 5) - 2);
+        x.b = d[(i + 3 * j) % n];
+        if ((i + j) & 1u) {
+          x.x2 = d[(5 * i + j) % n];
+          x.y2 = d[(i + 7 * j) % n];
+        }
+        break;
+      }
+      default:
+        x.x1 = d[i];
+        x.y1 = d[j];
+        x.x2 = G::step(G::neg(d[i]), int(k % 3) - 1);
+        x.y2 = d[j];
+        x.a = d[(i + j) % n];
+        break;
+    }
+    return x;
+  }
+  static Six random(Gen<F>& g) { return sop_random<F>(g); }
+};
+
 // ---- the test body -------------------------------------------------------------------------------
 
 template <class V, class Op>
-void run_variant(const char* variant, const char* mode, int stages) {
+void run_pairs(const char* variant, const char* mode, int stages) {
   using F = typename Op::Fmt;
   Cosim<V, Op> sim(fptest::fmt_name<F>(), mode, stages, fptest::seed_for(variant));
   const std::vector<uint32_t> d = fptest::directed_set<F>(Op::small_directed());
@@ -267,11 +518,97 @@ void run_variant(const char* variant, const char* mode, int stages) {
   EXPECT_GT(total, 0u);
 }
 
+// fp_sop: six operands, the loop of Cosim::run (rtl_cosim.h) with Six for Operands.
+template <class V, class Op>
+class SixCosim {
+ public:
+  using F = typename Op::Fmt;
+  using Res = typename Op::Res;
+  SixCosim(std::string mode, int stages, uint64_t seed)
+      : mode_(std::move(mode)), stages_(stages), rng_(seed), dut_(seed) {}
+
+  uint64_t run(const std::string& set, uint64_t count, const std::function<Six(uint64_t)>& next,
+               Traffic traffic) {
+    const std::string fmt = fptest::fmt_name<F>();
+    fptest::Tally tally(fmt, std::string("rtl.") + Op::name(),
+                        mode_ + ".s" + std::to_string(stages_), set);
+    const StreamSpec spec{std::string(Op::name()) + " " + fmt + " " + mode_ + " S=" +
+                              std::to_string(stages_),
+                          count, traffic == Traffic::full_rate, uint64_t(stages_), "STAGES",
+                          1000u + 64u * uint64_t(stages_)};
+    struct Item {
+      Six x;
+      Res expected;
+    };
+    V& m = *dut_;
+    const StreamStats st = stream(
+        dut_, spec, rng_, rng_,
+        [&](uint64_t k) {
+          Item it{next(k), {}};
+          it.expected = Op::expect(it.x);
+          Op::drive(m, it.x);
+          return it;
+        },
+        [&] {  // junk operands
+          Six junk;
+          for (uint32_t* v : {&junk.a, &junk.b, &junk.x1, &junk.y1, &junk.x2, &junk.y2})
+            *v = uint32_t(rng_()) & F::mask;
+          Op::drive(m, junk);
+        },
+        [&](const Item& it, uint16_t, uint64_t) {
+          tally.check(Op::read(m), it.expected, [&] { return Op::describe(it.x); });
+        },
+        [&] { return tally.stopped(); });
+    tally.note("cycles=" + std::to_string(st.cycles) + " latency=" + std::to_string(st.min_lat) +
+               ".." + std::to_string(st.max_lat));
+    tally.finish();
+    return tally.vectors();
+  }
+
+ private:
+  std::string mode_;
+  int stages_;
+  std::mt19937_64 rng_;
+  Dut<V> dut_;
+};
+
+template <class Op>
+struct IsSix : std::false_type {};
+template <class F, Rounding R>
+struct IsSix<SopOp<F, R>> : std::true_type {};
+
+template <class V, class Op>
+void run_six(const char* variant, const char* mode, int stages) {
+  using F = typename Op::Fmt;
+  SixCosim<V, Op> sim(mode, stages, fptest::seed_for(variant));
+  const std::vector<uint32_t> d = fptest::directed_set<F>(Op::small_directed());
+  const uint64_t n_dir = Op::directed_count(d.size());
+  auto directed = [&](uint64_t k) { return Op::directed(d, k); };
+  uint64_t total = 0;
+  total += sim.run("fullrate", std::min<uint64_t>(n_dir, 4096), directed, Traffic::full_rate);
+  total += sim.run("directed", n_dir, directed, Traffic::stalls);
+  Gen<F> gen(fptest::seed_for(std::string(variant) + ".random"));
+  total += sim.run("random", random_count(), [&](uint64_t) { return Op::random(gen); },
+                   Traffic::stalls);
+  std::printf("%s: %llu vectors checked against hls/fp.h\n", variant, (unsigned long long)total);
+  EXPECT_GT(total, 0u);
+}
+
+template <class V, class Op>
+void run_variant(const char* variant, const char* mode, int stages) {
+  if constexpr (IsSix<Op>::value) {
+    run_six<V, Op>(variant, mode, stages);
+  } else {
+    run_pairs<V, Op>(variant, mode, stages);
+  }
+}
+
 }  // namespace
 
 // One TEST per variant: suite = module, name = variant.
 #define RAYCORE_RTL_FP_OP_fp_add AddOp
 #define RAYCORE_RTL_FP_OP_fp_add3 Add3Op
+#define RAYCORE_RTL_FP_OP_fp_sop SopOp
 #define RAYCORE_RTL_FP_OP_fp_mul MulOp
 #define RAYCORE_RTL_FP_OP_fp_div DivOp
 #define RAYCORE_RTL_FP_OP_fp_cmp CmpOp

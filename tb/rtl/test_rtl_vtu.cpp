@@ -9,8 +9,12 @@
 // each a node (1/2; a quarter of them leaves) or a triangle (random k, flags, id; constants with
 // magnitudes 1e-3..1e4, some zeros of either sign and some raw bit patterns), with a camera that
 // changes every few records (magnitudes 1e-3..1e4, some zero coordinates) and vtu_on_i off for
-// about 1/8 of the records (then the record must come out unchanged). A 16-bit sequence number
-// rides in the tag. Summary line per run: `VTUSUM <variant> <set> vectors=N mismatches=M ...`;
+// about 1/8 of the records (then the record must come out unchanged),
+//   3. far: RAYCORE_RTL_VTU_RANDOM / 2 records far from the origin (FarGen): a camera near a point
+//      with coordinates near 10^5 and real triangles (hls::make_wald) and splits near it, so the
+//      constants are near 10^5 or above and the translated ones small: the sops' heavy cancellation,
+//      with random gaps and back-pressure.
+// A 16-bit sequence number rides in the tag. Summary line per run: `VTUSUM <variant> <set> vectors=N mismatches=M ...`;
 // zero vectors or any mismatch fails; the first 10 mismatches print the record, the camera, the
 // expected and the received fields.
 #include <gtest/gtest.h>
@@ -112,11 +116,79 @@ Out<F> expect(const Record<F>& r) {
   return o;
 }
 
+// Records far from the origin (the VTU's reason for one rounding): a region around a point P whose
+// coordinates are near 10^5 (2^15 .. 2^18, random signs), a camera within 2^-4 .. 2^10 of P (now
+// and then exactly at a triangle's vertex), triangles of size 2^-6 .. 2^10 near P (hls::make_wald:
+// n_d near 10^5, b_d and c_d near 10^5 / size; now and then an edge parallel to an axis, zero
+// products), inner nodes with a split near P's coordinate on their axis (a few leaves). The
+// camera moves every few records; vtu_on_i is off for 1/16 of the records.
+template <class F, Rounding R>
+class FarGen {
+ public:
+  explicit FarGen(uint64_t seed) : rng_(seed) { new_region(); }
+  Record<F> next() {
+    if ((rng_() & 255u) == 0) new_region();
+    if ((rng_() & 7u) == 0) move_camera();
+    Record<F> r;
+    r.on = (rng_() & 15u) != 0;
+    r.tri = (rng_() & 3u) != 0;
+    if (r.tri) {
+      hls::Tri t;
+      t[0] = {p_.x + off(-6, 10), p_.y + off(-6, 10), p_.z + off(-6, 10)};
+      const double size = std::ldexp(1.0, int(rng_() % 17) - 6);
+      for (int i = 1; i < 3; ++i)
+        t[i] = {t[0].x + size * uni(-1, 1), t[0].y + size * uni(-1, 1), t[0].z + size * uni(-1, 1)};
+      if ((rng_() & 7u) == 0) {  // an edge parallel to an axis plane: a zero normal component
+        const int a = int(rng_() % 3);
+        t[1][a] = t[0][a];
+      }
+      r.t = hls::make_wald<F, R>(t, uint32_t(rng_()));
+      r.t.flags |= uint32_t(rng_() & 0xF0u);
+      if ((rng_() & 15u) == 0)  // the camera exactly at the first vertex
+        for (int i = 0; i < 3; ++i) cam_[i] = hls::from_double<F, R>(t[0][i]);
+    } else {
+      const uint64_t axis = (rng_() & 15u) == 0 ? hls::node_leaf_axis : rng_() % 3u;
+      hls::Node n;
+      n.axis = uint32_t(axis);
+      n.index = uint32_t(rng_()) & hls::node_index_mask;
+      n.split_or_count = axis == hls::node_leaf_axis
+                             ? uint32_t(rng_())
+                             : hls::from_double<F, R>(p_[int(axis)] + off(-6, 12));
+      r.node = hls::encode_node(n);
+    }
+    for (int i = 0; i < 3; ++i) r.cam[i] = cam_[i];
+    return r;
+  }
+  std::mt19937_64& rng() { return rng_; }
+
+ private:
+  double uni(double a, double b) { return a + (b - a) * (double(rng_() >> 11) * 0x1p-53); }
+  // A random offset of magnitude 2^lo .. 2^hi, either sign.
+  double off(int lo, int hi) {
+    const double m = std::ldexp(uni(0.5, 1), lo + int(rng_() % uint64_t(hi - lo + 1)));
+    return (rng_() & 1u) ? -m : m;
+  }
+  void new_region() {
+    for (int i = 0; i < 3; ++i) {
+      const double m = std::ldexp(uni(1, 8), 15);
+      p_[i] = (rng_() & 1u) ? -m : m;
+    }
+    move_camera();
+  }
+  void move_camera() {
+    for (int i = 0; i < 3; ++i) cam_[i] = hls::from_double<F, R>(p_[i] + off(-4, 10));
+  }
+  std::mt19937_64 rng_;
+  hls::Vec3 p_;
+  uint32_t cam_[3] = {0, 0, 0};
+};
+
 template <class V, class F, Rounding R>
 class VtuCosim {
  public:
   VtuCosim(std::string name, int stages, uint64_t seed)
-      : name_(std::move(name)), stages_(stages), gen_(seed), dut_(seed) {}
+      : name_(std::move(name)), stages_(stages), gen_(seed), far_(seed ^ 0x9e3779b97f4a7c15ull),
+        dut_(seed) {}
 
   void drive(const Record<F>& r) {
     V& m = *dut_;
@@ -163,25 +235,31 @@ class VtuCosim {
     return o;
   }
 
-  // Streams `count` records; returns the number checked.
-  uint64_t run(const std::string& set_name, uint64_t count, bool full) {
+  // Streams `count` records (from Gen, or from FarGen if far); returns the number checked.
+  uint64_t run(const std::string& set_name, uint64_t count, bool full, bool far = false) {
+    return far ? run_from(set_name, count, full, far_) : run_from(set_name, count, full, gen_);
+  }
+
+ private:
+  template <class G>
+  uint64_t run_from(const std::string& set_name, uint64_t count, bool full, G& gen) {
     struct Item {
       Record<F> r;
       Out<F> expected;
     };
     const uint64_t latency = 3u * uint64_t(stages_);
     const StreamSpec spec{name_, count, full, latency, "3*STAGES", 1000u + 64u * latency};
-    std::mt19937_64& rng = gen_.rng();
+    std::mt19937_64& rng = gen.rng();
     uint64_t mismatches = 0;
     const StreamStats st = stream(
         dut_, spec, rng, rng,
         [&](uint64_t) {
-          Item it{gen_.next(), {}};
+          Item it{gen.next(), {}};
           it.expected = expect<F, R>(it.r);
           drive(it.r);
           return it;
         },
-        [&] { drive(gen_.next()); },  // junk inputs
+        [&] { drive(gen.next()); },  // junk inputs
         [&](const Item& it, uint16_t seq, uint64_t cycle) {
           const Out<F> got = read();
           if (!(got == it.expected)) {
@@ -202,10 +280,10 @@ class VtuCosim {
     return st.checked;
   }
 
- private:
   std::string name_;
   int stages_;
   Gen<F, R> gen_;
+  FarGen<F, R> far_;
   Dut<V> dut_;
 };
 
@@ -216,6 +294,7 @@ void run_variant(const char* name, int stages) {
   EXPECT_EQ(sim.run("fullrate", 4096, true), 4096u);
   const uint64_t n = random_count();
   EXPECT_EQ(sim.run("random", n, false), n);
+  EXPECT_EQ(sim.run("far", n / 2, false, true), n / 2);
 }
 
 #define RAYCORE_RTL_VTU_VARIANT(V, module, fmt, mode, stages) \
