@@ -13,7 +13,9 @@
 // (-0 and -0*0 are absent terms: they leave an all-zero sum's sign to the others.) For rtz and
 // rne a two-term sop is sub(x, c) bit for bit (tb/fp: SopTest); for raycore it is the exact
 // difference truncated once (the VTU is this project's unit, not RayCore's).
-// Per triangle: 3 sops (6 exact products, no intermediate rounding); per node one.
+// Per triangle: 3 sops (6 exact products, no intermediate rounding); per node one (rtl/units/vtu.v
+// translates four nodes per cycle: three through its sops, one through a subtractor, which is the
+// two-term sop bit for bit under every policy: raycore's sop truncates as rtz's sub does).
 //
 // Why one rounding: in world coordinates far from the origin the terms of n_d' are large and
 // cancel (far at 10^5: products near 7 * 10^4, where the FP24 ulp is 1), so a rounded product or

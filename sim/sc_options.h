@@ -78,7 +78,7 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
   l2("--l2-ways", &L2Config::ways, "L2 associativity", 1u, 64u);
   l2("--l2-latency", &L2Config::latency, "L2 hit latency in cycles", 1u, 10000u);
   l2("--l2-bandwidth", &L2Config::bandwidth, "L2 to RTU caches, bytes per cycle", 1u, 4096u);
-  opt("--vtu-depth", &SimConfig::vtu_depth, "VTU pipeline depth", 0u, 1000u);
+  opt("--vtu-depth", &SimConfig::vtu_depth, "VTU pipeline depth (rtl/units/vtu.v: 2 x STAGES)", 0u, 1000u);
   opt("--rays-in-flight", &SimConfig::rays_in_flight, "ray slots per RTU", 1u, 65535u);
   opt("--mailbox", &SimConfig::mailbox, "per-ray mailbox entries (triangles not tested twice; 0: none)", 0u, 64u);
   opt("--stack-depth", &SimConfig::stack_depth, "traversal stack entries per ray slot", 1u, 64u);

@@ -56,9 +56,9 @@ struct SimConfig {
   // The bus interface: the model (systemc/membus.h) or rtl/units/membus_if.v Verilated
   // (systemc/membus_rtl.h; without the L2, which has no RTL).
   UnitView membus_view = UnitView::model;
-  // vtu: pipeline depth (one 8-byte node or one triangle record per cycle); rtl/units/vtu.v has
-  // 3 operator levels of STAGES registers: 6 = STAGES 2, as in docs/area.md.
-  uint32_t vtu_depth = 6;
+  // vtu: pipeline depth (four 8-byte nodes or one triangle record per cycle); rtl/units/vtu.v's
+  // fp_sops have 2 x STAGES registers (four phases, one register each at STAGES 2): 4 = STAGES 2.
+  uint32_t vtu_depth = 4;
   UnitView vtu_view = UnitView::model;
   // ascache, per RTU.
   CacheConfig node_cache{16 * 1024, 4, 64, 8, 1};

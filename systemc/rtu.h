@@ -87,7 +87,7 @@ class Rtu : public sc_core::sc_module {
                           " in this build; built: " + rtl_trv_built());
     }
     if (cfg.vtu_view != UnitView::model) {
-      const unsigned stages = pin_stages("vtu", cfg.vtu_depth, 3, "--vtu-depth");
+      const unsigned stages = pin_stages("vtu", cfg.vtu_depth, 2, "--vtu-depth");
       if (cfg.vtu_view == UnitView::twin)
         vtu_port_ = std::make_unique<pins::VtuPortT<pins::VtuTwin<F, R>>>(
             "vtu_pins", "SystemC twin", clock->clk, clock->rst_n, stages);

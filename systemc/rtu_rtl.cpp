@@ -228,10 +228,10 @@ class RtuRtlRunner {
                std::to_string(b.mshrs) + " MSHRs per cache");
     need(fc_.tri_line_records * (W <= 24 ? 32u : 48u) == b.line,
          std::to_string(b.line) + "-byte triangle lines");
-    need(cfg_.vtu_depth == 3 * b.stages && cfg_.ist_latency == 10 * b.stages &&
+    need(cfg_.vtu_depth == 2 * b.stages && cfg_.ist_latency == 10 * b.stages &&
              cfg_.hit_latency == 10 * b.stages && cfg_.rgu_latency == 8 * b.stages,
          "pipeline depths of STAGES " + std::to_string(b.stages) + " (--vtu-depth " +
-             std::to_string(3 * b.stages) + ", --ist-latency " + std::to_string(10 * b.stages) +
+             std::to_string(2 * b.stages) + ", --ist-latency " + std::to_string(10 * b.stages) +
              ", --hit-latency " + std::to_string(10 * b.stages) + ", --rgu-latency " +
              std::to_string(8 * b.stages) + ")");
     need(cfg_.mailbox == 0, "--mailbox 0");

@@ -123,7 +123,7 @@ class Top : public sc_core::sc_module {
         sc_core::sc_trace(tf_, v->s.in_tag, "rtu0_vtu_in_tag_i");
         sc_core::sc_trace(tf_, v->s.out_valid, "rtu0_vtu_out_valid_o");
         sc_core::sc_trace(tf_, v->s.out_tag, "rtu0_vtu_out_tag_o");
-        sc_core::sc_trace(tf_, v->s.out_node, "rtu0_vtu_out_node_o");
+        sc_core::sc_trace(tf_, v->s.out_node0, "rtu0_vtu_out_node0_o");
       }
       if (pins::IstPort* t = rtus[0]->ist_port()) {
         sc_core::sc_trace(tf_, t->s.in_valid, "rtu0_ist_in_valid_i");
@@ -292,8 +292,9 @@ class Top : public sc_core::sc_module {
 
   // Before cycle 0: reset the pin-level units; with the VTU on and at pin level, the set-up
   // registers (scene box and light) are translated by RTU 0's VTU, as pseudo-nodes (an inner node
-  // of axis i with split x leaves as sub(x, c[i])); the box then steps outward one ulp
-  // (hls::Vtu::box_outward's incrementers).
+  // of axis i with split x leaves as hls::Vtu::shift(x, c[i])), three records of three lanes (lo,
+  // hi, light; lane i = axis i); the box then steps outward one ulp (hls::Vtu::box_outward's
+  // incrementers).
   void setup_pins() {
     clock_->reset();
     pins::VtuPort* p = rtus[0]->vtu_port();
@@ -306,16 +307,17 @@ class Top : public sc_core::sc_module {
       src[6 + i] = fc_.light_stored[i], dst[6 + i] = &fc_.light[i];
     }
     int sent = 0, got = 0;
-    for (int cycle = 0; got < 9; ++cycle) {
-      if (cycle > 9 + 1000) throw std::runtime_error("vtu: set-up records did not come out");
+    for (int cycle = 0; got < 3; ++cycle) {
+      if (cycle > 3 + 1000) throw std::runtime_error("vtu: set-up records did not come out");
       if (p->out_valid()) {
         const pins::VtuRec o = p->out();
-        *dst[o.tag] = uint32_t(o.node);
+        for (uint32_t i = 0; i < 3; ++i) *dst[3 * o.tag + i] = uint32_t(o.node[i]);
         ++got;
       }
-      if (sent < 9) {
+      if (sent < 3) {
         pins::VtuRec r;
-        r.node = (uint64_t(sent % 3) << 56) | src[sent];
+        for (uint32_t i = 0; i < 3; ++i) r.node[i] = (uint64_t(i) << 56) | src[3 * sent + i];
+        r.nmask = 7;
         r.tag = uint32_t(sent++);
         p->drive(r);
       } else {

@@ -1,13 +1,16 @@
 // systemc/vtu.h - the viewport transfer unit on the fill path between membus and the ascache.
-// Fully pipelined, depth cycles deep, one 8-byte node or one triangle record per cycle. Applies
+// Fully pipelined, depth cycles deep (rtl/units/vtu.v: 2 x STAGES), per cycle four 8-byte nodes
+// (three through the fp_sops a triangle uses, one through a subtractor) or one triangle record:
+// 32 bytes of an FP24 line per cycle, so a 64-byte node or triangle line takes 2 cycles. Applies
 // hls::Vtu per record (Vtu::node, Vtu::tri_record): the caches hold translated data, the memory
 // the untranslated image. List lines hold no coordinates and bypass the unit, as everything does
 // when the VTU is off (the line goes to the cache in the cycle it arrives).
 //
 // Two views of the same unit (SimConfig::vtu_view): the transaction model below (default, fast),
 // or a pin-level unit with rtl/units/vtu.v's ports (systemc/pins/vtu.h: the SystemC twin or the
-// Verilated RTL) driven record by record: a record driven in cycle c leaves in cycle c + depth and
-// is written back into the line; the line is installed when its last record is out. Same cycles.
+// Verilated RTL) driven record by record (a node record: a group of up to four nodes, lanes outside
+// the image masked): a record driven in cycle c leaves in cycle c + depth and is written back into
+// the line; the line is installed when its last record is out. Same cycles.
 #pragma once
 
 #include <systemc>
@@ -77,6 +80,7 @@ class VtuUnit : public sc_core::sc_module, public MemClient {
         ++records;
       }
     }
+    if (port == kNodePort) records = (records + pins::kVtuNodeLanes - 1) / pins::kVtuNodeLanes;
     records = std::max<uint32_t>(records, 1);
     const Cycle start = std::max(now, free_);
     free_ = start + records;
@@ -126,11 +130,15 @@ class VtuUnit : public sc_core::sc_module, public MemClient {
     const uint32_t rb = node ? 8u : uint32_t(hls::tri_record_bytes<F>());
     const uint64_t first = line * lb / rb, count = node ? h_.node_count : h_.tri_count;
     uint32_t n = 0;
-    for (uint32_t i = 0; i < lb / rb && first + i < count; ++i, ++n) {
+    const uint32_t lanes = node ? pins::kVtuNodeLanes : 1u;
+    for (uint32_t i = 0; i < lb / rb && first + i < count; i += lanes, ++n) {
       Record r{port, tag, i * rb, {}};
       r.rec.kind = !node;
       if (node) {
-        r.rec.node = hls::detail::get_le(p + r.offset, 8);
+        for (uint32_t j = 0; j < lanes && i + j < lb / rb && first + i + j < count; ++j) {
+          r.rec.node[j] = hls::detail::get_le(p + r.offset + j * 8, 8);
+          r.rec.nmask |= 1u << j;
+        }
       } else {
         const hls::WaldTri<F> t = hls::decode_tri<F>(p + r.offset);
         r.rec.k = t.k;
@@ -155,7 +163,8 @@ class VtuUnit : public sc_core::sc_module, public MemClient {
       Record& r = ring_[o.tag % ring_.size()];
       uint8_t* p = caches_[r.port]->mshr_data(r.tag) + r.offset;
       if (!o.kind) {
-        hls::detail::put_le(p, o.node, 8);
+        for (uint32_t j = 0; j < pins::kVtuNodeLanes; ++j)
+          if ((r.rec.nmask >> j) & 1u) hls::detail::put_le(p + j * 8, o.node[j], 8);
       } else {
         hls::WaldTri<F> t;
         t.k = o.k;

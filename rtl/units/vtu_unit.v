@@ -7,20 +7,23 @@
 //      (fill_*_o of its cache in that cycle, the beat merged in); a node or triangle line with the
 //      VTU on is queued for vtu.v;
 //   3. the queue's head line is driven into vtu.v one record per cycle (a line arriving at an
-//      empty queue from the cycle of its last beat on): its 8-byte nodes or its
-//      Wald triangle records (hls/wald.h's layout), only those inside the image (the line's first
-//      record + i < node_count_i / tri_count_i; the MSHR's line index is taken from the cache's
-//      request as the bus accepts it);
-//   4. a record leaving vtu.v (3 x STAGES cycles later) is written back into its line buffer; when
-//      the line's last record has left, the line is installed (fill_*_o in that cycle, the record
-//      merged in).
-// One record per cycle at full rate (vtu.v never stalls here: out_ready is always high). Caches
-// are in port order node 0, list 1, triangle 2 (systemc/vtu.h's Port).
+//      empty queue from the cycle of its last beat on), only what lies inside the image (the
+//      line's first record + i < node_count_i / tri_count_i; the MSHR's line index is taken from
+//      the cache's request as the bus accepts it): a node line as groups of four 8-byte nodes
+//      (vtu.v's four node lanes; with n nodes of the line inside the image, ceil(n/4) groups,
+//      group g = nodes 4g .. 4g+3, lane j masked in iff 4g+j < n), a triangle line as its Wald
+//      triangle records (hls/wald.h's layout), one per cycle;
+//   4. a group or record leaving vtu.v (2 x STAGES cycles later) is written back into its line
+//      buffer (a group's masked-in nodes only); when the line's last group or record has left,
+//      the line is installed (fill_*_o in that cycle, that group or record merged in).
+// One group or record per cycle at full rate (vtu.v never stalls here: out_ready is always high).
+// Caches are in port order node 0, list 1, triangle 2 (systemc/vtu.h's Port).
 //
 // Timing as the transaction model's VtuUnit (systemc/vtu.h) with the membus timing of
-// membus_if.v (a line's last beat in the cycle Membus calls mem_resp): records from that cycle on,
-// one per cycle over all lines; a line installed in the cycle its last record leaves (3 x STAGES
-// cycles after it entered), a bypassed line in the cycle of its last beat.
+// membus_if.v (a line's last beat in the cycle Membus calls mem_resp): groups and records from
+// that cycle on, one per cycle over all lines in queue order; a line installed in the cycle its
+// last group or record leaves (2 x STAGES cycles after it entered), a bypassed line in the cycle of
+// its last beat. cnt_busy_o counts the cycles a group or record is driven (RtuStats::vtu_busy).
 // lint: also STAGES=2 MSHRS=8 NODE_LB=64 LIST_LB=64 TRI_LB=64
 // lint: also STAGES=1 MSHRS=2 NODE_LB=32 LIST_LB=16 TRI_LB=48 EXP_BITS=8 MAN_BITS=23
 module vtu_unit #(
@@ -68,7 +71,7 @@ module vtu_unit #(
   output wire [2:0]             fill_valid_o,
   output wire [3*MB_-1:0]       fill_tag_o,
   output wire [3*8*MAXLB_-1:0]  fill_data_o,
-  // Records driven into vtu.v (RtuStats::vtu_busy), and records inside it.
+  // Cycles a group or record is driven into vtu.v (RtuStats::vtu_busy); groups or records inside.
   output reg  [63:0]            cnt_busy_o,
   output wire                   busy_o
 );
@@ -76,11 +79,12 @@ module vtu_unit #(
   localparam integer W    = W_;
   localparam integer LW   = 8 * MAXLB_;
   localparam integer BB   = 8 * BEAT_BYTES;
-  localparam integer NREC = NODE_LB / 8;     // records per line
-  localparam integer TREC = TRI_LB / RB_;
-  localparam integer MREC = (NREC > TREC) ? NREC : TREC;
+  localparam integer NREC = NODE_LB / 8;     // nodes per line
+  localparam integer NGRP = (NREC + 3) / 4;  // groups of four nodes per line
+  localparam integer TREC = TRI_LB / RB_;    // triangle records per line
+  localparam integer MREC = (NGRP > TREC) ? NGRP : TREC;
   localparam integer RIB  = (MREC > 1) ? $clog2(MREC) : 1;
-  localparam integer TAGW = 1 + MB_ + RIB + 1;  // vtu.v's tag: {tri, MSHR, record, last}
+  localparam integer TAGW = 1 + MB_ + RIB + 4 + 1;  // vtu.v's tag: {tri, MSHR, record, mask, last}
   localparam integer QN   = 2 * MSHRS;         // node and triangle lines waiting
   localparam integer QB   = $clog2(QN);
   localparam integer IB   = $clog2(3 * MSHRS);  // a line buffer's index: p * MSHRS + t
@@ -100,7 +104,7 @@ module vtu_unit #(
   reg  [1+MB_-1:0] q_line [0:QN-1];       // {tri, MSHR}
   reg  [QB-1:0]    head_q;
   reg  [QB:0]      cnt_q;
-  reg  [RIB-1:0]   rec_q;                 // the head line's next record
+  reg  [RIB-1:0]   rec_q;                 // the head line's next group or record
 
   // The line of this cycle's beat with the beat merged in.
   wire [IB-1:0] b_idx = ((bport == 2'd0) ? {IB{1'b0}} : (bport == 2'd1) ? LIST_BASE : TRI_BASE) +
@@ -111,10 +115,10 @@ module vtu_unit #(
     b_line[beat_idx_i * BB +: BB] = beat_data_i;
   end
 
-  // ---- 3. the head line's records ---------------------------------------------------------------
-  // With the queue empty, the line whose last beat arrives is the head at once (its first record
-  // is driven in that cycle, from the buffer with the beat merged in), as the model starts a line
-  // in the cycle of its mem_resp.
+  // ---- 3. the head line's groups or records ---------------------------------------------------
+  // With the queue empty, the line whose last beat arrives is the head at once (its first group
+  // or record is driven in that cycle, from the buffer with the beat merged in), as the model
+  // starts a line in the cycle of its mem_resp.
   wire              push   = beat && beat_last_i && !bypass;
   wire              direct = push && (cnt_q == {(QB+1){1'b0}});
   wire              h_tri  = direct ? (bport == 2'd2) : q_line[head_q][MB_];
@@ -122,21 +126,33 @@ module vtu_unit #(
   wire [IB-1:0]     h_idx  = (h_tri ? TRI_BASE : {IB{1'b0}}) + {{(IB-MB_){1'b0}}, h_tag};
   wire [LW-1:0]     h_buf  = direct ? b_line : buf_q[h_idx];
   wire [LINE_W-1:0] h_line = line_q[h_idx];
-  // Records of the line inside the image: min(records per line, count - first record).
+  // Nodes or records of the line inside the image: n = min(per line, count - first); a node line
+  // is ceil(n/4) groups (at least one cycle either way, as the model's).
   wire [31:0] per   = h_tri ? TREC : NREC;
   wire [31:0] first = {{(32-LINE_W){1'b0}}, h_line} * per;
   wire [31:0] avail = (h_tri ? tri_count_i : node_count_i) - first;
   wire [31:0] nrec  = (avail < per) ? avail : per;
+  wire [31:0] nunit = h_tri ? nrec : (nrec + 32'd3) >> 2;
   wire [31:0] rec32 = {{(32-RIB){1'b0}}, rec_q};
-  wire        last  = (rec32 + 32'd1 >= nrec);
+  wire        last  = (rec32 + 32'd1 >= nunit);
   wire        drive = (cnt_q != {(QB+1){1'b0}}) || push;
-  wire [63:0]     node  = h_buf[rec_q * 64 +: 64];
+  // Group rec_q's four nodes (a line of NREC nodes padded with zeros to whole groups) and its
+  // mask: lane j holds node 4 * rec_q + j, masked in iff that is inside the image.
+  reg  [256*NGRP-1:0] nline;
+  reg  [3:0]          nmask;
+  integer j;
+  always @* begin
+    nline = {(256*NGRP){1'b0}};
+    nline[8*NODE_LB-1:0] = h_buf[8*NODE_LB-1:0];
+    for (j = 0; j < 4; j = j + 1) nmask[j] = !h_tri && ({rec32[29:0], 2'b00} + j < nrec);
+  end
+  wire [255:0]     group = nline[rec_q * 256 +: 256];
   wire [8*RB_-1:0] trec = h_buf[rec_q * 8 * RB_ +: 8 * RB_];
   wire [7:0]      kf    = trec[8*9*CB_ +: 8];
   wire            unused_trec = ^trec;  // padding
 
   wire          in_ready, o_valid, o_kind;
-  wire [63:0]   o_node;
+  wire [255:0]  o_group;
   wire [1:0]    o_k;
   wire [7:0]    o_flags;
   wire [W-1:0]  o_c0, o_c1, o_c2, o_c3, o_c4, o_c5, o_c6, o_c7, o_c8;
@@ -147,22 +163,27 @@ module vtu_unit #(
         .TAG_BITS(TAGW)) u_vtu (
     .clk_i(clk_i), .rst_ni(rst_ni), .vtu_on_i(1'b1),
     .cam_x_i(cam_x_i), .cam_y_i(cam_y_i), .cam_z_i(cam_z_i),
-    .in_valid_i(drive), .in_ready_o(in_ready), .in_kind_i(h_tri), .in_node_i(node),
+    .in_valid_i(drive), .in_ready_o(in_ready), .in_kind_i(h_tri),
+    .in_node0_i(group[0 +: 64]), .in_node1_i(group[64 +: 64]), .in_node2_i(group[128 +: 64]),
+    .in_node3_i(group[192 +: 64]), .in_nmask_i(nmask),
     .in_k_i(kf[1:0]), .in_flags_i({kf[7:2], 2'b00}),
     .in_c0_i(trec[0*8*CB_ +: W]), .in_c1_i(trec[1*8*CB_ +: W]), .in_c2_i(trec[2*8*CB_ +: W]),
     .in_c3_i(trec[3*8*CB_ +: W]), .in_c4_i(trec[4*8*CB_ +: W]), .in_c5_i(trec[5*8*CB_ +: W]),
     .in_c6_i(trec[6*8*CB_ +: W]), .in_c7_i(trec[7*8*CB_ +: W]), .in_c8_i(trec[8*8*CB_ +: W]),
-    .in_id_i(trec[8*IDOFF_ +: 32]), .in_tag_i({h_tri, h_tag, rec_q, last}),
-    .out_valid_o(o_valid), .out_ready_i(1'b1), .out_kind_o(o_kind), .out_node_o(o_node),
+    .in_id_i(trec[8*IDOFF_ +: 32]), .in_tag_i({h_tri, h_tag, rec_q, nmask, last}),
+    .out_valid_o(o_valid), .out_ready_i(1'b1), .out_kind_o(o_kind),
+    .out_node0_o(o_group[0 +: 64]), .out_node1_o(o_group[64 +: 64]),
+    .out_node2_o(o_group[128 +: 64]), .out_node3_o(o_group[192 +: 64]),
     .out_k_o(o_k), .out_flags_o(o_flags),
     .out_c0_o(o_c0), .out_c1_o(o_c1), .out_c2_o(o_c2), .out_c3_o(o_c3), .out_c4_o(o_c4),
     .out_c5_o(o_c5), .out_c6_o(o_c6), .out_c7_o(o_c7), .out_c8_o(o_c8), .out_id_o(o_id),
     .out_tag_o(o_tag));
 
-  // ---- 4. a record leaving: encoded back (hls::encode_tri: padding zero) ------------------------
+  // ---- 4. a group or record leaving: encoded back (hls::encode_tri: padding zero) ---------------
   wire            t_tri  = o_tag[TAGW-1];
   wire [MB_-1:0]  t_tag  = o_tag[TAGW-2 -: MB_];
-  wire [RIB-1:0]  t_rec  = o_tag[1 +: RIB];
+  wire [RIB-1:0]  t_rec  = o_tag[5 +: RIB];
+  wire [3:0]      t_mask = o_tag[1 +: 4];
   wire            t_last = o_tag[0];
   wire [IB-1:0]   t_idx  = (t_tri ? TRI_BASE : {IB{1'b0}}) + {{(IB-MB_){1'b0}}, t_tag};
   wire            unused_out = ^{o_kind, o_flags[1:0]};  // = t_tri; the flags' low bits are k's
@@ -177,15 +198,27 @@ module vtu_unit #(
   end
 
   // ---- fills: one per port per cycle, in the cycle the line is complete --------------------------
-  // A bypassed line with its last beat merged in, or a line with its last record merged in (the
-  // two never meet on one port: node and triangle lines bypass only with the VTU off, when no
-  // record is in vtu.v, and list lines never enter it). The line of the record leaving, with the
-  // record merged in:
+  // A bypassed line with its last beat merged in, or a line with its last group or record merged
+  // in (the two never meet on one port: node and triangle lines bypass only with the VTU off, when
+  // nothing is in vtu.v, and list lines never enter it). The line of the group or record leaving,
+  // with it merged in (a group's masked-in nodes). At STAGES 0 a line's only group or record
+  // leaves in the cycle of its last beat (taken directly), so that beat is merged in too; at
+  // STAGES >= 1 no beat meets a line with records in vtu.v.
+  wire [LW-1:0] t_buf;
+  generate
+    if (STAGES == 0) begin : g_t_direct
+      assign t_buf = (beat && (b_idx == t_idx)) ? b_line : buf_q[t_idx];
+    end else begin : g_t_buf
+      assign t_buf = buf_q[t_idx];
+    end
+  endgenerate
   reg  [LW-1:0] r_line;
+  integer m;
   always @* begin
-    r_line = buf_q[t_idx];
+    r_line = t_buf;
     if (t_tri) r_line[t_rec * 8 * RB_ +: 8 * RB_] = enc;
-    else       r_line[t_rec * 64 +: 64] = o_node;
+    for (m = 0; m < 4; m = m + 1)
+      if (!t_tri && t_mask[m]) r_line[(t_rec * 4 + m) * 64 +: 64] = o_group[m*64 +: 64];
   end
   wire       b_fill = beat && beat_last_i && bypass;
   wire       r_fill = o_valid && t_last;
@@ -206,12 +239,12 @@ module vtu_unit #(
     end
   endgenerate
 
-  // Records inside vtu.v.
+  // Groups or records inside vtu.v.
   reg [7:0] inside_q;
   assign busy_o = (inside_q != 8'd0) || drive;
 
   wire [QB-1:0] tail = head_q + cnt_q[QB-1:0];
-  integer i;
+  integer i, l;
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       head_q     <= {QB{1'b0}};
@@ -231,12 +264,15 @@ module vtu_unit #(
     end
   end
 
-  // The buffers: beats and records written, line indices taken (no reset: data).
+  // The buffers: beats, records and groups' masked-in nodes written, line indices taken (no
+  // reset: data).
   always @(posedge clk_i) begin
     if (beat) buf_q[b_idx][beat_idx_i * BB +: BB] <= beat_data_i;
     if (o_valid) begin
       if (t_tri) buf_q[t_idx][t_rec * 8 * RB_ +: 8 * RB_] <= enc;
-      else       buf_q[t_idx][t_rec * 64 +: 64] <= o_node;
+      else
+        for (l = 0; l < 4; l = l + 1)
+          if (t_mask[l]) buf_q[t_idx][(t_rec * 4 + l) * 64 +: 64] <= o_group[l*64 +: 64];
     end
     for (i = 0; i < 3; i = i + 1)
       if (req_take_i[i])

@@ -9,7 +9,8 @@
 //   CFG(E, type, name, shape)  port name[sfx]_i       signal s.name[sfx]      (no record field)
 //   IN(E, type, name, shape)   port in_name[sfx]_i    signal s.in_name[sfx]   field In::name[i]
 //   OUT(E, type, name, shape)  port out_name[sfx]_o   signal s.out_name[sfx]  field Out::name[i]
-// shape: one (a single pin, no sfx), xyz (sfx _x _y _z = field [0..2]), c9 (sfx 0..8 = [0..8]).
+// shape: one (a single pin, no sfx), xyz (sfx _x _y _z = field [0..2]), n4 (sfx 0..3 = [0..3]),
+// c9 (sfx 0..8 = [0..8]).
 // type is the Verilated --sc port type (toolchain.md pitfall 14: 1 bit bool, 2..32 bits uint32_t,
 // 33..64 bits uint64_t); record fields convert to and from it with static_cast.
 //
@@ -33,6 +34,11 @@
   E(io, T, pre##name##_x##post, pre##name##_x, name[0]) \
   E(io, T, pre##name##_y##post, pre##name##_y, name[1]) \
   E(io, T, pre##name##_z##post, pre##name##_z, name[2])
+#define RAYCORE_PINS_EACH_n4(E, io, T, pre, name, post)  \
+  E(io, T, pre##name##0##post, pre##name##0, name[0]) \
+  E(io, T, pre##name##1##post, pre##name##1, name[1]) \
+  E(io, T, pre##name##2##post, pre##name##2, name[2]) \
+  E(io, T, pre##name##3##post, pre##name##3, name[3])
 #define RAYCORE_PINS_EACH_c9(E, io, T, pre, name, post)  \
   E(io, T, pre##name##0##post, pre##name##0, name[0]) \
   E(io, T, pre##name##1##post, pre##name##1, name[1]) \

@@ -3,20 +3,25 @@
 //
 // One test per Verilated variant (format, rounding, STAGES; listed once in rtl/CMakeLists.txt,
 // RAYCORE_RTL_VTU_VARIANTS). Each streams, through the unit's valid/ready handshake:
-//   1. fullrate: 4096 records with no stalls (checks one record per cycle and latency 3*STAGES),
+//   1. fullrate: 4096 records with no stalls (checks one record per cycle and latency 2*STAGES),
 //   2. random: RAYCORE_RTL_VTU_RANDOM (default 200000) records with random input gaps and random
 //      output back-pressure (bursty rates, new every 256 cycles),
-// each a node (1/2; a quarter of them leaves) or a triangle (random k, flags, id; constants with
-// magnitudes 1e-3..1e4, some zeros of either sign and some raw bit patterns), with a camera that
-// changes every few records (magnitudes 1e-3..1e4, some zero coordinates) and vtu_on_i off for
-// about 1/8 of the records (then the record must come out unchanged),
+// each a node record (1/2) or a triangle (random k, flags, id; constants with magnitudes
+// 1e-3..1e4, some zeros of either sign and some raw bit patterns), with a camera that changes
+// every few records (magnitudes 1e-3..1e4, some zero coordinates) and vtu_on_i off for about 1/8
+// of the records (then the record must come out unchanged). A node record is four nodes (lanes
+// 0..3, each its own axis; a quarter of them leaves) with a lane mask in_nmask_i, half of the
+// time random, half of the time a prefix 1, 3, 7 or 15 (a line's last group): lane j must come
+// out as hls::Vtu::node if masked in, unchanged if not. A triangle gets random nodes and mask on
+// the (don't-care) node inputs,
 //   3. far: RAYCORE_RTL_VTU_RANDOM / 2 records far from the origin (FarGen): a camera near a point
-//      with coordinates near 10^5 and real triangles (hls::make_wald) and splits near it, so the
-//      constants are near 10^5 or above and the translated ones small: the sops' heavy cancellation,
-//      with random gaps and back-pressure.
-// A 16-bit sequence number rides in the tag. Summary line per run: `VTUSUM <variant> <set> vectors=N mismatches=M ...`;
-// zero vectors or any mismatch fails; the first 10 mismatches print the record, the camera, the
-// expected and the received fields.
+//      with coordinates near 10^5 and real triangles (hls::make_wald) and splits near it (every
+//      lane of a node record), so the constants are near 10^5 or above and the translated ones
+//      small: the sops' heavy cancellation, with random gaps and back-pressure.
+// A 16-bit sequence number rides in the tag. Summary line per run: `VTUSUM <variant> <set>
+// vectors=N mismatches=M ... moved=a/b/c/d` (per lane, the node records whose split the VTU
+// changed); zero vectors or any mismatch fails; the first 10 mismatches print the record, the
+// camera, the expected and the received fields.
 #include <gtest/gtest.h>
 #include <verilated.h>
 
@@ -56,14 +61,29 @@ void set(P& port, U v) {
   port = static_cast<P>(v);
 }
 
+// vtu.v's node lanes.
+constexpr int kLanes = 4;
+
+// One record as driven: Record (the triangle, the camera, the enable; its node unused) and the
+// four node lanes with their mask (for a triangle: don't-care junk).
+template <class F>
+struct Rec4 {
+  Record<F> r;
+  uint64_t node[kLanes] = {0, 0, 0, 0};
+  uint32_t mask = 0;
+};
+
 template <class F>
 struct Out {
   bool tri = false;
-  uint64_t node = 0;
+  uint64_t node[kLanes] = {0, 0, 0, 0};
   hls::WaldTri<F> t;
   bool operator==(const Out& o) const {
     if (tri != o.tri) return false;
-    return tri ? t == o.t : node == o.node;
+    if (tri) return t == o.t;
+    for (int j = 0; j < kLanes; ++j)
+      if (node[j] != o.node[j]) return false;
+    return true;
   }
 };
 
@@ -77,7 +97,8 @@ template <class F>
 std::string show(const Out<F>& o) {
   std::ostringstream s;
   if (!o.tri) {
-    s << "node " << hex(o.node);
+    s << "nodes";
+    for (int j = 0; j < kLanes; ++j) s << " " << hex(o.node[j]);
     return s.str();
   }
   s << "tri k=" << o.t.k << " flags=" << hex(o.t.flags) << " id=" << o.t.id << " c=[";
@@ -87,33 +108,55 @@ std::string show(const Out<F>& o) {
 }
 
 template <class F>
-std::string show(const Record<F>& r) {
+std::string show(const Rec4<F>& x) {
+  const Record<F>& r = x.r;
   Out<F> o;
   o.tri = r.tri;
-  o.node = r.node;
+  for (int j = 0; j < kLanes; ++j) o.node[j] = x.node[j];
   o.t = r.t;
   std::ostringstream s;
-  s << show(o) << " cam=[" << hex(r.cam[0]) << " " << hex(r.cam[1]) << " " << hex(r.cam[2])
-    << "] on=" << r.on;
+  s << show(o);
+  if (!r.tri) s << " mask=" << hex(x.mask);
+  s << " cam=[" << hex(r.cam[0]) << " " << hex(r.cam[1]) << " " << hex(r.cam[2]) << "] on=" << r.on;
   return s.str();
 }
 
 template <class F, Rounding R>
-Out<F> expect(const Record<F>& r) {
+Out<F> expect(const Rec4<F>& x) {
+  const Record<F>& r = x.r;
   Out<F> o;
   o.tri = r.tri;
-  if (!r.on) {
-    o.node = r.node;
-    o.t = r.t;
-    return o;
-  }
+  o.t = r.t;
+  for (int j = 0; j < kLanes; ++j) o.node[j] = x.node[j];
+  if (!r.on) return o;
   hls::Vtu<F, R> v;
   for (int i = 0; i < 3; ++i) v.c[i] = r.cam[i];
-  if (r.tri)
+  if (r.tri) {
     o.t = v.tri(r.t);
-  else
-    o.node = v.node(r.node);
+  } else {
+    for (int j = 0; j < kLanes; ++j)
+      if ((x.mask >> j) & 1u) o.node[j] = v.node(x.node[j]);
+  }
   return o;
+}
+
+// A lane mask: half of the time random, half of the time a prefix (a line's last group).
+inline uint32_t lane_mask(std::mt19937_64& rng) {
+  if (rng() & 1u) return uint32_t(rng() & 15u);
+  static constexpr uint32_t kPrefix[] = {1, 3, 7, 15};
+  return kPrefix[rng() & 3u];
+}
+
+// A further node like Gen's (stimulus.h): any axis (a quarter leaves), random upper bits; a leaf
+// any count, an inner node a split in the format.
+template <class F, Rounding R>
+uint64_t extra_node(Gen<F, R>& g) {
+  std::mt19937_64& rng = g.rng();
+  const uint64_t axis = rng() & 3u;
+  uint64_t hi = (uint64_t(rng()) << 32) & ~(uint64_t(3) << 56);
+  hi |= axis << 56;
+  const uint32_t lo = axis == hls::node_leaf_axis ? uint32_t(rng()) : g.value();
+  return hi | lo;
 }
 
 // Records far from the origin (the VTU's reason for one rounding): a region around a point P whose
@@ -147,17 +190,21 @@ class FarGen {
       if ((rng_() & 15u) == 0)  // the camera exactly at the first vertex
         for (int i = 0; i < 3; ++i) cam_[i] = hls::from_double<F, R>(t[0][i]);
     } else {
-      const uint64_t axis = (rng_() & 15u) == 0 ? hls::node_leaf_axis : rng_() % 3u;
-      hls::Node n;
-      n.axis = uint32_t(axis);
-      n.index = uint32_t(rng_()) & hls::node_index_mask;
-      n.split_or_count = axis == hls::node_leaf_axis
-                             ? uint32_t(rng_())
-                             : hls::from_double<F, R>(p_[int(axis)] + off(-6, 12));
-      r.node = hls::encode_node(n);
+      r.node = node();
     }
     for (int i = 0; i < 3; ++i) r.cam[i] = cam_[i];
     return r;
+  }
+  // An inner node with a split near P's coordinate on its axis (1/16 leaves).
+  uint64_t node() {
+    const uint64_t axis = (rng_() & 15u) == 0 ? hls::node_leaf_axis : rng_() % 3u;
+    hls::Node n;
+    n.axis = uint32_t(axis);
+    n.index = uint32_t(rng_()) & hls::node_index_mask;
+    n.split_or_count = axis == hls::node_leaf_axis
+                           ? uint32_t(rng_())
+                           : hls::from_double<F, R>(p_[int(axis)] + off(-6, 12));
+    return hls::encode_node(n);
   }
   std::mt19937_64& rng() { return rng_; }
 
@@ -183,6 +230,29 @@ class FarGen {
   uint32_t cam_[3] = {0, 0, 0};
 };
 
+template <class F, Rounding R>
+uint64_t extra_node(FarGen<F, R>& g) {
+  return g.node();
+}
+
+// The next record of a generator: a node record's lane 0 is the generator's node, lanes 1..3
+// further nodes of the same kind; a triangle's node lanes and mask are random junk.
+template <class F, class G>
+Rec4<F> next_rec(G& gen) {
+  Rec4<F> x;
+  x.r = gen.next();
+  std::mt19937_64& rng = gen.rng();
+  if (x.r.tri) {
+    for (uint64_t& n : x.node) n = rng();
+    x.mask = uint32_t(rng() & 15u);
+    return x;
+  }
+  x.node[0] = x.r.node;
+  for (int j = 1; j < kLanes; ++j) x.node[j] = extra_node(gen);
+  x.mask = lane_mask(rng);
+  return x;
+}
+
 template <class V, class F, Rounding R>
 class VtuCosim {
  public:
@@ -190,14 +260,19 @@ class VtuCosim {
       : name_(std::move(name)), stages_(stages), gen_(seed), far_(seed ^ 0x9e3779b97f4a7c15ull),
         dut_(seed) {}
 
-  void drive(const Record<F>& r) {
+  void drive(const Rec4<F>& x) {
+    const Record<F>& r = x.r;
     V& m = *dut_;
     set(m.vtu_on_i, r.on);
     set(m.cam_x_i, r.cam[0]);
     set(m.cam_y_i, r.cam[1]);
     set(m.cam_z_i, r.cam[2]);
     set(m.in_kind_i, r.tri);
-    set(m.in_node_i, r.node);
+    set(m.in_node0_i, x.node[0]);
+    set(m.in_node1_i, x.node[1]);
+    set(m.in_node2_i, x.node[2]);
+    set(m.in_node3_i, x.node[3]);
+    set(m.in_nmask_i, x.mask);
     set(m.in_k_i, r.t.k);
     set(m.in_flags_i, r.t.flags);
     set(m.in_c0_i, r.t.c[0]);
@@ -217,7 +292,10 @@ class VtuCosim {
     Out<F> o;
     o.tri = m.out_kind_o != 0;
     if (!o.tri) {
-      o.node = m.out_node_o;
+      o.node[0] = m.out_node0_o;
+      o.node[1] = m.out_node1_o;
+      o.node[2] = m.out_node2_o;
+      o.node[3] = m.out_node3_o;
       return o;
     }
     o.t.k = m.out_k_o;
@@ -244,22 +322,25 @@ class VtuCosim {
   template <class G>
   uint64_t run_from(const std::string& set_name, uint64_t count, bool full, G& gen) {
     struct Item {
-      Record<F> r;
+      Rec4<F> r;
       Out<F> expected;
     };
-    const uint64_t latency = 3u * uint64_t(stages_);
-    const StreamSpec spec{name_, count, full, latency, "3*STAGES", 1000u + 64u * latency};
+    const uint64_t latency = 2u * uint64_t(stages_);
+    const StreamSpec spec{name_, count, full, latency, "2*STAGES", 1000u + 64u * latency};
     std::mt19937_64& rng = gen.rng();
     uint64_t mismatches = 0;
+    uint64_t moved[kLanes] = {0, 0, 0, 0};  // per lane: nodes whose expected split changed
     const StreamStats st = stream(
         dut_, spec, rng, rng,
         [&](uint64_t) {
-          Item it{gen.next(), {}};
+          Item it{next_rec<F>(gen), {}};
           it.expected = expect<F, R>(it.r);
+          if (!it.r.r.tri)
+            for (int j = 0; j < kLanes; ++j) moved[j] += it.expected.node[j] != it.r.node[j];
           drive(it.r);
           return it;
         },
-        [&] { drive(gen.next()); },  // junk inputs
+        [&] { drive(next_rec<F>(gen)); },  // junk inputs
         [&](const Item& it, uint16_t seq, uint64_t cycle) {
           const Out<F> got = read();
           if (!(got == it.expected)) {
@@ -271,12 +352,14 @@ class VtuCosim {
         [&] { return mismatches >= 10; });
     EXPECT_GT(st.checked, 0u) << "no vectors checked";
     EXPECT_EQ(mismatches, 0u);
-    std::printf("VTUSUM %s %s vectors=%llu mismatches=%llu cycles=%llu latency=%llu..%llu\n",
-                name_.c_str(), set_name.c_str(), static_cast<unsigned long long>(st.checked),
-                static_cast<unsigned long long>(mismatches),
-                static_cast<unsigned long long>(st.cycles),
-                static_cast<unsigned long long>(st.min_lat),
-                static_cast<unsigned long long>(st.max_lat));
+    std::printf(
+        "VTUSUM %s %s vectors=%llu mismatches=%llu cycles=%llu latency=%llu..%llu "
+        "moved=%llu/%llu/%llu/%llu\n",
+        name_.c_str(), set_name.c_str(), static_cast<unsigned long long>(st.checked),
+        static_cast<unsigned long long>(mismatches), static_cast<unsigned long long>(st.cycles),
+        static_cast<unsigned long long>(st.min_lat), static_cast<unsigned long long>(st.max_lat),
+        static_cast<unsigned long long>(moved[0]), static_cast<unsigned long long>(moved[1]),
+        static_cast<unsigned long long>(moved[2]), static_cast<unsigned long long>(moved[3]));
     return st.checked;
   }
 

@@ -19,6 +19,8 @@
 #define SC_INCLUDE_DYNAMIC_PROCESSES  // sc_spawn
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <systemc>
 
 #include <cmath>
@@ -180,11 +182,11 @@ TEST(PinsFrame, TwinsEachUnitFp24RneRandomLatency) {
 }
 TEST(PinsFrame, TwinsFp32StagesOneAndThree) {
   sc::SimConfig cfg;
-  cfg.vtu_depth = 3;
+  cfg.vtu_depth = 2;
   cfg.ist_latency = 10;
   expect_same_frame(tiny_scene(), config(FormatId::fp32, Rounding::rne, true, 32, 24), cfg,
                     UnitView::twin, UnitView::twin);
-  cfg.vtu_depth = 9;
+  cfg.vtu_depth = 6;
   cfg.ist_latency = 30;
   expect_same_frame(tiny_scene(), config(FormatId::fp24, Rounding::rtz, true, 32, 24), cfg,
                     UnitView::twin, UnitView::twin);
@@ -244,8 +246,8 @@ TEST(PinsFrame, LatencyNotAMultipleOfTheLevelsIsRefused) {
   const auto tc = config(FormatId::fp24, Rounding::rtz, true, 8, 8);
   sc::SimConfig cfg;
   cfg.vtu_view = UnitView::twin;
-  cfg.vtu_depth = 4;
-  expect_refused(tiny_scene(), tc, cfg, "--vtu-depth must be 3 x STAGES");
+  cfg.vtu_depth = 5;
+  expect_refused(tiny_scene(), tc, cfg, "--vtu-depth must be 2 x STAGES");
   cfg = {};
   cfg.ist_view = UnitView::twin;
   cfg.ist_latency = 24;
@@ -1099,7 +1101,9 @@ void vtu_lockstep(const char* name) {
       const auto g = gen.next();
       Item it;
       it.rec.kind = g.tri;
-      it.rec.node = g.node;
+      it.rec.node[0] = g.node;
+      for (uint32_t j = 1; j < pins::kVtuNodeLanes; ++j) it.rec.node[j] = gen.next().node;
+      it.rec.nmask = uint32_t(rng() & 15u);
       it.rec.k = g.t.k;
       it.rec.flags = g.t.flags;
       for (int i = 0; i < 9; ++i) it.rec.c[i] = g.t.c[i];
@@ -1116,7 +1120,7 @@ void vtu_lockstep(const char* name) {
     };
     auto same = [](const pins::VtuRec& x, const pins::VtuRec& y) {
       if (x.kind != y.kind || x.tag != y.tag) return false;
-      if (!x.kind) return x.node == y.node;
+      if (!x.kind) return std::equal(std::begin(x.node), std::end(x.node), std::begin(y.node));
       if (x.k != y.k || x.flags != y.flags || x.id != y.id) return false;
       for (int i = 0; i < 9; ++i)
         if (x.c[i] != y.c[i]) return false;
@@ -1124,7 +1128,10 @@ void vtu_lockstep(const char* name) {
     };
     auto show = [](const pins::VtuRec& x) {
       std::string s = "tag " + std::to_string(x.tag) + (x.kind ? " tri k " : " node ");
-      if (!x.kind) return s + hex(x.node);
+      if (!x.kind) {
+        for (uint64_t v : x.node) s += " " + hex(v);
+        return s;
+      }
       s += std::to_string(x.k) + " flags " + hex(x.flags) + " id " + std::to_string(x.id) + " c";
       for (uint32_t c : x.c) s += " " + hex(c);
       return s;
