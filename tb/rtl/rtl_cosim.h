@@ -50,6 +50,22 @@ struct Operands {
   uint32_t a = 0, b = 0, c = 0;
   bool sub = false;
 };
+// Junk operands for the cycles without a valid input (any bits of the format).
+template <class F, class Rng>
+void randomize(Operands& x, Rng& rng) {
+  x = {uint32_t(rng()) & F::mask, uint32_t(rng()) & F::mask, uint32_t(rng()) & F::mask,
+       (rng() & 1u) != 0};
+}
+// An operator's operand set: Operands, or the adapter's own `X` (e.g. fp_sop's six operands, with a
+// randomize() overload of its own).
+template <class Op, class = void>
+struct OperandsOf {
+  using type = Operands;
+};
+template <class Op>
+struct OperandsOf<Op, std::void_t<typename Op::X>> {
+  using type = typename Op::X;
+};
 
 // Up to four result fields (a number, or lt/eq/min/max); `names` labels them in messages.
 template <class F>
@@ -246,6 +262,7 @@ template <class V, class Op>
 class Cosim {
  public:
   using Res = typename Op::Res;
+  using X = typename OperandsOf<Op>::type;
 
   Cosim(std::string fmt, std::string mode, int stages, uint64_t seed)
       : fmt_(std::move(fmt)), mode_(std::move(mode)), stages_(stages), rng_(seed), dut_(seed) {
@@ -255,7 +272,7 @@ class Cosim {
   // Streams `count` operand sets (next(k) gives the k-th) through the module and checks them all.
   // Returns the number of vectors checked.
   uint64_t run(const std::string& set, uint64_t count,
-               const std::function<Operands(uint64_t)>& next, Traffic traffic) {
+               const std::function<X(uint64_t)>& next, Traffic traffic) {
     fptest::Tally tally(fmt_, std::string("rtl.") + Op::name(), mode_ + ".s" + std::to_string(stages_),
                         set);
     const StreamSpec spec{
@@ -263,7 +280,7 @@ class Cosim {
         count, traffic == Traffic::full_rate, uint64_t(stages_), "STAGES",
         1000u + 64u * uint64_t(stages_)};
     struct Item {
-      Operands x;
+      X x;
       Res expected;
     };
     V& m = *dut_;
@@ -276,10 +293,8 @@ class Cosim {
           return it;
         },
         [&] {  // junk operands
-          Operands junk{uint32_t(rng_()), uint32_t(rng_()), uint32_t(rng_()), (rng_() & 1u) != 0};
-          junk.a &= F_mask();
-          junk.b &= F_mask();
-          junk.c &= F_mask();
+          X junk;
+          randomize<typename Op::Fmt>(junk, rng_);
           Op::drive(m, junk);
         },
         [&](const Item& it, uint16_t, uint64_t) {
@@ -293,8 +308,6 @@ class Cosim {
   }
 
  private:
-  static uint32_t F_mask() { return Op::Fmt::mask; }
-
   std::string fmt_, mode_;
   int stages_;
   std::mt19937_64 rng_;

@@ -11,9 +11,8 @@
 //   3. random: RAYCORE_RTL_RANDOM (default 10^6) operand sets from the C++ tests' generator
 //      (fptest::Gen, seeded from the test name and RAYCORE_FP_SEED; sop: six operands drawn here
 //      from its pieces, sop_random),
-// the last two with random input gaps and random output back-pressure. fp_sop's six operands do
-// not fit rtl_cosim.h's Operands: its adapter runs the same three sets through Dut/stream() with
-// its own operand type (run_six, the loop of Cosim::run).
+// the last two with random input gaps and random output back-pressure. fp_sop's adapter has its
+// own operand set (SopOp::X = Six; rtl_cosim.h's OperandsOf), run by the same Cosim.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -262,6 +261,11 @@ struct CmpOp : OpBase<F> {
 struct Six {
   uint32_t a = 0, b = 0, x1 = 0, y1 = 0, x2 = 0, y2 = 0;
 };
+// Junk operands for Cosim's idle cycles (rtl_cosim.h's randomize for Operands).
+template <class F, class Rng>
+void randomize(Six& x, Rng& rng) {
+  for (uint32_t* v : {&x.a, &x.b, &x.x1, &x.y1, &x.x2, &x.y2}) *v = uint32_t(rng()) & F::mask;
+}
 
 template <class F>
 struct SopGen {
@@ -412,6 +416,7 @@ template <class F, Rounding R>
 struct SopOp {
   using Fmt = F;
   using Res = Result<F>;
+  using X = Six;  // its operand set (rtl_cosim.h OperandsOf)
   using G = SopGen<F>;
   static const char* name() { return "fp_sop"; }
   template <class V>
@@ -501,7 +506,7 @@ struct SopOp {
 // ---- the test body -------------------------------------------------------------------------------
 
 template <class V, class Op>
-void run_pairs(const char* variant, const char* mode, int stages) {
+void run_variant(const char* variant, const char* mode, int stages) {
   using F = typename Op::Fmt;
   Cosim<V, Op> sim(fptest::fmt_name<F>(), mode, stages, fptest::seed_for(variant));
   const std::vector<uint32_t> d = fptest::directed_set<F>(Op::small_directed());
@@ -516,91 +521,6 @@ void run_pairs(const char* variant, const char* mode, int stages) {
                    Traffic::stalls);
   std::printf("%s: %llu vectors checked against hls/fp.h\n", variant, (unsigned long long)total);
   EXPECT_GT(total, 0u);
-}
-
-// fp_sop: six operands, the loop of Cosim::run (rtl_cosim.h) with Six for Operands.
-template <class V, class Op>
-class SixCosim {
- public:
-  using F = typename Op::Fmt;
-  using Res = typename Op::Res;
-  SixCosim(std::string mode, int stages, uint64_t seed)
-      : mode_(std::move(mode)), stages_(stages), rng_(seed), dut_(seed) {}
-
-  uint64_t run(const std::string& set, uint64_t count, const std::function<Six(uint64_t)>& next,
-               Traffic traffic) {
-    const std::string fmt = fptest::fmt_name<F>();
-    fptest::Tally tally(fmt, std::string("rtl.") + Op::name(),
-                        mode_ + ".s" + std::to_string(stages_), set);
-    const StreamSpec spec{std::string(Op::name()) + " " + fmt + " " + mode_ + " S=" +
-                              std::to_string(stages_),
-                          count, traffic == Traffic::full_rate, uint64_t(stages_), "STAGES",
-                          1000u + 64u * uint64_t(stages_)};
-    struct Item {
-      Six x;
-      Res expected;
-    };
-    V& m = *dut_;
-    const StreamStats st = stream(
-        dut_, spec, rng_, rng_,
-        [&](uint64_t k) {
-          Item it{next(k), {}};
-          it.expected = Op::expect(it.x);
-          Op::drive(m, it.x);
-          return it;
-        },
-        [&] {  // junk operands
-          Six junk;
-          for (uint32_t* v : {&junk.a, &junk.b, &junk.x1, &junk.y1, &junk.x2, &junk.y2})
-            *v = uint32_t(rng_()) & F::mask;
-          Op::drive(m, junk);
-        },
-        [&](const Item& it, uint16_t, uint64_t) {
-          tally.check(Op::read(m), it.expected, [&] { return Op::describe(it.x); });
-        },
-        [&] { return tally.stopped(); });
-    tally.note("cycles=" + std::to_string(st.cycles) + " latency=" + std::to_string(st.min_lat) +
-               ".." + std::to_string(st.max_lat));
-    tally.finish();
-    return tally.vectors();
-  }
-
- private:
-  std::string mode_;
-  int stages_;
-  std::mt19937_64 rng_;
-  Dut<V> dut_;
-};
-
-template <class Op>
-struct IsSix : std::false_type {};
-template <class F, Rounding R>
-struct IsSix<SopOp<F, R>> : std::true_type {};
-
-template <class V, class Op>
-void run_six(const char* variant, const char* mode, int stages) {
-  using F = typename Op::Fmt;
-  SixCosim<V, Op> sim(mode, stages, fptest::seed_for(variant));
-  const std::vector<uint32_t> d = fptest::directed_set<F>(Op::small_directed());
-  const uint64_t n_dir = Op::directed_count(d.size());
-  auto directed = [&](uint64_t k) { return Op::directed(d, k); };
-  uint64_t total = 0;
-  total += sim.run("fullrate", std::min<uint64_t>(n_dir, 4096), directed, Traffic::full_rate);
-  total += sim.run("directed", n_dir, directed, Traffic::stalls);
-  Gen<F> gen(fptest::seed_for(std::string(variant) + ".random"));
-  total += sim.run("random", random_count(), [&](uint64_t) { return Op::random(gen); },
-                   Traffic::stalls);
-  std::printf("%s: %llu vectors checked against hls/fp.h\n", variant, (unsigned long long)total);
-  EXPECT_GT(total, 0u);
-}
-
-template <class V, class Op>
-void run_variant(const char* variant, const char* mode, int stages) {
-  if constexpr (IsSix<Op>::value) {
-    run_six<V, Op>(variant, mode, stages);
-  } else {
-    run_pairs<V, Op>(variant, mode, stages);
-  }
 }
 
 }  // namespace
