@@ -8,7 +8,9 @@
 //   dy    the step per pixel down:         -up * 2 tan(yfov/2) / h
 // so that in exact arithmetic d00 + x dx + y dy is scenes::primary_direction's direction before
 // its normalisation. The unit computes each ray in the format (rgu_primary): the pixel's integer
-// coordinates converted exactly, p = add3(d00, mul(x, dx), mul(y, dy)) per component, then the
+// coordinates converted exactly, p = sop(d00, -0, x, dx, y, dy) per component (d00 + x dx + y dy,
+// the products exact, one rounding; until issue 27 part 4 add3(d00, mul(x, dx), mul(y, dy)),
+// three roundings: sponza-paper's ray-generation errors 37 -> 25 pixels, FP24 rtz), then the
 // same normalisation as the hit unit's unit shadow ray (hls/hit.h): len = sqrt(add3(p.p)),
 // d = p * rcp(len), and inv = rcp(d). Normalised so that t is in world units: t_min (2^-12) and
 // the reference's hit-distance metric mean the same for primary and shadow rays, and the trv's box
@@ -78,14 +80,16 @@ constexpr void rgu_interval(Ray& r, uint32_t tmin) {
   r.tmax = A::Fmt::max_mag;
 }
 
-// The unit's datapath: the primary ray through the centre of pixel (x, y). 9 mul, 4 add3, 1 sqrt,
-// 4 rcp, in eight levels: products, sums, squares, their sum, sqrt, rcp, the normalised
-// direction, its reciprocals (rtl/units/rgu.v).
+// The unit's datapath: the primary ray through the centre of pixel (x, y). 3 sop, 6 mul, 1 add3,
+// 1 sqrt, 4 rcp, in eight levels: the sops (two levels), squares, their sum, sqrt, rcp, the
+// normalised direction, its reciprocals (rtl/units/rgu_ray.v).
 template <class A>
 constexpr Ray rgu_primary(const RguCamera& c, uint32_t x, uint32_t y, uint32_t tmin) {
   const uint32_t fx = rgu_coord<A>(x), fy = rgu_coord<A>(y);
   uint32_t p[3] = {0, 0, 0};
-  for (int i = 0; i < 3; ++i) p[i] = A::add3(c.d00[i], A::mul(fx, c.dx[i]), A::mul(fy, c.dy[i]));
+  // p = d00 + x dx + y dy with one rounding (hls::sop: the products exact; -0 an absent addend).
+  for (int i = 0; i < 3; ++i)
+    p[i] = A::sop(c.d00[i], uint32_t(A::Fmt::sign_mask), fx, c.dx[i], fy, c.dy[i]);
   const uint32_t len = A::sqrt(A::add3(A::mul(p[0], p[0]), A::mul(p[1], p[1]), A::mul(p[2], p[2])));
   const uint32_t rl = A::rcp(len);
   Ray r;

@@ -99,7 +99,7 @@ fp_summary_table() {
 # ---- frames: golden tracer, reference and cycle model on full 800x480 frames -------------------
 # Golden speed (FP24 and FP32, both cores), kd-tree build, reference speed, and the cycle model of
 # sponza-paper with 6 RTUs, VTU off and on (golden_match must be true; cycles within 3%: the VTU's
-# fill latency cost 0.15% with the one-pipe baseline, 0.93% at the faster defaults; 1.86% before its
+# fill latency cost 0.08% with the one-pipe baseline, 0.94% at the faster defaults; 1.86% before its
 # four node lanes and depth 4, issue 26 part 5).
 json_get() {  # json_get FILE a.b.c  -> value (python3 if present, else jq-free grep fallback)
   python3 -c 'import json,sys; d=json.load(open(sys.argv[1]))

@@ -10,8 +10,8 @@
 // Levels (every FP operator has STAGES pipeline registers; the operators of a level run side by
 // side and a per-level fp_pipe of the same depth carries the tag and the values needed later):
 //   0  fx, fy = the pixel coordinates in the format (combinational, exact below 2^(M+1))
-//   1  fx*dx[c], fy*dy[c]                         6 fp_mul
-//   2  p[c] = add3(d00[c], fx*dx[c], fy*dy[c])    3 fp_add3
+//   1-2  p[c] = d00[c] + fx*dx[c] + fy*dy[c]   3 fp_sop (2 x STAGES: the products exact, one
+//                                               rounding; issue 27 part 4)
 //   3  p[c]*p[c]                                  3 fp_mul
 //   4  add3 of the squares                        1 fp_add3
 //   5  len = sqrt(...)                            1 fp_sqrt
@@ -105,40 +105,30 @@ module rgu_ray #(
     .sign_i(1'b0), .exp_i(COORD_EXP), .mag_i({in_y_i, {(M+3){1'b0}}}), .sticky_i(1'b0),
     .res_o(fy));
 
-  // ---- level 1: fx*dx[c] (j = c), fy*dy[c] (j = 3 + c) ------------------------------------------
-  wire [6*W-1:0] l1_a = {fy, fy, fy, fx, fx, fx};
-  wire [6*W-1:0] l1_b = {cam_dy_z_i, cam_dy_y_i, cam_dy_x_i, cam_dx_z_i, cam_dx_y_i, cam_dx_x_i};
-  wire [6*W-1:0] l1_prod;
-  wire [5:0]     l1_unused_v, l1_unused_r;
-  wire [T-1:0]   c1_tag;
+  // ---- levels 1-2: p[c] = sop(d00[c], -0, fx, dx[c], fy, dy[c]), one rounding ------------------
+  // Three fp_sop of 2 x STAGES registers each (its four phases) span levels 1 and 2; the carry
+  // pipes of the two levels (STAGES each) hold the same valid bits as the sops' chains.
+  localparam [W-1:0] NEG = {1'b1, {(W-1){1'b0}}};  // -0: the absent second addend
+  wire [3*W-1:0] l2_d00 = {cam_d00_z_i, cam_d00_y_i, cam_d00_x_i};
+  wire [3*W-1:0] l2_dx  = {cam_dx_z_i, cam_dx_y_i, cam_dx_x_i};
+  wire [3*W-1:0] l2_dy  = {cam_dy_z_i, cam_dy_y_i, cam_dy_x_i};
+  wire [3*W-1:0] l2_p;
+  wire [2:0]     l2_unused_v, l2_unused_r;
+  wire [T-1:0]   c1_tag, c2_tag;
   fp_pipe #(.WIDTH(T), .STAGES(STAGES)) u_carry1 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(r[1]), .in_data_i(in_tag_i),
     .out_valid_o(v[1]), .out_ready_i(r[2]), .out_data_o(c1_tag));
-  genvar gj;
-  generate
-    for (gj = 0; gj < 6; gj = gj + 1) begin : g_l1_mul
-      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_mul (
-        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[gj]),
-        .in_a_i(l1_a[gj*W +: W]), .in_b_i(l1_b[gj*W +: W]), .out_valid_o(l1_unused_v[gj]),
-        .out_ready_i(r[2]), .out_res_o(l1_prod[gj*W +: W]));
-    end
-  endgenerate
-
-  // ---- level 2: p[c] = add3(d00[c], fx*dx[c], fy*dy[c]) -----------------------------------------
-  wire [3*W-1:0] l2_d00 = {cam_d00_z_i, cam_d00_y_i, cam_d00_x_i};
-  wire [3*W-1:0] l2_p;
-  wire [2:0]     l2_unused_v, l2_unused_r;
-  wire [T-1:0]   c2_tag;
   fp_pipe #(.WIDTH(T), .STAGES(STAGES)) u_carry2 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(r[2]), .in_data_i(c1_tag),
     .out_valid_o(v[2]), .out_ready_i(r[3]), .out_data_o(c2_tag));
+  genvar gj;
   generate
-    for (gj = 0; gj < 3; gj = gj + 1) begin : g_l2_add3
-      fp_add3_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_add3 (
-        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[gj]),
-        .in_a_i(l2_d00[gj*W +: W]), .in_b_i(l1_prod[gj*W +: W]),
-        .in_c_i(l1_prod[(3+gj)*W +: W]), .out_valid_o(l2_unused_v[gj]), .out_ready_i(r[3]),
-        .out_res_o(l2_p[gj*W +: W]));
+    for (gj = 0; gj < 3; gj = gj + 1) begin : g_l2_sop
+      fp_sop_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(2 * STAGES)) u_sop (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l2_unused_r[gj]),
+        .in_a_i(l2_d00[gj*W +: W]), .in_b_i(NEG), .in_x1_i(fx), .in_y1_i(l2_dx[gj*W +: W]),
+        .in_x2_i(fy), .in_y2_i(l2_dy[gj*W +: W]), .out_valid_o(l2_unused_v[gj]),
+        .out_ready_i(r[3]), .out_res_o(l2_p[gj*W +: W]));
     end
   endgenerate
 
@@ -264,7 +254,7 @@ module rgu_ray #(
 
   // The operators' own handshakes: equal copies of the level's carry pipe's (see above).
   wire unused_hs;
-  assign unused_hs = ^{l1_unused_v, l1_unused_r, l2_unused_v, l2_unused_r, l3_unused_v,
+  assign unused_hs = ^{l2_unused_v, l2_unused_r, l3_unused_v,
                        l3_unused_r, l4_unused_v, l4_unused_r, l5_unused_v, l5_unused_r,
                        l5_unused_tag, l6_unused_v, l6_unused_r, l7_unused_v, l7_unused_r,
                        l8_unused_v, l8_unused_r};
