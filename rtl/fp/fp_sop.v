@@ -19,8 +19,10 @@
 // Phases, each followed by its share of the STAGES pipeline registers (fp_pipe):
 //   A: unpack, the two exact (M+1)x(M+1) products, the terms' tops, T = the largest nonzero top,
 //      each term's distance below T, the all-zero case and its sign
-//   B: align the four terms to the accumulator (jam)   C: four-input signed sum, absolute value
-//   D: round once (fp_round), pack
+//   B: align the four terms to the accumulator (jam)   C: four-input signed sum
+//   D: absolute value, round once (fp_round), pack
+// (The absolute value in D, not C: C's four-input add and a negation in one phase were vtu.v's
+// slowest path at STAGES 2, 96.8 FO4; split so, 88.7 FO4, D's.)
 // Cut j holds floor(STAGES*(j+1)/4) - floor(STAGES*j/4) registers (STAGES = 1: output register
 // only; 2: after B and at the output; 4: one each; 0: combinational). Latency = STAGES cycles, one
 // op per cycle. in_tag_i travels along.
@@ -166,7 +168,7 @@ module fp_sop #(
     .out_valid_o(vb), .out_ready_i(rb), .out_data_o(pb_out)
   );
 
-  // ---- C: signed four-input sum, absolute value -------------------------------------------------
+  // ---- C: signed four-input sum ----------------------------------------------------------------
   wire [TAG_BITS-1:0] c_tag;
   wire                c_zero, c_zsign, c_sa, c_sb, c_sp1, c_sp2;
   wire [U_W-1:0]      c_t;
@@ -178,8 +180,10 @@ module fp_sop #(
   wire [ACC_W-1:0] tp2 = {3'b000, c_mp2};
   wire [ACC_W-1:0] sum = (c_sa ? -ta : ta) + (c_sb ? -tb : tb) + (c_sp1 ? -tp1 : tp1)
                          + (c_sp2 ? -tp2 : tp2);
+  // The signed sum goes to phase D, which takes its absolute value (a carry chain of its own,
+  // kept out of this phase's four-input add).
   wire             c_sign = sum[ACC_W-1];
-  wire [ACC_W-2:0] c_mag  = c_sign ? (~sum[ACC_W-2:0] + 1'b1) : sum[ACC_W-2:0];
+  wire [ACC_W-2:0] c_mag  = sum[ACC_W-2:0];
 
   localparam integer PC_W = TAG_BITS + 2 + U_W + 1 + (ACC_W - 1);
   wire [PC_W-1:0] pc_out;
@@ -191,12 +195,13 @@ module fp_sop #(
     .out_valid_o(vc), .out_ready_i(rc), .out_data_o(pc_out)
   );
 
-  // ---- D: round once, pack ----------------------------------------------------------------------
+  // ---- D: absolute value, round once, pack ------------------------------------------------------
   wire [TAG_BITS-1:0] d_tag;
   wire                d_zero, d_zsign, d_sign;
   wire [U_W-1:0]      d_t;
-  wire [ACC_W-2:0]    d_mag;
-  assign {d_tag, d_zero, d_zsign, d_t, d_sign, d_mag} = pc_out;
+  wire [ACC_W-2:0]    d_sum;
+  assign {d_tag, d_zero, d_zsign, d_t, d_sign, d_sum} = pc_out;
+  wire [ACC_W-2:0]    d_mag = d_sign ? (~d_sum + 1'b1) : d_sum;
   // The accumulator's top magnitude bit has weight 2^(T+1): biased exponent U_T - bias + 1.
   wire [EXP_W-1:0] d_exp_top = {{(EXP_W-U_W){1'b0}}, d_t} - EXP_OFF;  // EXP_W > U_W
   wire [W-1:0]     d_rounded;
