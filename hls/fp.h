@@ -384,9 +384,9 @@ constexpr uint32_t mul(uint32_t a, uint32_t b) {
 // So result = round(exact + d) with |d| < 4 * 2^(T-S) = 2^(T-3M-5): the exact sum rounded once
 // whenever no term lies below the window (and, as add, for two terms whatever their exponents: a
 // jammed second addend is below 2^(T-2M-6) while the sum is above 2^(T-2), the round-to-odd
-// argument); with several terms below it, an error of at most 2^(T-3M-5) before the rounding, about
-// 2^-(2M+4) of the largest term. The rounding policy's own step is round_pack's (raycore truncates,
-// as rtz). Zero terms (a zero number, or a zero factor) add nothing; every term zero gives -0 if
+// argument); with several terms below it, an error of at most 2^(T-3M-5) before the rounding, at
+// most 2^-(3M+3) of the largest term (which is at least 2^(T-2)). The rounding policy's own step
+// is round_pack's (raycore truncates, as rtz). Zero terms (a zero number, or a zero factor) add nothing; every term zero gives -0 if
 // every one is -0 (a product's sign is the xor of its factors'), else +0; an exact zero sum is +0.
 template <class F, Rounding R>
 constexpr uint32_t sop(uint32_t a, uint32_t b, uint32_t x1, uint32_t y1, uint32_t x2, uint32_t y2) {

@@ -11,8 +11,9 @@
 //             n_u, n_v, b_nu, b_nv, c_nu, c_nv, k, flags and id unchanged
 //   box/light x' = sop(x, -c, -0*0, -0*0)   (box_outward: one more step outward, see below)
 // (-0 and -0*0 are absent terms: they leave an all-zero sum's sign to the others.) For rtz and
-// rne a two-term sop is sub(x, c) bit for bit (tb/fp: SopTest); for raycore it is the exact
-// difference truncated once (the VTU is this project's unit, not RayCore's).
+// rne a two-term sop is sub(x, c) bit for bit (tb/fp/test_fp_sop.cpp, Sop.*TwoTermsAreAdd); for
+// raycore it is the exact difference truncated once (the VTU is this project's unit, not
+// RayCore's).
 // Per triangle: 3 sops (6 exact products, no intermediate rounding); per node one (rtl/units/vtu.v
 // translates four nodes per cycle: three through its sops, one through a subtractor, which is the
 // two-term sop bit for bit under every policy: raycore's sop truncates as rtz's sub does).
@@ -20,7 +21,7 @@
 // Why one rounding: in world coordinates far from the origin the terms of n_d' are large and
 // cancel (far at 10^5: products near 7 * 10^4, where the FP24 ulp is 1), so a rounded product or
 // partial sum loses the small offset that remains; here the offsets err by their own final
-// rounding plus at most 2^-(2M+4) of the largest term (hls/fp.h, sop). docs/image.md derives the
+// rounding plus at most 2^-(3M+3) of the largest term (hls/fp.h, sop). docs/image.md derives the
 // bound against constants computed in double from pre-translated vertices.
 #pragma once
 

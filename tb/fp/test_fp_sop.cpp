@@ -1,6 +1,7 @@
 // hls::sop (a + b + x1*y1 + x2*y2, one rounding: hls/fp.h) against MPFR, FP24 and FP32, rtz and
-// rne, on RAYCORE_FP_RANDOM / 5 seeded random operand sets per case (VTU-shaped cancellations
-// included):
+// rne, on RAYCORE_FP_RANDOM / 5 seeded random operand sets per case (fp_check.h's sop_random, the
+// RTL co-simulation's too: VTU-shaped cancellations, terms beyond the window, zeros, flush and
+// saturation):
 //   - where every nonzero term lies inside the window (no jam), the result is the exact sum
 //     rounded once, bit for bit;
 //   - otherwise it lies between the exact sum minus and plus sop's stated bound 2^(T-3M-5),
@@ -26,52 +27,10 @@ namespace {
 
 uint64_t sop_count() { return random_count() / 5; }
 
-struct Six {
-  uint32_t a, b, x1, y1, x2, y2;
-};
-
 template <class F>
 std::string show6(const Six& s) {
   return "a=" + show<F>(s.a) + " b=" + show<F>(s.b) + " x1=" + show<F>(s.x1) + " y1=" +
          show<F>(s.y1) + " x2=" + show<F>(s.x2) + " y2=" + show<F>(s.y2);
-}
-
-// Operand sets: uniform, structured, products near an addend, and the VTU's shape (a cancels the
-// rest to within a few ulps: a result far below the terms).
-template <class F>
-Six draw(Gen<F>& g) {
-  using S = Spec<F>;
-  Six s{};
-  const uint32_t k = g.below(10);
-  if (k < 2) {
-    s = {g.any(), g.any(), g.any(), g.any(), g.any(), g.any()};
-  } else if (k < 4) {
-    s = {g.structured(), g.structured(), g.structured(), g.structured(), g.structured(),
-         g.structured()};
-  } else {
-    // Factors of moderate exponents so that products land near the addends.
-    auto factor = [&] { return g.make(g.coin(), g.range(-S::M, S::M + 4), g.mantissa()); };
-    s.x1 = factor();
-    s.y1 = factor();
-    s.x2 = factor();
-    s.y2 = factor();
-    s.b = g.below(3) == 0 ? g.make(g.coin(), g.range(-4, 2 * S::M), g.mantissa())
-                          : (g.coin() ? S::sign_bit : 0u);
-    const double p = hls::to_double<F>(s.b) + hls::to_double<F>(s.x1) * hls::to_double<F>(s.y1) +
-                     hls::to_double<F>(s.x2) * hls::to_double<F>(s.y2);
-    if (k < 6) {
-      s.a = g.at_distance(hls::from_double<F, Rounding::rtz>(p), g.distance(), g.coin());
-    } else {  // a ~ -(the rest): heavy cancellation
-      s.a = g.step(hls::from_double<F, Rounding::rne>(-p), g.range(-3, 3));
-    }
-  }
-  // A zero now and then (a zero factor removes its product).
-  if (g.below(8) == 0) {
-    uint32_t* f[6] = {&s.a, &s.b, &s.x1, &s.y1, &s.x2, &s.y2};
-    *f[g.below(6)] = g.coin() ? S::sign_bit : 0u;
-  }
-  if (g.below(64) == 0) s = {g.coin() ? S::sign_bit : 0u, g.coin() ? S::sign_bit : 0u, 0, 0, 0, 0};
-  return s;
 }
 
 // The exact sum and sop's contract with MPFR.
@@ -190,7 +149,7 @@ void run_contract() {
   uint64_t jammed = 0, jammed_exact = 0;
   const uint64_t n = sop_count();
   for (uint64_t i = 0; i < n; ++i) {
-    const Six s = draw<F>(g);
+    const Six s = sop_random<F>(g);
     const uint32_t got = hls::sop<F, R>(s.a, s.b, s.x1, s.y1, s.x2, s.y2);
     const auto e = o.expect(s, R);
     const auto desc = [&] { return show6<F>(s); };
@@ -253,7 +212,7 @@ TEST(Sop, RaycoreIsRtz) {
   Gen<hls::FP24> g(seed_for("sop-raycore"));
   Tally t("fp24", "sop", "raycore", "random");
   for (uint64_t i = 0, n = sop_count(); i < n; ++i) {
-    const Six s = draw<hls::FP24>(g);
+    const Six s = sop_random<hls::FP24>(g);
     if (!t.check(Shown<hls::FP24>{hls::sop<hls::FP24, Rounding::raycore>(s.a, s.b, s.x1, s.y1, s.x2, s.y2)},
                  Shown<hls::FP24>{hls::sop<hls::FP24, Rounding::rtz>(s.a, s.b, s.x1, s.y1, s.x2, s.y2)},
                  [&] { return show6<hls::FP24>(s); }))

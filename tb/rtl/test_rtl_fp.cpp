@@ -9,8 +9,8 @@
 //      mantissa of six exponent fields; sop: families of six-operand sets built from the small
 //      set, see SopOp),
 //   3. random: RAYCORE_RTL_RANDOM (default 10^6) operand sets from the C++ tests' generator
-//      (fptest::Gen, seeded from the test name and RAYCORE_FP_SEED; sop: six operands drawn here
-//      from its pieces, sop_random),
+//      (fptest::Gen, seeded from the test name and RAYCORE_FP_SEED; sop: fp_check.h's
+//      sop_random, the stimulus tb/fp/test_fp_sop.cpp checks hls::sop with against MPFR),
 // the last two with random input gaps and random output back-pressure. fp_sop's adapter has its
 // own operand set (SopOp::X = Six; rtl_cosim.h's OperandsOf), run by the same Cosim.
 #include <gtest/gtest.h>
@@ -37,6 +37,9 @@ namespace raycore::rtltest {
 namespace {
 
 using fptest::Gen;
+using fptest::Six;
+using fptest::SopGen;
+using fptest::sop_random;
 using hls::FP24;
 using hls::FP32;
 
@@ -258,160 +261,6 @@ struct CmpOp : OpBase<F> {
 
 // ---- fp_sop: a + b + x1*y1 + x2*y2, rounded once ----------------------------------------------
 
-struct Six {
-  uint32_t a = 0, b = 0, x1 = 0, y1 = 0, x2 = 0, y2 = 0;
-};
-// Junk operands for Cosim's idle cycles (rtl_cosim.h's randomize for Operands).
-template <class F, class Rng>
-void randomize(Six& x, Rng& rng) {
-  for (uint32_t* v : {&x.a, &x.b, &x.x1, &x.y1, &x.x2, &x.y2}) *v = uint32_t(rng()) & F::mask;
-}
-
-template <class F>
-struct SopGen {
-  using S = fptest::Spec<F>;
-  static constexpr uint32_t kNeg0 = S::sign_bit;  // -0: an absent addend; -0 * +0 an absent product
-  static int exp_of(uint32_t x) { return S::exp_field(x) - S::bias; }
-  static uint32_t neg(uint32_t x) { return x ^ S::sign_bit; }
-  // x moved by k ulps in its pattern, staying a nonzero magnitude (as Gen::step).
-  static uint32_t step(uint32_t x, int k) {
-    if (S::zero(x)) return x;
-    const int64_t mag = int64_t(x & S::max_mag) + k;
-    const int64_t lo = int64_t(S::make(false, S::emin, 0)), hi = int64_t(S::max_mag);
-    return (x & S::sign_bit) | uint32_t(mag < lo ? lo : (mag > hi ? hi : mag));
-  }
-  // A pair whose product has (unbiased) exponent about e (each factor's exponent in range).
-  static void product_near(Gen<F>& g, int e, uint32_t& x, uint32_t& y) {
-    int ex = g.range(S::emin, S::emax);
-    if (e - ex < S::emin) ex = e - S::emin;
-    if (e - ex > S::emax) ex = e - S::emax;
-    x = g.make(g.coin(), ex, g.mantissa());
-    y = g.make(g.coin(), e - ex, g.mantissa());
-  }
-  // A moderate operand (products of two stay far from flush and saturation).
-  static uint32_t moderate(Gen<F>& g) {
-    return g.make(g.coin(), g.range(S::emin / 2 + 2, S::emax / 2 - 2), g.mantissa());
-  }
-  // A signed zero of either sign, now and then an unflushed one (exponent field 0, mantissa != 0).
-  static uint32_t some_zero(Gen<F>& g) {
-    const uint32_t z = g.coin() ? S::sign_bit : 0u;
-    return g.below(4) == 0 ? (z | (uint32_t(g.bits()) & S::man_all)) : z;
-  }
-  // A distance below a term's top: the adders' distances, or beyond the window (S = 3M+7: jammed,
-  // or a term entirely below it) up to far below.
-  static int sop_distance(Gen<F>& g) {
-    switch (g.below(4)) {
-      case 0: return g.range(3 * S::M + 2, 3 * S::M + 12);
-      case 1: return g.range(0, 6 * S::M);
-      default: return g.distance();
-    }
-  }
-};
-
-// Six operands that reach every path of the sop: uniform patterns; terms at controlled distances
-// below the largest (exact, jammed, entirely below the window); the VTU's shapes with heavy
-// cancellation (a ~ -(x1*y1 + x2*y2) as rounded, products that cancel each other, a translated
-// triangle's constants near 10^5 with a camera near 10^5); zeros of either sign; products next to
-// flush and saturation; exact cancellations (zero sums).
-template <class F>
-Six sop_random(Gen<F>& g) {
-  using G = SopGen<F>;
-  using S = typename G::S;
-  constexpr Rounding rz = Rounding::rtz;  // stimulus only, not the reference
-  Six x;
-  const uint32_t k = g.below(16);
-  if (k < 2) {  // uniform-ish
-    x = {g.any(), g.any(), g.any(), g.any(), g.any(), g.any()};
-  } else if (k < 4) {  // every term at a controlled distance below an anchor
-    x.a = g.anchor();
-    const int ea = G::exp_of(x.a);
-    x.b = g.at_distance(x.a, G::sop_distance(g), g.below(8) == 0);
-    G::product_near(g, ea - G::sop_distance(g) + (g.below(4) == 0 ? g.range(1, 4) : 0), x.x1, x.y1);
-    G::product_near(g, ea - G::sop_distance(g), x.x2, x.y2);
-  } else if (k < 7) {  // the VTU's n_d: a ~ -(x1*y1 + x2*y2) as rounded, b small or absent
-    x.x1 = G::moderate(g);
-    x.y1 = G::moderate(g);
-    x.x2 = g.coin() ? G::moderate(g) : g.at_distance(x.x1, g.range(0, 8));
-    x.y2 = g.coin() ? G::moderate(g) : g.at_distance(x.y1, g.range(0, 8));
-    const uint32_t p = hls::add<F, rz>(hls::mul<F, rz>(x.x1, x.y1), hls::mul<F, rz>(x.x2, x.y2));
-    x.a = S::zero(p) ? g.any() : g.step(G::neg(p), g.range(-3, 3));
-    if (g.below(3) == 0) x.a = g.step(x.a, g.range(-1000, 1000));
-    switch (g.below(4)) {
-      case 0: x.b = G::kNeg0; break;
-      case 1: x.b = g.close_to(x.a); break;
-      default: x.b = g.at_distance(x.a, G::sop_distance(g)); break;
-    }
-  } else if (k < 9) {  // the products cancel each other (nearly), a and b below them or absent
-    x.x1 = G::moderate(g);
-    x.y1 = G::moderate(g);
-    x.x2 = g.step(G::neg(x.x1), g.range(-2, 2));
-    x.y2 = g.step(x.y1, g.range(-2, 2));
-    if (g.coin()) std::swap(x.x2, x.y2);
-    const uint32_t p = hls::mul<F, rz>(x.x1, x.y1);
-    x.a = g.coin() ? G::kNeg0 : g.at_distance(p, G::sop_distance(g));
-    x.b = g.coin() ? G::kNeg0 : g.at_distance(p, G::sop_distance(g));
-  } else if (k < 10) {  // a and b cancel, the products below them (often beyond the window)
-    x.a = g.anchor();
-    x.b = g.close_to(x.a);
-    const int ea = G::exp_of(x.a);
-    G::product_near(g, ea - G::sop_distance(g), x.x1, x.y1);
-    G::product_near(g, ea - G::sop_distance(g), x.x2, x.y2);
-  } else if (k < 12) {  // a translated triangle far from the origin (the VTU at 10^5)
-    auto val = [&](double lo, double hi) {
-      const double v = lo + (hi - lo) * double(g.bits() >> 11) * 0x1p-53;
-      return hls::from_double<F, rz>(g.coin() ? -v : v);
-    };
-    const double far = std::ldexp(1.0, g.range(10, 20));  // 10^3 .. 10^6
-    const uint32_t cu = val(far * 0.9, far * 1.1), cv = val(far * 0.9, far * 1.1);
-    const uint32_t ck = val(far * 0.9, far * 1.1);
-    const uint32_t nu = val(0.0, 2.0), nv = val(0.0, 2.0);
-    // n_d = n . p for a point p near the camera: c_k + nu c_u + nv c_v + a small offset.
-    const double off = std::ldexp(double(g.bits() >> 11) * 0x1p-53 - 0.5, g.range(-8, 8));
-    auto v = [](uint32_t b) { return fptest::ref_value<F>(b); };
-    const double nd = v(ck) + v(nu) * v(cu) + v(nv) * v(cv) + off;
-    x = {hls::from_double<F, rz>(nd), G::neg(ck), G::neg(nu), cu, G::neg(nv), cv};
-    if (g.coin()) x.b = G::kNeg0;  // b_d' / c_d': no c_k term
-  } else if (k < 13) {  // zeros: some operands (all, now and then) replaced by signed zeros
-    x = {g.any(), g.any(), g.any(), g.any(), g.any(), g.any()};
-    const bool all = g.below(4) == 0;
-    for (uint32_t* v : {&x.a, &x.b, &x.x1, &x.y1, &x.x2, &x.y2})
-      if (all || g.below(3) == 0) *v = G::some_zero(g);
-  } else if (k < 14) {  // products next to flush and saturation
-    g.pair(fptest::Op::mul, x.x1, x.y1);
-    g.pair(fptest::Op::mul, x.x2, x.y2);
-    x.a = g.below(3) == 0 ? G::kNeg0 : g.any();
-    x.b = g.below(3) == 0 ? G::kNeg0 : g.any();
-  } else if (k < 15) {  // exact cancellations: a = -b, x2*y2 = -x1*y1 (one of them perturbed)
-    x.a = g.any();
-    x.b = G::neg(x.a);
-    x.x1 = g.any();
-    x.y1 = g.any();
-    x.x2 = G::neg(x.x1);
-    x.y2 = x.y1;
-    if (g.coin()) {  // -(x1 * y1) as (-y1) * x1
-      x.x2 = G::neg(x.y1);
-      x.y2 = x.x1;
-    }
-    switch (g.below(4)) {
-      case 0: x.b = g.step(x.b, g.coin() ? 1 : -1); break;
-      case 1: x.y2 = g.step(x.y2, g.coin() ? 1 : -1); break;
-      default: break;
-    }
-  } else {
-    x = {g.structured(), g.structured(), g.structured(), g.structured(), g.structured(),
-         g.structured()};
-  }
-  // The adder's inputs are symmetric: random order of the addends and of the products' factors.
-  if (g.coin()) std::swap(x.a, x.b);
-  if (g.coin()) std::swap(x.x1, x.y1);
-  if (g.coin()) std::swap(x.x2, x.y2);
-  if (g.coin()) {
-    std::swap(x.x1, x.x2);
-    std::swap(x.y1, x.y2);
-  }
-  return x;
-}
-
 template <class F, Rounding R>
 struct SopOp {
   using Fmt = F;
@@ -482,7 +331,7 @@ struct SopOp {
         x.x1 = d[i];
         x.y1 = d[j];
         const uint32_t p = hls::mul<F, rz>(x.x1, x.y1);
-        x.a = fptest::Spec<F>::zero(p) ? d[(i + j) % n] : G::step(G::neg(p), int(k % 5) - 2);
+        x.a = fptest::Spec<F>::zero(p) ? d[(i + j) % n] : Gen<F>::step(G::neg(p), int(k % 5) - 2);
         x.b = d[(i + 3 * j) % n];
         if ((i + j) & 1u) {
           x.x2 = d[(5 * i + j) % n];
@@ -493,7 +342,7 @@ struct SopOp {
       default:
         x.x1 = d[i];
         x.y1 = d[j];
-        x.x2 = G::step(G::neg(d[i]), int(k % 3) - 1);
+        x.x2 = Gen<F>::step(G::neg(d[i]), int(k % 3) - 1);
         x.y2 = d[j];
         x.a = d[(i + j) % n];
         break;
