@@ -33,10 +33,11 @@ trap 'rm -rf "$TIMING_TMP"' EXIT
 # RAYCORE_TIMING_REV=<commit>: the rtl/ of that commit (git archive into a scratch folder, the
 # flow run there) instead of the working tree's.
 SOURCES="rtl/ of the working tree"
+# Absolute: the flow archives sta's reports from inside the design's scratch folder.
+[ "$TIMING_CACHE" = none ] || TIMING_CACHE=$(realpath -m "$TIMING_CACHE")
 if [ -n "${RAYCORE_TIMING_REV:-}" ]; then
   rev=$(git rev-parse --short "$RAYCORE_TIMING_REV")
   SOURCES="rtl/ at commit $rev (RAYCORE_TIMING_REV)"
-  [ "$TIMING_CACHE" = none ] || TIMING_CACHE=$(realpath -m "$TIMING_CACHE")
   mkdir -p "$TIMING_TMP/src"
   git archive "$rev" rtl | tar -x -C "$TIMING_TMP/src"
   cd "$TIMING_TMP/src"

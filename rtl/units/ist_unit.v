@@ -21,9 +21,14 @@
 // Since a miss goes behind every entry present, unit u's access depends only on the queue's
 // registers, not on the responses to units 0 .. u-1: the caller answers the accesses in unit order.
 //
-// Storage (register arrays here; an SRAM in a chip): the queue, 2^QBITS entries of {slot, list
-// position, triangle index, ready cycle} (qcap_i <= 2^QBITS at run time); the delay ring,
-// 2^HLBITS x IST results (hl_i < 2^HLBITS). Each ist.v carries its test's side data (slot, skip,
+// Storage: the queue, 2^QBITS registers of {slot, list position, triangle index, ready cycle}
+// (qcap_i <= 2^QBITS at run time); the delay ring, 2^HLBITS x IST results (hl_i < 2^HLBITS).
+// A cycle's pushes are consecutive from the tail (misses, then pipe 0's run, pipe 1's ...), so an
+// entry is written from one of IST + PIPES sources, never from every pipe's every word: pipe p's
+// words (with their list positions) are rotated once by the run's start modulo J (J >= WORDS, a
+// power of two dividing 2^QBITS), and entry e, inside pipe p's run, takes position e mod J of the
+// rotation, a fixed wire. A mux per entry over all PIPES x WORDS words cost 2.4 M NAND2 eq. at the
+// RTU's parameters (64 entries, 4 pipes x 16 words); see docs/area.md. Each ist.v carries its test's side data (slot, skip,
 // list position, the record's id, k and plane) as its tag. Parameters: SLOT_BITS, IST, PIPES and
 // WORDS (the hand-off: trv_unit's), RPL (triangle records per cache line, a power of two).
 // lint: also SLOT_BITS=7 IST=4 PIPES=4 WORDS=16 QBITS=6 RPL=2 HLBITS=4 STAGES=2
@@ -100,17 +105,13 @@ module ist_unit #(
   localparam integer RPLB = (RPL > 1) ? $clog2(RPL) : 1;
 
   // ---- the queue --------------------------------------------------------------------------------
-  reg [SLOT_BITS-1:0] q_slot  [0:QN-1];
-  reg [31:0]          q_pos   [0:QN-1];
-  reg [31:0]          q_tri   [0:QN-1];
-  reg [31:0]          q_ready [0:QN-1];
+  // Entry e's registers (g_q[e], below), read through these.
+  wire [SLOT_BITS-1:0] q_slot  [0:QN-1];
+  wire [31:0]          q_pos   [0:QN-1];
+  wire [31:0]          q_tri   [0:QN-1];
+  wire [31:0]          q_ready [0:QN-1];
   reg [QBITS-1:0]     head_q;
   reg [QBITS:0]       cnt_q;
-  // Queue position a + b, modulo the queue. An index of its own width: the tools disagree on the
-  // width of an array index like `q[head_q + b]` (Verilator wraps it, Icarus does not).
-  function automatic [QBITS-1:0] qat(input [QBITS-1:0] a, input [QBITS-1:0] b);
-    qat = a + b;
-  endfunction
 
   assign head_valid_o = (cnt_q != {(QBITS+1){1'b0}});
   assign head_ready_o = q_ready[head_q];
@@ -121,6 +122,8 @@ module ist_unit #(
   wire [IST-1:0]      rdy;       // entry u present, ready and unit u in use
   wire [IST-1:0]      g_out_v;   // unit u's ist.v result of this cycle
   wire [IST*RESW-1:0] g_out_r;
+  wire [IST*SLOT_BITS-1:0] u_slot;   // unit u's entry (head + u): a miss copies it to the tail
+  wire [IST*32-1:0]   u_pos, u_tri;
   genvar u;
   generate
     for (u = 0; u < IST; u = u + 1) begin : g_issue
@@ -134,8 +137,11 @@ module ist_unit #(
       assign miss[u]  = take[u] && !rsp_hit_i[u];
       assign acc_valid_o[u] = take[u];
       assign ray_slot_o[u*SLOT_BITS +: SLOT_BITS] = q_slot[e];
+      assign u_slot[u*SLOT_BITS +: SLOT_BITS] = q_slot[e];
+      assign u_pos[u*32 +: 32] = q_pos[e];
       // The record: line q_tri / RPL, record q_tri % RPL of it.
       wire [31:0] tidx = q_tri[e];
+      assign u_tri[u*32 +: 32] = tidx;
       if (RPL > 1) begin : g_line
         assign acc_line_o[u*32 +: 32] = tidx >> RPLB;
       end else begin : g_line1
@@ -255,7 +261,7 @@ module ist_unit #(
   assign busy_o = (pend_q != 16'd0);
 
   // ---- state ------------------------------------------------------------------------------------
-  integer j, b;
+  integer j;
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       head_q      <= {QBITS{1'b0}};
@@ -277,22 +283,84 @@ module ist_unit #(
         ring_v[wr] <= g_out_v;
         ring_r[wr] <= g_out_r;
       end
-      for (b = 0; b < IST; b = b + 1)
-        if (miss[b]) begin
-          q_slot[mpos[b*QBITS +: QBITS]]  <= q_slot[qat(head_q, b[QBITS-1:0])];
-          q_pos[mpos[b*QBITS +: QBITS]]   <= q_pos[qat(head_q, b[QBITS-1:0])];
-          q_tri[mpos[b*QBITS +: QBITS]]   <= q_tri[qat(head_q, b[QBITS-1:0])];
-          q_ready[mpos[b*QBITS +: QBITS]] <= now_i + 32'd1;
-        end
-      for (p = 0; p < PIPES; p = p + 1)
-        for (j = 0; j < WORDS; j = j + 1)
-          if (j < hin_n_i[p*6 +: 6]) begin
-            q_slot[qat(base[p*QBITS +: QBITS], j[QBITS-1:0])]  <= hin_slot_i[p*SLOT_BITS +: SLOT_BITS];
-            q_pos[qat(base[p*QBITS +: QBITS], j[QBITS-1:0])]   <= hin_pos_i[p*32 +: 32] + j;
-            q_tri[qat(base[p*QBITS +: QBITS], j[QBITS-1:0])]   <= hin_words_i[(p*WORDS + j)*32 +: 32];
-            q_ready[qat(base[p*QBITS +: QBITS], j[QBITS-1:0])] <= hin_ready_i[p*32 +: 32];
-          end
     end
   end
+
+  // ---- the queue's registers: each entry written from one of this cycle's push sources ---------
+  // Pipe p's run rotated: element i of g_rot[p] is {list position, triangle index} of word
+  // (i - base_p) mod J. J: WORDS rounded up to a power of two, at most the queue (a run is no
+  // longer than the queue's room).
+  localparam integer WB = (WORDS > 1) ? $clog2(WORDS) : 0;
+  localparam integer JB = (WB < QBITS) ? WB : QBITS;
+  localparam integer J  = 1 << JB;
+  genvar gp, gi, ge;
+  wire [PIPES*J*64-1:0] rot;   // pipe p's element i: [(p*J + i)*64 +: 64]
+  generate
+    for (gp = 0; gp < PIPES; gp = gp + 1) begin : g_rot
+      wire [J*64-1:0] run;   // element i: word i
+      for (gi = 0; gi < J; gi = gi + 1) begin : g_in
+        if (gi < WORDS) begin : g_w
+          assign run[gi*64 +: 64] = {hin_pos_i[gp*32 +: 32] + gi, hin_words_i[(gp*WORDS + gi)*32 +: 32]};
+        end else begin : g_z
+          assign run[gi*64 +: 64] = 64'd0;
+        end
+      end
+      // A barrel rotator: level l moves every element 2^l up (modulo J) if bit l of the start is set.
+      reg [J*64-1:0] r;
+      integer l;
+      always @* begin
+        r = run;
+        for (l = 0; l < JB; l = l + 1)
+          if (base[gp*QBITS + l]) r = (r << ((1 << l) * 64)) | (r >> ((J - (1 << l)) * 64));
+      end
+      assign rot[gp*J*64 +: J*64] = r;
+    end
+
+    for (ge = 0; ge < QN; ge = ge + 1) begin : g_q
+      localparam [QBITS-1:0] E = ge;
+      reg [SLOT_BITS-1:0] slot_q;
+      reg [31:0]          pos_q, tri_q, ready_q;
+      assign q_slot[ge] = slot_q;
+      assign q_pos[ge] = pos_q;
+      assign q_tri[ge] = tri_q;
+      assign q_ready[ge] = ready_q;
+      // The sources are disjoint (consecutive ranges of one cycle's pushes): their values OR'd.
+      reg                 we;
+      reg [SLOT_BITS-1:0] w_slot;
+      reg [31:0]          w_pos, w_tri, w_ready;
+      reg [QBITS-1:0]     d;
+      reg                 sel;
+      integer             mb, pp;
+      always @* begin
+        we = 1'b0;
+        w_slot = {SLOT_BITS{1'b0}};
+        w_pos = 32'd0; w_tri = 32'd0; w_ready = 32'd0;
+        for (mb = 0; mb < IST; mb = mb + 1) begin
+          sel = miss[mb] && (mpos[mb*QBITS +: QBITS] == E);
+          we = we | sel;
+          w_slot  = w_slot | ({SLOT_BITS{sel}} & u_slot[mb*SLOT_BITS +: SLOT_BITS]);
+          w_pos   = w_pos | ({32{sel}} & u_pos[mb*32 +: 32]);
+          w_tri   = w_tri | ({32{sel}} & u_tri[mb*32 +: 32]);
+          w_ready = w_ready | ({32{sel}} & (now_i + 32'd1));
+        end
+        for (pp = 0; pp < PIPES; pp = pp + 1) begin
+          d = E - base[pp*QBITS +: QBITS];
+          sel = ({{(16-QBITS){1'b0}}, d} < {10'd0, hin_n_i[pp*6 +: 6]});
+          we = we | sel;
+          w_slot  = w_slot | ({SLOT_BITS{sel}} & hin_slot_i[pp*SLOT_BITS +: SLOT_BITS]);
+          w_pos   = w_pos | ({32{sel}} & rot[(pp*J + ge % J)*64 + 32 +: 32]);
+          w_tri   = w_tri | ({32{sel}} & rot[(pp*J + ge % J)*64 +: 32]);
+          w_ready = w_ready | ({32{sel}} & hin_ready_i[pp*32 +: 32]);
+        end
+      end
+      always @(posedge clk_i)
+        if (we) begin
+          slot_q  <= w_slot;
+          pos_q   <= w_pos;
+          tri_q   <= w_tri;
+          ready_q <= w_ready;
+        end
+    end
+  endgenerate
 
 endmodule
