@@ -9,7 +9,7 @@ CTEST      := ctest --output-on-failure -j $(JOBS)
 RAYCORE    := $(BUILD)/bin/raycore
 export SYSTEMC_DISABLE_COPYRIGHT_MESSAGE := 1
 
-.PHONY: all deps configure build run test test-release test-asan lint bench chip area area-rtu timing fuzz table3 sweep throughput clean
+.PHONY: all deps configure build run test test-release test-asan lint bench chip area area-rtu area-configs timing fuzz table3 sweep throughput clean
 
 all: build
 
@@ -54,6 +54,11 @@ area: deps
 # Only the section "One RTU at the cycle model's defaults" of docs/area.md (make area writes it too).
 area-rtu: deps
 	./scripts/area_rtu.sh
+
+# rtu.v synthesised whole at several trv pipes x ist units (docs/area_configs.md): what the
+# throughput study's area model is fitted to and checked against (make throughput refuses a misfit).
+area-configs: deps
+	./scripts/area_configs.sh
 
 # Static timing (yosys -> OSU 0.18 um cells -> OpenSTA): every rtl/fp operator, every unit and rtl/units/rtu.v
 # whole, FO4 measured, the clock at 28 nm: docs/timing.md and docs/timing.json (scripts/timing.sh).

@@ -22,7 +22,7 @@ namespace fs = std::filesystem;
 struct TpArgs {
   sweep::TpOptions o;
   bool list = false;
-  std::string collect, area = "docs/area.md", doc;
+  std::string collect, area = "docs/area_configs.md", doc;
 };
 
 void do_list(const TpArgs& a) {
@@ -82,7 +82,7 @@ void do_collect(const TpArgs& a) {
   }
   sweep::mark_tp(rows);
   const std::vector<std::string> scenes = m.at("scenes").get<std::vector<std::string>>();
-  const std::string md = sweep::tp_markdown(rows, scenes);
+  const std::string md = sweep::tp_markdown(rows, scenes, &area);
   sim::write_text(a.collect + "/throughput.md", md);
   sim::write_text(a.collect + "/throughput.csv", sweep::tp_csv(rows));
   for (const auto& s : scenes) sim::write_text(a.collect + "/plot-" + s + ".dat", sweep::tp_plot_data(rows, s));
@@ -107,7 +107,7 @@ void register_throughput(CLI::App& app) {
   c->add_option("--scenes-dir", a->o.scenes_dir, "folder of the .glb scenes")->capture_default_str();
   c->add_option("--out", a->o.out, "output folder of the jobs")->capture_default_str();
   c->add_option("--raycore", a->o.raycore, "the raycore binary in the job lines (default: this one)");
-  c->add_option("--area", a->area, "collect: yosys area table (make area)")->capture_default_str();
+  c->add_option("--area", a->area, "collect: rtu.v synthesised at several configurations (make area-configs), the area model's fit")->capture_default_str();
   c->add_option("--doc", a->doc, "collect: also write the tables into this markdown file");
   c->callback([a] {
     if (a->list == !a->collect.empty()) throw UserError("throughput: give exactly one of --list and --collect");

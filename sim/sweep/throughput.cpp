@@ -75,13 +75,58 @@ const std::vector<TpConfig>& tp_configs() {
   return all;
 }
 
+TpArea fit_tp_area(const std::vector<TpAreaPoint>& pts) {
+  if (pts.size() < 3)
+    throw std::runtime_error("area model: " + std::to_string(pts.size()) +
+                             " synthesised configurations, at least 3 needed (make area-configs)");
+  // Normal equations of logic = a + b p + c i.
+  double m[3][4] = {};
+  for (const auto& q : pts) {
+    const double x[3] = {1.0, double(q.pipes), double(q.ist)};
+    for (int r = 0; r < 3; ++r) {
+      for (int k = 0; k < 3; ++k) m[r][k] += x[r] * x[k];
+      m[r][3] += x[r] * q.nand2;
+    }
+  }
+  for (int col = 0; col < 3; ++col) {  // Gauss-Jordan with partial pivoting
+    int piv = col;
+    for (int r = col + 1; r < 3; ++r)
+      if (std::fabs(m[r][col]) > std::fabs(m[piv][col])) piv = r;
+    if (std::fabs(m[piv][col]) < 1e-9)
+      throw std::runtime_error("area model: the synthesised configurations do not vary trv pipes and ist units "
+                               "independently");
+    for (int k = 0; k < 4; ++k) std::swap(m[col][k], m[piv][k]);
+    for (int r = 0; r < 3; ++r) {
+      if (r == col) continue;
+      const double f = m[r][col] / m[col][col];
+      for (int k = 0; k < 4; ++k) m[r][k] -= f * m[col][k];
+    }
+  }
+  TpArea t;
+  t.a = m[0][3] / m[0][0];
+  t.b = m[1][3] / m[1][1];
+  t.c = m[2][3] / m[2][2];
+  t.points = pts;
+  for (const auto& q : pts) {
+    const double e = t.logic(q.pipes, q.ist) / q.nand2 - 1;
+    if (!(std::fabs(e) <= kAreaModelTolerance)) {
+      char b[160];
+      std::snprintf(b, sizeof b, "area model: %s (%d pipes x %d ist) synthesised %.0f NAND2 eq., modelled %.0f (%+.1f%%, "
+                    "over %.0f%%)", q.config.c_str(), q.pipes, q.ist, q.nand2, t.logic(q.pipes, q.ist), 100 * e,
+                    100 * kAreaModelTolerance);
+      throw std::runtime_error(b);
+    }
+  }
+  return t;
+}
+
 TpArea read_tp_area(const std::string& path) {
   std::ifstream is(path);
-  if (!is) throw std::runtime_error("cannot read area table '" + path + "' (make area writes it)");
-  TpArea a;
+  if (!is) throw std::runtime_error("cannot read area table '" + path + "' (make area-configs writes it)");
+  std::vector<TpAreaPoint> pts;
   std::string line;
   while (std::getline(is, line)) {
-    // | module | format | rounding | cells | FFs | NAND2 eq. | depth | SRAM bits |
+    // | config | PIPES | IST | cells | FFs | NAND2 eq. | SRAM bits | yosys s |
     std::vector<std::string> f;
     std::stringstream ss(line);
     std::string cell;
@@ -89,25 +134,44 @@ TpArea read_tp_area(const std::string& path) {
       const size_t b = cell.find_first_not_of(' '), e = cell.find_last_not_of(' ');
       f.push_back(b == std::string::npos ? "" : cell.substr(b, e - b + 1));
     }
-    if (f.size() < 7 || f[2] != "FP24") continue;
-    double nand2 = 0;
+    if (f.size() < 8 || f[1].empty() || f[1] == "config" || f[1][0] == '-') continue;
+    TpAreaPoint q;
+    q.config = f[1];
     try {
-      nand2 = std::stod(f[6]);
+      q.pipes = std::stoi(f[2]);
+      q.ist = std::stoi(f[3]);
+      q.nand2 = std::stod(f[6]);
+      q.sram_bits = std::stod(f[7]);
     } catch (const std::exception&) {
-      continue;
+      continue;  // a run that did not finish
     }
-    if (f[1] == "trv" && f[3] == "rtz") a.trv = nand2;
-    if (f[1] == "ist" && f[3] == "rtz") a.ist = nand2;
-    if (f[1] == "ascache") a.ascache = nand2;
+    if (q.pipes > 0 && q.ist > 0 && q.nand2 > 0) pts.push_back(q);
   }
-  if (a.trv <= 0 || a.ist <= 0 || a.ascache <= 0)
-    throw std::runtime_error("area table '" + path + "' lacks the FP24 rtz rows of trv, ist or ascache");
-  return a;
+  try {
+    return fit_tp_area(pts);
+  } catch (const std::runtime_error& e) {
+    throw std::runtime_error("'" + path + "': " + e.what());
+  }
+}
+
+std::string tp_area_markdown(const TpArea& t) {
+  std::ostringstream os;
+  char b[200];
+  std::snprintf(b, sizeof b, "RTU logic model: %.0f + %.0f x trv pipes + %.0f x ist units NAND2 eq. (least squares over "
+                "rtu.v synthesised whole, docs/area_configs.md; every configuration within %.0f%%):\n\n",
+                t.a, t.b, t.c, 100 * kAreaModelTolerance);
+  os << b << "| config | trv x ist | synthesised (NAND2 eq.) | model | error |\n|---|---|---:|---:|---:|\n";
+  for (const auto& q : t.points) {
+    std::snprintf(b, sizeof b, "| %s | %d x %d | %.0f | %.0f | %+.1f%% |\n", q.config.c_str(), q.pipes, q.ist, q.nand2,
+                  t.logic(q.pipes, q.ist), 100 * (t.logic(q.pipes, q.ist) / q.nand2 - 1));
+    os << b;
+  }
+  return os.str();
 }
 
 RtuArea rtu_area(const TpConfig& c, const TpArea& a, int rtus, const CacheSizes& k) {
   RtuArea r;
-  r.logic = c.trv_pipes * a.trv + c.ist_units * a.ist + 3 * a.ascache;
+  r.logic = a.logic(c.trv_pipes, c.ist_units);
   auto ported = [](double bits, int ports) { return bits * (1.0 + 0.5 * (ports - 1)); };
   const double node = k.node_kb * 8192, list = k.list_kb * 8192, tri = k.tri_kb * 8192;
   const double slots = c.rays * kSlotBits, stacks = double(c.rays) * c.stack * kEntryBits,
@@ -185,6 +249,9 @@ TpRow read_tp_row(const TpJob& j, const nlohmann::json& r, const TpArea& a) {
   w.ist_busy = key(hw, {"utilisation", "breakdown", "ist", "busy"}, j).get<double>();
   w.ist_stalled = key(hw, {"utilisation", "breakdown", "ist", "stalled"}, j).get<double>();
   w.l2_hit = key(hw, {"l2", "hit_rate"}, j).get<double>();
+  w.mrays_s = key(hw, {"mrays_per_s"}, j).get<double>();
+  w.clock_mhz = key(hw, {"clock", "mhz"}, j).get<double>();
+  w.clock_source = key(hw, {"clock", "source"}, j).get<std::string>();
   w.stack_max = key(hw, {"work", "stack_max"}, j).get<uint64_t>();
   const auto it = std::find_if(tp_configs().begin(), tp_configs().end(),
                                [&](const TpConfig& c) { return c.name == j.config; });
@@ -227,8 +294,21 @@ const TpConfig& cfg_of(const std::string& n) {
 }
 }  // namespace
 
-std::string tp_markdown(const std::vector<TpRow>& rows, const std::vector<std::string>& scenes) {
+std::string tp_markdown(const std::vector<TpRow>& rows, const std::vector<std::string>& scenes, const TpArea* area) {
   std::ostringstream os;
+  if (area) os << tp_area_markdown(*area) << "\n";
+  // The clock of the Mrays/s columns: the reports' (one for every row when they agree).
+  std::set<std::string> clocks;
+  for (const auto& r : rows)
+    if (r.ok) clocks.insert(fmt("%.0f MHz", r.clock_mhz) + " (" + r.clock_source + ")");
+  if (!clocks.empty()) {
+    os << "Mrays/s: all RTUs at ";
+    bool first = true;
+    for (const auto& c : clocks) os << (first ? "" : ", ") << c, first = false;
+    os << (clocks.size() == 1 ? "" : " (the reports differ)")
+       << "; `timing`: docs/timing.json's clock of rtu.v synthesised at the defaults (`make timing`), applied to "
+          "every configuration (each is not timed on its own).\n\n";
+  }
   // The ladder: one row per lever, one column group per scene.
   os << "| step | lever added | ";
   for (const auto& s : scenes) os << s << " rays/cycle/RTU (steps, tests, B/ray, GB/s) | ";
@@ -264,7 +344,7 @@ std::string tp_markdown(const std::vector<TpRow>& rows, const std::vector<std::s
        << kGoalRpc << " rays/cycle per RTU at <= " << kGoalGbS << " GB/s)\n\n"
        << "| config | trv x ist | rays | L2 KB | rays/cycle/RTU | cycles | trv steps/ray | tests/ray | "
           "trv busy / stalled | ist busy / stalled | DRAM B/ray | DRAM GB/s | L2 hit | stack used | RTU total "
-          "(NAND2 eq.) | goal |\n|---|---|---:|---:|---:|---:|---:|---:|---|---|---:|---:|---:|---:|---:|---|\n";
+          "(NAND2 eq.) | Mrays/s | goal |\n|---|---|---:|---:|---:|---:|---:|---:|---|---|---:|---:|---:|---:|---:|---:|---|\n";
     const TpRow* least = nullptr;
     for (const auto& r : rows)
       if (r.scene == s && r.goal && (!least || r.area.total < least->area.total)) least = &r;
@@ -283,7 +363,7 @@ std::string tp_markdown(const std::vector<TpRow>& rows, const std::vector<std::s
          << fmt("%.0f%%", 100 * r.ist_busy) << " / " << fmt("%.0f%%", 100 * r.ist_stalled) << " | "
          << fmt("%.2f", r.bytes_per_ray) << " | " << fmt("%.2f", r.dram_gb_s) << " | "
          << fmt("%.0f%%", 100 * r.l2_hit) << " | " << r.stack_max << " | " << fmt("%.0f", r.area.total) << " | "
-         << (&r == least ? "**met, least area**" : r.goal ? "met" : "") << " |\n";
+         << fmt("%.1f", r.mrays_s) << " | " << (&r == least ? "**met, least area**" : r.goal ? "met" : "") << " |\n";
     }
   }
   return os.str();
@@ -291,7 +371,7 @@ std::string tp_markdown(const std::vector<TpRow>& rows, const std::vector<std::s
 
 std::string tp_plot_data(const std::vector<TpRow>& rows, const std::string& scene) {
   std::ostringstream os;
-  os << "# area_nand2 rays_per_cycle_per_rtu pareto goal config least_area_meeting_the_goal\n";
+  os << "# area_nand2 rays_per_cycle_per_rtu pareto goal config least_area_meeting_the_goal mrays_per_s\n";
   std::vector<const TpRow*> v;
   for (const auto& r : rows)
     if (r.scene == scene && r.ok && r.golden_match) v.push_back(&r);
@@ -299,7 +379,7 @@ std::string tp_plot_data(const std::vector<TpRow>& rows, const std::string& scen
   bool least = true;  // sorted by area: the first row that meets the goal is the least area
   for (const TpRow* r : v) {
     os << fmt("%.0f", r->area.total) << " " << fmt("%.5f", r->rpc_rtu) << " " << int(r->pareto) << " "
-       << int(r->goal) << " " << r->config << " " << int(r->goal && least) << "\n";
+       << int(r->goal) << " " << r->config << " " << int(r->goal && least) << " " << fmt("%.3f", r->mrays_s) << "\n";
     if (r->goal) least = false;
   }
   return os.str();
@@ -309,7 +389,7 @@ std::string tp_csv(const std::vector<TpRow>& rows) {
   std::ostringstream os;
   os << "scene,config,ok,golden_match,cycles,rays_per_cycle_per_rtu,trv_steps_per_ray,tri_tests_per_ray,"
         "dram_bytes_per_ray,dram_gb_s,trv_busy,trv_stalled,ist_busy,ist_stalled,l2_hit,stack_max,"
-        "logic_nand2,sram_bits,total_nand2,pareto,goal\n";
+        "logic_nand2,sram_bits,total_nand2,pareto,goal,mrays_per_s,clock_mhz,clock_source\n";
   for (const auto& r : rows)
     os << r.scene << "," << r.config << "," << r.ok << "," << r.golden_match << "," << r.cycles << ","
        << fmt("%.6f", r.rpc_rtu) << "," << fmt("%.3f", r.trv_steps) << "," << fmt("%.3f", r.tri_tests) << ","
@@ -317,7 +397,8 @@ std::string tp_csv(const std::vector<TpRow>& rows) {
        << "," << fmt("%.4f", r.trv_stalled) << "," << fmt("%.4f", r.ist_busy) << ","
        << fmt("%.4f", r.ist_stalled) << "," << fmt("%.4f", r.l2_hit) << "," << r.stack_max << ","
        << fmt("%.0f", r.area.logic) << "," << fmt("%.0f", r.area.sram_bits) << ","
-       << fmt("%.0f", r.area.total) << "," << r.pareto << "," << r.goal << "\n";
+       << fmt("%.0f", r.area.total) << "," << r.pareto << "," << r.goal << "," << fmt("%.3f", r.mrays_s) << ","
+       << fmt("%.1f", r.clock_mhz) << "," << r.clock_source << "\n";
   return os.str();
 }
 

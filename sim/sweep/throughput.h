@@ -24,17 +24,34 @@ struct TpConfig {
 };
 const std::vector<TpConfig>& tp_configs();  // the ladder, then the grid
 
-// Area of one RTU under the configuration, from docs/area.md's yosys rows (FP24 rtz, STAGES 2).
-// logic: trv x pipes + ist x units + 3 ascache controllers (NAND2 eq.); SRAM bits: the three
-// caches' data arrays, the ray slots (kSlotBits each), the stacks (rays x depth x kEntryBits), the
-// mailboxes (rays x entries x 24-bit triangle index) and the RTU's share of the L2. A p-port SRAM bit costs (1 + (p - 1) / 2) single-port bits (node and
-// list caches have one port per trv pipe, the triangle cache one per ist unit); one single-port
-// bit is kSramBitNand2 NAND2 eq. (assumptions, stated in docs/results.md).
+// Area of one RTU under the configuration. Logic: rtl/units/rtu.v synthesised whole at several
+// trv pipes x ist units (docs/area_configs.md, `make area-configs`), fitted as a + b x pipes +
+// c x ist units by least squares; read_tp_area refuses a table the model misses by more than
+// kAreaModelTolerance at any synthesised configuration (the check of `make throughput`). Rays in
+// flight, stack depth and mailboxes change only SRAM in rtu.v (the slot and stack arrays), so the
+// logic does not follow them (the mailbox has no RTL: its logic is not counted). SRAM bits: the
+// three caches' data arrays, the ray slots (kSlotBits each), the stacks (rays x depth x
+// kEntryBits), the mailboxes (rays x entries x 24-bit triangle index) and the RTU's share of the
+// L2. A p-port SRAM bit costs (1 + (p - 1) / 2) single-port bits (node and list caches have one
+// port per trv pipe, the triangle cache one per ist unit); one single-port bit is kSramBitNand2
+// NAND2 eq. (assumptions, stated in docs/results.md).
 constexpr double kSlotBits = 840, kEntryBits = 72, kMailboxEntryBits = 24, kSramBitNand2 = 0.5;
-struct TpArea {
-  double trv = 0, ist = 0, ascache = 0;  // NAND2 eq. of one instance (docs/area.md)
+constexpr double kAreaModelTolerance = 0.10;
+struct TpAreaPoint {
+  std::string config;
+  int pipes = 0, ist = 0;
+  double nand2 = 0, sram_bits = 0;  // rtu.v whole, synthesised
 };
-TpArea read_tp_area(const std::string& area_md);  // throws std::runtime_error (file, missing row)
+struct TpArea {
+  double a = 0, b = 0, c = 0;  // logic = a + b x trv pipes + c x ist units (NAND2 eq.)
+  std::vector<TpAreaPoint> points;  // what it was fitted to
+  double logic(int pipes, int ist) const { return a + b * pipes + c * ist; }
+};
+// Least squares over >= 3 points with independent pipes and ist units; throws std::runtime_error
+// if it cannot fit or misses a point by more than kAreaModelTolerance.
+TpArea fit_tp_area(const std::vector<TpAreaPoint>& points);
+TpArea read_tp_area(const std::string& area_configs_md);  // throws std::runtime_error
+std::string tp_area_markdown(const TpArea& a);  // the model against each synthesised configuration
 struct RtuArea {
   double logic = 0, sram_bits = 0, sram_nand2 = 0, total = 0;  // NAND2 eq. / bits
 };
@@ -64,13 +81,17 @@ struct TpRow {
   double rpc_rtu = 0, trv_steps = 0, tri_tests = 0, bytes_per_ray = 0, dram_gb_s = 0;
   double trv_busy = 0, trv_stalled = 0, ist_busy = 0, ist_stalled = 0, l2_hit = 0;
   uint64_t cycles = 0, stack_max = 0;
+  double mrays_s = 0, clock_mhz = 0;  // at the report's clock (hardware.clock: timed or given)
+  std::string clock_source;
   RtuArea area;
 };
 // The goal (issue 14): >= 0.08 rays/cycle per RTU at <= 1.1 GB/s, golden match.
 constexpr double kGoalRpc = 0.08, kGoalGbS = 1.1;
 TpRow read_tp_row(const TpJob& j, const nlohmann::json& report, const TpArea& a);
 void mark_tp(std::vector<TpRow>& rows);  // Pareto front (area vs rays/cycle/RTU) and goal, per scene
-std::string tp_markdown(const std::vector<TpRow>& rows, const std::vector<std::string>& scenes);
+// With area: the area model's check table first.
+std::string tp_markdown(const std::vector<TpRow>& rows, const std::vector<std::string>& scenes,
+                        const TpArea* area = nullptr);
 std::string tp_plot_data(const std::vector<TpRow>& rows, const std::string& scene);
 std::string tp_csv(const std::vector<TpRow>& rows);
 
