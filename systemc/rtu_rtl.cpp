@@ -3,11 +3,13 @@
 #include "systemc/rtu_rtl.h"
 
 #include <array>
+#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <type_traits>
 
 // The models are built into the frame library with the SystemC ones (VM_SC=1): Verilator's
@@ -97,6 +99,11 @@ class RtuRtlRunner {
     RtuRtlRun res;
     Cycle now = 0;
     if (const char* prefix = std::getenv("RAYCORE_CHIP_DUMP")) dump_chip(prefix);
+    if (const char* t = std::getenv("RAYCORE_RTL_THREADS")) {
+      const std::string v = t;
+      if (v != "1" && v != "2") throw ConfigError("RAYCORE_RTL_THREADS must be 1 or 2, not '" + v + "'");
+      if (v == "2" && rtus_.size() > 1) pool_ = std::make_unique<Pool>(this);
+    }
     for (;; ++now) {
       // The caches' requests of this cycle (registered in rtu.v: valid from the last edge).
       for (auto& up : rtus_) {
@@ -118,45 +125,29 @@ class RtuRtlRunner {
       now_ = now;
       beat_next_.valid = false;
       bus_.tick(now);  // arbitration (membus_if), the memory's beats; the routed beat -> beat_next_
+      // Every RTU's two evaluations of this cycle: independent models (the bus is resolved
+      // above), so RAYCORE_RTL_THREADS=2 splits them over two host threads; what leaves an RTU is
+      // applied afterwards in RTU order, as one thread would.
+      if (pool_)
+        pool_->run(now);
+      else
+        for (auto& up : rtus_) eval_unit(*up, now);
       bool all_done = true;
       for (auto& up : rtus_) {
         Unit& u = *up;
-        M& m = u.m;
-        m.clk_i = 0;
-        m.start_i = now == 0;
-        uint32_t ready = 0;
-        for (uint32_t p = 0; p < 3; ++p)
-          if (u.asked[p] && u.req[p].empty()) ready |= 1u << p;  // the bus took it
-        m.req_ready_i = uint8_t(ready);
-        // rtu.v is built with BEAT_REG = 1: its beat pins take the next cycle's beat (routed by
-        // membus_if in this cycle), registered at this edge as membus_if's response register.
-        m.beat_valid_i = 0;
-        if (beat_next_.valid && beat_next_.rtu == u.index) {
-          m.beat_valid_i = uint8_t(1u << beat_next_.port);
-          m.beat_tag_i = static_cast<std::remove_reference_t<decltype(m.beat_tag_i)>>(beat_next_.tag);
-          m.beat_idx_i = static_cast<std::remove_reference_t<decltype(m.beat_idx_i)>>(beat_next_.index);
-          m.beat_last_i = beat_next_.last;
-          vl::set_bytes(m.beat_data_i, 0, cfg_.mem_bandwidth, beat_next_.data.data());
-        }
-        m.eval();
-        if (m.px_valid_o) leave(u, now);
-        m.clk_i = 1;
-        m.eval();
-        if (m.err_o)
+        if (u.out.valid) leave(u, now);
+        if (u.err)
           throw std::runtime_error("rtu: a ray needs more than the " +
                                    std::to_string(fc_.stack_depth) +
                                    " stack entries of --stack-depth (at most 64, the deepest tree)");
-        all_done &= m.done_o != 0;
-        if (now > 0 && !m.primaries_o && !u.primary_end) {  // the rgu's last primary ray went
-          u.primary_end = now + 1;
-          u.busy_primary = count(m, 15) + count(m, 16);
-        }
+        all_done &= u.done;
       }
       if (all_done && now > 0) break;
       if (now > fc_.last_retire + kHangCycles)
         throw std::runtime_error(name_ + ": no ray retired in " + std::to_string(kHangCycles) +
                                  " cycles (cycle " + std::to_string(now) + ")");
     }
+    pool_.reset();
     if (pxf_) std::fclose(pxf_);
     pxf_ = nullptr;
     res.clocked = now + 1;
@@ -172,6 +163,15 @@ class RtuRtlRunner {
   }
 
  private:
+
+  // What leaves an RTU in a cycle: its pins with the clock low.
+  struct Out {
+    bool valid = false, shadow = false, spawn = false;
+    uint32_t pixel = 0;
+    Best best{};
+    hls::ShadowSetup ss{};
+    std::remove_reference_t<decltype(std::declval<M&>().px_best_o)> best_bits{};
+  };
 
   struct Unit : MemClient {
     Unit(RtuRtlRunner* r, int k) : run(r), index(uint32_t(k)) {}
@@ -191,7 +191,11 @@ class RtuRtlRunner {
     }
     RtuRtlRunner* run;
     uint32_t index;
-    M m;
+    // A context of its own: the models may be evaluated on different host threads.
+    std::unique_ptr<VerilatedContext> ctx = std::make_unique<VerilatedContext>();
+    M m{ctx.get()};
+    Out out;        // what left it in this cycle (eval_unit), applied by leave()
+    bool err = false, done = false;
     std::array<TimedFifo<MemReq>, 3> req;
     std::array<bool, 3> asked{};
     std::array<std::vector<uint8_t>, 3> buf;  // the bus's copies of the lines (by MSHR)
@@ -323,30 +327,108 @@ class RtuRtlRunner {
 
   // The ray leaving RTU u's hit unit in cycle now: the frame buffer's pixel write.
   void leave(Unit& u, Cycle now) {
-    M& m = u.m;
-    const uint32_t pixel = get_bits(m.px_pixel_o, 0, 32);  // y * width + x (rgu.v)
+    const Out& o = u.out;
+    const uint32_t pixel = o.pixel;
     if (pixel >= fc_.frame->px.size())
       throw std::logic_error("--rtl rtu: a ray of pixel " + std::to_string(pixel) +
                              " outside the frame");
-    const Best b = vl::get_best(m.px_best_o, 0, W);
-    hls::ShadowSetup ss{};
-    for (unsigned i = 0; i < 3; ++i) ss.h[i] = get_bits(m.px_h_o, i * W, W);
-    ss.front = m.px_front_o;
-    ss.spawn = m.px_spawn_o;
-    ss.dens = m.px_dens_o;
-    ss.ray = vl::get_ray(m.px_ray_o, 0, W);
-    const bool spawn = write_(pixel, m.px_shadow_o, b, ss, cos_[pixel]);
-    if (spawn != bool(m.px_spawn_o))
+    const bool spawn = write_(pixel, o.shadow, o.best, o.ss, cos_[pixel]);
+    if (spawn != o.spawn)
       throw std::logic_error("--rtl rtu: pixel " + std::to_string(pixel) +
                              ": the RTL's spawn decision differs from the frame buffer's");
     if (pxf_) {
-      std::fprintf(pxf_, "%x %x", pixel, unsigned(m.px_shadow_o));
-      put_hex(pxf_, m.px_best_o);
+      std::fprintf(pxf_, "%x %x", pixel, unsigned(o.shadow));
+      put_hex(pxf_, o.best_bits);
       std::fprintf(pxf_, "\n");
     }
     ++fc_.retired;
     fc_.last_retire = std::max(fc_.last_retire, now);
   }
+
+  // One RTU's cycle: its inputs, the evaluation with the clock low (what leaves it is kept in
+  // u.out), the edge. Touches only u and reads the cycle's routed beat.
+  void eval_unit(Unit& u, Cycle now) {
+    M& m = u.m;
+    m.clk_i = 0;
+    m.start_i = now == 0;
+    uint32_t ready = 0;
+    for (uint32_t p = 0; p < 3; ++p)
+      if (u.asked[p] && u.req[p].empty()) ready |= 1u << p;  // the bus took it
+    m.req_ready_i = uint8_t(ready);
+    // rtu.v is built with BEAT_REG = 1: its beat pins take the next cycle's beat (routed by
+    // membus_if in this cycle), registered at this edge as membus_if's response register.
+    m.beat_valid_i = 0;
+    if (beat_next_.valid && beat_next_.rtu == u.index) {
+      m.beat_valid_i = uint8_t(1u << beat_next_.port);
+      m.beat_tag_i = static_cast<std::remove_reference_t<decltype(m.beat_tag_i)>>(beat_next_.tag);
+      m.beat_idx_i = static_cast<std::remove_reference_t<decltype(m.beat_idx_i)>>(beat_next_.index);
+      m.beat_last_i = beat_next_.last;
+      vl::set_bytes(m.beat_data_i, 0, cfg_.mem_bandwidth, beat_next_.data.data());
+    }
+    m.eval();
+    Out& o = u.out;
+    o.valid = m.px_valid_o != 0;
+    if (o.valid) {
+      o.pixel = get_bits(m.px_pixel_o, 0, 32);  // y * width + x (rgu.v)
+      o.shadow = m.px_shadow_o != 0;
+      o.best = vl::get_best(m.px_best_o, 0, W);
+      o.best_bits = m.px_best_o;
+      for (unsigned i = 0; i < 3; ++i) o.ss.h[i] = get_bits(m.px_h_o, i * W, W);
+      o.ss.front = m.px_front_o;
+      o.ss.spawn = m.px_spawn_o;
+      o.ss.dens = m.px_dens_o;
+      o.ss.ray = vl::get_ray(m.px_ray_o, 0, W);
+      o.spawn = m.px_spawn_o != 0;
+    }
+    m.clk_i = 1;
+    m.eval();
+    u.err = m.err_o != 0;
+    u.done = m.done_o != 0;
+    if (now > 0 && !m.primaries_o && !u.primary_end) {  // the rgu's last primary ray went
+      u.primary_end = now + 1;
+      u.busy_primary = count(m, 15) + count(m, 16);
+    }
+  }
+
+  // RAYCORE_RTL_THREADS=2: a second host thread evaluates the odd RTUs of each cycle while this
+  // one evaluates the even ones (spinning on two atomics: one handshake per cycle; for a machine
+  // with a core to spare, not for one already busy).
+  class Pool {
+   public:
+    explicit Pool(RtuRtlRunner* r) : r_(r), t_([this] { work(); }) {}
+    ~Pool() {
+      stop_.store(true, std::memory_order_release);
+      t_.join();
+    }
+    void run(Cycle now) {
+      go_.store(now + 1, std::memory_order_release);
+      for (size_t k = 0; k < r_->rtus_.size(); k += 2) r_->eval_unit(*r_->rtus_[k], now);
+      while (done_.load(std::memory_order_acquire) != now + 1) std::this_thread::yield();
+      if (err_) std::rethrow_exception(err_);
+    }
+
+   private:
+    void work() {
+      Cycle seen = 0;
+      for (;;) {
+        Cycle g;
+        while ((g = go_.load(std::memory_order_acquire)) == seen)
+          if (stop_.load(std::memory_order_acquire)) return;
+        seen = g;
+        try {
+          for (size_t k = 1; k < r_->rtus_.size(); k += 2) r_->eval_unit(*r_->rtus_[k], g - 1);
+        } catch (...) {
+          err_ = std::current_exception();
+        }
+        done_.store(g, std::memory_order_release);
+      }
+    }
+    RtuRtlRunner* r_;
+    std::atomic<Cycle> go_{0}, done_{0};
+    std::atomic<bool> stop_{false};
+    std::exception_ptr err_;
+    std::thread t_;
+  };
 
   // Counter i of rtu.v (cnt_sel_i -> cnt_o: combinational, the clock low).
   static uint64_t count(M& m, unsigned i) {
@@ -404,6 +486,8 @@ class RtuRtlRunner {
   Beat beat_next_;  // the beat membus_if routed in this cycle, for the next
   Cycle now_ = 0;
   FILE* pxf_ = nullptr;
+  class Pool;
+  std::unique_ptr<Pool> pool_;  // RAYCORE_RTL_THREADS=2
   const std::vector<uint8_t>* image_ = nullptr;
   unsigned mb_ = 1;  // MSHR tag bits (rtu.v's MB_)
 };

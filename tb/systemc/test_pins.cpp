@@ -880,6 +880,28 @@ TEST(RtuRtlFrame, ShadowRaysRandomLatency) {
                                             (sp.spawn_all ? " all" : ""));
   }
 }
+// RAYCORE_RTL_THREADS=2: the RTUs' models evaluated on two host threads (the even RTUs on this
+// one, the odd on a second) give the same cycles, frame and counters; 3 RTUs (an uneven split),
+// randomised memory latency. A value other than 1 or 2 is refused.
+TEST(RtuRtlFrame, TwoHostThreads) {
+  struct Env {
+    explicit Env(const char* v) { setenv("RAYCORE_RTL_THREADS", v, 1); }
+    ~Env() { unsetenv("RAYCORE_RTL_THREADS"); }
+  };
+  auto tc = config(FormatId::fp24, Rounding::rtz, true, 16, 10);
+  tc.spawn = spawn(hls::Spawn::skip_origin);
+  sc::SimConfig cfg;
+  cfg.rtus = 3;
+  cfg.seed = 9;
+  {
+    Env e("2");
+    expect_rtu_rtl(corridor(), tc, cfg, "corridor 16x10, 3 RTUs, seed 9, two host threads");
+  }
+  Env e("3");
+  cfg.l2.size_bytes = 0;
+  cfg.rtu_view = UnitView::rtl;
+  expect_refused(corridor(), tc, cfg, "RAYCORE_RTL_THREADS must be 1 or 2, not '3'");
+}
 // The VTU off: every line installed in the cycle of its last beat, none through vtu.v (rtu.v's
 // fill path straight from the beat, BEAT_REG = 1: from the beat register). 1 and 2 RTUs, and 3
 // with randomised memory latency: the model's cycles, bus bytes and every counter.
