@@ -91,6 +91,7 @@ class RtuRtlRunner {
     cos_.assign(fc.frame->px.size(), 0.0);
   }
   ~RtuRtlRunner() {
+    pool_.reset();  // the second thread stopped before the models it evaluates are finalised
     if (pxf_) std::fclose(pxf_);
     for (auto& u : rtus_) u->m.final();
   }
@@ -412,8 +413,10 @@ class RtuRtlRunner {
       Cycle seen = 0;
       for (;;) {
         Cycle g;
-        while ((g = go_.load(std::memory_order_acquire)) == seen)
+        while ((g = go_.load(std::memory_order_acquire)) == seen) {
           if (stop_.load(std::memory_order_acquire)) return;
+          std::this_thread::yield();  // the main thread's sequential part (the bus) runs meanwhile
+        }
         seen = g;
         try {
           for (size_t k = 1; k < r_->rtus_.size(); k += 2) r_->eval_unit(*r_->rtus_[k], g - 1);
@@ -486,7 +489,6 @@ class RtuRtlRunner {
   Beat beat_next_;  // the beat membus_if routed in this cycle, for the next
   Cycle now_ = 0;
   FILE* pxf_ = nullptr;
-  class Pool;
   std::unique_ptr<Pool> pool_;  // RAYCORE_RTL_THREADS=2
   const std::vector<uint8_t>* image_ = nullptr;
   unsigned mb_ = 1;  // MSHR tag bits (rtu.v's MB_)

@@ -134,14 +134,13 @@ TpArea read_tp_area(const std::string& path) {
       const size_t b = cell.find_first_not_of(' '), e = cell.find_last_not_of(' ');
       f.push_back(b == std::string::npos ? "" : cell.substr(b, e - b + 1));
     }
-    if (f.size() < 8 || f[1].empty() || f[1] == "config" || f[1][0] == '-') continue;
+    if (f.size() < 7 || f[1].empty() || f[1] == "config" || f[1][0] == '-') continue;
     TpAreaPoint q;
     q.config = f[1];
     try {
       q.pipes = std::stoi(f[2]);
       q.ist = std::stoi(f[3]);
       q.nand2 = std::stod(f[6]);
-      q.sram_bits = std::stod(f[7]);
     } catch (const std::exception&) {
       continue;  // a run that did not finish
     }

@@ -40,7 +40,7 @@ constexpr double kAreaModelTolerance = 0.10;
 struct TpAreaPoint {
   std::string config;
   int pipes = 0, ist = 0;
-  double nand2 = 0, sram_bits = 0;  // rtu.v whole, synthesised
+  double nand2 = 0;  // rtu.v whole's logic, synthesised (its SRAM bits are counted by rtu_area)
 };
 struct TpArea {
   double a = 0, b = 0, c = 0;  // logic = a + b x trv pipes + c x ist units (NAND2 eq.)
