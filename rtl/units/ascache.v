@@ -37,6 +37,10 @@
 //   HIT_LATENCY 0, any PORTS (the frame's cache, systemc/ascache_rtl.h): the responses come in the
 //     access's own cycle, as Ascache::access answers the cycle model's requesters (which add the
 //     configured hit latency to their loop); the data array has PORTS asynchronous read ports.
+//     rsp_hit_o and rsp_data_o of a port are the line's presence and bytes whether or not the port
+//     accesses (acc_valid_i low: no LRU, pin, MSHR or counter effect), so a requester may look at
+//     a line before it decides to access it: no port's response depends on another port's
+//     access (trv_unit's pipes; rtu.v).
 // Storage: tags, valid bits, pin bits and LRU ranks in flip-flops (read combinationally); data
 // SETS*WAYS lines of 8*LINE_BYTES bits.
 //
@@ -191,6 +195,7 @@ module ascache #(
   // the LRU ranks and pins as the hits of ports 0 .. k-1 leave them, and the MSHRs after the fill
   // and the allocations of ports 0 .. k-1 (Ascache::access called k times in a cycle).
   wire [PORTS-1:0]           a_hit_v;
+  wire [PORTS-1:0]           a_there_v;  // the line is present (valid access or not)
   wire [PORTS-1:0]           a_miss_v;
   wire [PORTS-1:0]           a_merge_v;
   wire [PORTS-1:0]           a_full_v;
@@ -306,6 +311,7 @@ module ascache #(
       wire set_full = held >= NWAYS;
       wire alloc = av && !hit && !inflight && !(&mv) && !set_full;
       assign a_hit_v[gk]   = av && hit;
+      assign a_there_v[gk] = hit;
       assign a_miss_v[gk]  = av && !hit;
       assign a_merge_v[gk] = av && !hit && inflight;
       assign a_full_v[gk]  = av && !hit && !inflight && (&mv);
@@ -469,7 +475,7 @@ module ascache #(
         assign rsp_data_o[gk*DW +: DW] = fill_go && ra == ram_waddr ? fill_data_i : data_q[ra];
       end
       assign rsp_valid_o = acc_valid_i;
-      assign rsp_hit_o   = a_hit_v;
+      assign rsp_hit_o   = a_there_v;  // for a port without an access: the line is present
       assign rsp_merge_o = a_merge_v;
       assign rsp_full_o  = a_full_v;
       assign rsp_set_full_o = a_sfull_v;
@@ -523,7 +529,7 @@ module ascache #(
       assign rsp_valid_o = rv_q[HIT_LATENCY-1];
       assign {rsp_hit_o, rsp_merge_o, rsp_full_o, rsp_set_full_o, rsp_tag_o} =
           rs_q[(HIT_LATENCY-1)*RSW +: RSW];
-      wire unused_ports = ^{a_miss_v, a_alloc_v};
+      wire unused_ports = ^{a_miss_v, a_alloc_v, a_there_v};
     end
   endgenerate
 

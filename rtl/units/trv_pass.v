@@ -107,7 +107,8 @@ module trv_pass #(
   output reg  [31:0]                   ist_pos_o,    // the first one's position in the list
   output reg  [31:0]                   ist_ready_o,
   output reg  [32*WORDS-1:0]           ist_words_o,  // triangle indices (the first ist_n_o)
-  output reg  [15:0]                   room_o,       // the ist queue's room after this pass
+  output reg  [15:0]                   want_o,       // list entries a list step would hand the
+                                                     //   ist with room unlimited (0: none, a miss)
   // Counter increments (systemc/config.h RtuStats names).
   output reg                           busy_o,
   output reg                           node_miss_o,
@@ -218,15 +219,18 @@ module trv_pass #(
   // answer within the cycle: a response feeding its own access would be a combinational loop):
   // the node of a node pass or of a fused pop (node_step below), or the list of a list pass with
   // room at the ist (list_step below; a list read fused after a node read is access B).
+  // Which cache and the address do not depend on room_i (only the valid does): with the caches'
+  // hit being the line's presence, the pipes' room prefix in trv_unit is no chain through them.
   wire        a_node = go_i && ((st_i == S_NODE) || node_from_e1);
-  wire        a_list = go_i && (st_i == S_LIST) && (room_i != 16'd0);
+  wire        l_pass = go_i && (st_i == S_LIST);
+  wire        a_list = l_pass && (room_i != 16'd0);
   wire [31:0] a_lbyte = {first_i[29:0], 2'd0} + {pos_i[29:0], 2'd0};
   assign acc_a_valid_o = a_node || a_list;
-  assign acc_a_list_o  = a_list;
-  assign acc_a_byte_o  = a_node ? {this_node[28:0], 3'd0} : a_list ? a_lbyte : 32'd0;
+  assign acc_a_list_o  = l_pass;
+  assign acc_a_byte_o  = a_node ? {this_node[28:0], 3'd0} : a_lbyte;
 
   // The pass, in the model's order.
-  reg        do_node, node_fused, do_list, list_fused, list_b, le2, pop2, hit_a;
+  reg        do_node, node_fused, do_list, list_fused, list_b, le2, pop2, hit_a, hit_w;
   reg [31:0] extra, xe, again, nxt, lbyte;
   reg [31:0] nn, avail, left;
   reg [6:0]  sp;
@@ -237,14 +241,14 @@ module trv_pass #(
     wr_leaf_o = 1'b0;  push_o = 1'b0;  push_e_o = {EW{1'b0}};
     q_push_o = 1'b0;  q_ready_o = 32'd0;  fin_o = 1'b0;
     ist_n_o = 6'd0;  ist_pos_o = pos_i;  ist_ready_o = 32'd0;  ist_words_o = {32*WORDS{1'b0}};
-    room_o = room_i;
+    want_o = 16'd0;
     busy_o = 1'b0;  node_miss_o = 1'b0;  list_miss_o = 1'b0;  ist_full_o = 1'b0;  inner_o = 1'b0;
     leaf_o = 1'b0;  pops_o = 2'd0;  list_steps_o = 1'b0;  fused_o = 2'd0;  err_o = 1'b0;
     acc_b_valid_o = 1'b0;  acc_b_byte_o = 32'd0;
     do_node = 1'b0;  node_fused = 1'b0;  do_list = 1'b0;  list_fused = 1'b0;  list_b = 1'b0;
     le2 = 1'b0;  pop2 = 1'b0;  hit_a = 1'b0;
     extra = 32'd0;  xe = 32'd0;  again = 32'd0;  nxt = 32'd0;  lbyte = 32'd0;
-    nn = 32'd0;  avail = 32'd0;  left = 32'd0;  words = {32*WORDS{1'b0}};
+    nn = 32'd0;  avail = 32'd0;  left = 32'd0;  words = {32*WORDS{1'b0}};  hit_w = 1'b0;
     if (go_i) begin
       case (st_i)
         S_START: begin
@@ -389,22 +393,21 @@ module trv_pass #(
       if (do_list) begin
         again = now_i + extra + {16'd0, lat_i};
         lbyte = {first_o[29:0], 2'd0} + {pos_o[29:0], 2'd0};
+        // What the step would hand out with room unlimited, from the line's presence alone.
+        if (list_b) acc_b_byte_o = lbyte;
+        hit_w = list_b ? rsp_b_hit_i : rsp_a_hit_i;
+        avail = {26'd0, list_b ? rsp_b_avail_i : rsp_a_avail_i};
+        left = count_o - pos_o;
+        nn = (avail < left) ? avail : left;
+        if (hit_w) want_o = nn[15:0];
         if (room_i == 16'd0) begin
           if (!list_fused) ist_full_o = 1'b1;
           q_push_o = 1'b1;
           q_ready_o = again;
         end else begin
-          if (list_b) begin
-            acc_b_valid_o = 1'b1;
-            acc_b_byte_o = lbyte;
-            hit_a = rsp_b_hit_i;
-            avail = {26'd0, rsp_b_avail_i};
-            words = rsp_b_data_i;
-          end else begin  // access A (a_list) read lbyte
-            hit_a = rsp_a_hit_i;
-            avail = {26'd0, rsp_a_avail_i};
-            words = rsp_a_data_i;
-          end
+          acc_b_valid_o = list_b;
+          hit_a = hit_w;  // access A (a_list) or B read lbyte
+          words = list_b ? rsp_b_data_i : rsp_a_data_i;
           if (!hit_a) begin
             if (!list_fused) list_miss_o = 1'b1;
             q_push_o = 1'b1;
@@ -412,15 +415,11 @@ module trv_pass #(
           end else begin
             if (!list_fused) busy_o = 1'b1;
             list_steps_o = 1'b1;
-            left = count_o - pos_o;
-            nn = left;
-            if (avail < nn) nn = avail;
             if ({16'd0, room_i} < nn) nn = {16'd0, room_i};
             ist_n_o = nn[5:0];
             ist_pos_o = pos_o;
             ist_ready_o = now_i + extra + 32'd1 + {16'd0, list_hl_i};
             ist_words_o = words;
-            room_o = room_i - nn[15:0];
             pos_o = pos_o + nn;
             if (pos_o == count_o && (wr_leaf_o ? 32'd0 : results_i) == count_o) begin
               st_o = S_LEAF_DONE;  // nothing left at the ist (with a mailbox; not reached here)

@@ -10,10 +10,13 @@
 //      the leaf's last result puts the ray in state leaf_done and back into the queue at now + 1;
 //   2. pipe p (p < pipes_i) takes the queue's entry p if pipes 0 .. p-1 took theirs and its ready
 //      cycle has come; its pass (trv_pass) reads the caches through acc_* / rsp_* (same-cycle
-//      responses; pipe p's requests depend on the responses to pipes 0 .. p-1 through the ist
-//      queue's room and on its own access A through its access B: the caller answers them in the
+//      responses; pipe p's access valids depend on the responses to pipes 0 .. p-1 through the
+//      ist queue's room, and its access B on its own access A: the caller answers them in the
 //      order A0, B0, A1, B1, ...), hands list entries to the ist (ist_*) and finished rays to the
-//      hit unit (fin_*), and pushes the ray back with its ready cycle;
+//      hit unit (fin_*), and pushes the ray back with its ready cycle. A response's hit may be
+//      the line's presence for an access not made (rtu.v's caches): a pass reads it only for
+//      the accesses it makes, and pipe p's room is a sum of the earlier pipes' own results (their
+//      want_o), so no path runs from one pipe's pass through the caches into the next pipe's;
 //   3. a ray from the rgu (in_*: a new primary ray or a shadow ray in its slot) enters the queue
 //      at now + 1.
 // Queue pushes of a cycle are appended in that order (results, pipes 0.., rgu); the queue is a
@@ -211,10 +214,15 @@ module trv_unit #(
   wire [IST*32-1:0] nr_all = nr;
 
   // ---- 2. the pipes ----------------------------------------------------------------------------
+  // The ist queue's room for pipe p: room_i less what pipes 0 .. p-1 would hand out with room
+  // unlimited (their want_o), at least 0. The same as the room after the earlier pipes' actual
+  // hand-outs (each took min(want, room left); a pipe that finds no room makes no access), but a
+  // sum of the pipes' own results, not a chain through each pass and its cache accesses.
   wire [PIPES:0]    go_chain /* verilator split_var */;
-  wire [16*(PIPES+1)-1:0] room_chain /* verilator split_var */;
+  wire [16*(PIPES+1)-1:0] used /* verilator split_var */;
+  wire [PIPES*16-1:0] p_want;
   assign go_chain[0] = 1'b1;
-  assign room_chain[15:0] = room_i;
+  assign used[15:0] = 16'd0;
   wire [PIPES-1:0] p_push, p_qpush, p_wr_leaf, p_busy, p_node_miss, p_list_miss, p_ist_full,
                    p_inner, p_leaf, p_list_steps, p_err;
   wire [PIPES*2-1:0] p_pops, p_fused;
@@ -240,6 +248,9 @@ module trv_unit #(
       wire [EW-1:0] e1 = stk_q[{s, sp1[DB-1:0]}];
       wire [EW-1:0] e2 = stk_q[{s, sp2[DB-1:0]}];
       wire unused_sp = ^{sp1[6:DB], sp2[6:DB]};
+      wire [15:0] used_p = used[p*16 +: 16];
+      wire [15:0] room_p = (room_i > used_p) ? room_i - used_p : 16'd0;
+      assign used[(p+1)*16 +: 16] = used_p + p_want[p*16 +: 16];
       trv_pass #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE),
                  .WORDS(WORDS)) u_pass (
         .go_i(go), .now_i(now_i), .lat_i(lat_i), .node_hl_i(node_hl_i), .list_hl_i(list_hl_i),
@@ -248,7 +259,7 @@ module trv_unit #(
         .node_i(node_q[s]), .tnear_i(tnear_q[s]), .tfar_i(tfar_q[s]), .tmax_i(tmax_q[s]),
         .sp_i(sp), .best_i(best_q[s]), .leaf_i(leaf_q[s]), .first_i(first_q[s]),
         .count_i(count_q[s]), .pos_i(pos_q[s]), .results_i(results_q[s]), .e1_i(e1), .e2_i(e2),
-        .room_i(room_chain[p*16 +: 16]),
+        .room_i(room_p),
         .acc_a_valid_o(acc_valid_o[2*p]), .acc_a_list_o(acc_list_o[2*p]),
         .acc_a_byte_o(acc_byte_o[2*p*32 +: 32]), .rsp_a_hit_i(rsp_hit_i[2*p]),
         .rsp_a_avail_i(rsp_avail_i[2*p*6 +: 6]), .rsp_a_data_i(rsp_data_i[2*p*32*WORDS +: 32*WORDS]),
@@ -263,7 +274,7 @@ module trv_unit #(
         .q_ready_o(p_qready[p*32 +: 32]), .fin_o(fin_o[p]), .ist_n_o(ist_n_o[p*6 +: 6]),
         .ist_pos_o(ist_pos_o[p*32 +: 32]), .ist_ready_o(ist_ready_o[p*32 +: 32]),
         .ist_words_o(ist_words_o[p*32*WORDS +: 32*WORDS]),
-        .room_o(room_chain[(p+1)*16 +: 16]), .busy_o(p_busy[p]), .node_miss_o(p_node_miss[p]),
+        .want_o(p_want[p*16 +: 16]), .busy_o(p_busy[p]), .node_miss_o(p_node_miss[p]),
         .list_miss_o(p_list_miss[p]), .ist_full_o(p_ist_full[p]), .inner_o(p_inner[p]),
         .leaf_o(p_leaf[p]), .pops_o(p_pops[p*2 +: 2]), .list_steps_o(p_list_steps[p]),
         .fused_o(p_fused[p*2 +: 2]), .err_o(p_err[p]));
@@ -272,7 +283,7 @@ module trv_unit #(
       assign acc_list_o[2*p+1] = 1'b1;  // access B is always a list read
     end
   endgenerate
-  wire unused_room = ^{room_chain[PIPES*16 +: 16], go_chain[PIPES], p_top};
+  wire unused_room = ^{used[PIPES*16 +: 16], go_chain[PIPES], p_top};
 
   assign err_o = err_q || |(p_err & go_o);
 
