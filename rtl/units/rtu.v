@@ -276,10 +276,13 @@ module rtu #(
   wire unused_trv = ^{t_ist_tmax, t_best, t_head_valid, t_head_ready};
 
   // ---- the node and list caches: the trv's accesses, in port order ------------------------------
-  wire [NA-1:0]            n_hit, l_hit;
-  wire [NA*8*NODE_LB-1:0]  n_data;
+  wire [PIPES-1:0]         n_hit;  // the node cache: access A of each pipe (B reads the list)
+  wire [NA-1:0]            l_hit;
+  wire [PIPES*8*NODE_LB-1:0] n_data;
+  wire [PIPES-1:0]         n_valid;
   wire [NA*8*LIST_LB-1:0]  l_data;
-  wire [NA*LINE_W-1:0]     n_line, l_line;
+  wire [PIPES*LINE_W-1:0]  n_line;
+  wire [NA*LINE_W-1:0]     l_line;
   genvar ga;
   generate
     for (ga = 0; ga < NA; ga = ga + 1) begin : g_acc
@@ -287,18 +290,25 @@ module rtu #(
       wire        lst    = t_acc_list[ga];
       wire [31:0] nl32   = byte_a >> NLB;
       wire [31:0] ll32   = byte_a >> LLB;
-      assign n_line[ga*LINE_W +: LINE_W] = nl32[LINE_W-1:0];
       assign l_line[ga*LINE_W +: LINE_W] = ll32[LINE_W-1:0];
-      wire unused_line = ^{nl32[31:LINE_W], ll32[31:LINE_W]};
+      wire unused_line = ^{nl32, ll32[31:LINE_W]};  // nl32's low bits: the node port's line
+      // Access A (even ga) goes to the node or the list cache, access B (odd) always to the list.
+      wire        a_port = (ga % 2) == 0;
+      wire [8*NODE_LB-1:0] nd = a_port ? n_data[(ga/2)*8*NODE_LB +: 8*NODE_LB] : {8*NODE_LB{1'b0}};
+      wire        nh = a_port ? n_hit[ga/2] : 1'b0;
+      if ((ga % 2) == 0) begin : g_node_port
+        assign n_line[(ga/2)*LINE_W +: LINE_W] = nl32[LINE_W-1:0];
+        assign n_valid[ga/2] = t_acc_valid[ga] & ~lst;
+      end
       // The words from the byte on: min((line bytes - offset) / 4, WORDS) of them.
       wire [31:0] off   = lst ? (byte_a & (LIST_LB - 1)) : (byte_a & (NODE_LB - 1));
       wire [31:0] left  = ((lst ? LIST_LB : NODE_LB) - off) >> 2;
       wire [31:0] avail = (left < WORDS) ? left : WORDS;
       wire [32*WORDS+8*MAXLB-1:0] wide = lst
           ? {{(32*WORDS+8*MAXLB-8*LIST_LB){1'b0}}, l_data[ga*8*LIST_LB +: 8*LIST_LB]}
-          : {{(32*WORDS+8*MAXLB-8*NODE_LB){1'b0}}, n_data[ga*8*NODE_LB +: 8*NODE_LB]};
+          : {{(32*WORDS+8*MAXLB-8*NODE_LB){1'b0}}, nd};
       wire [32*WORDS+8*MAXLB-1:0] shifted = wide >> {off, 3'b000};
-      assign t_rsp_hit[ga] = lst ? l_hit[ga] : n_hit[ga];
+      assign t_rsp_hit[ga] = lst ? l_hit[ga] : nh;
       assign t_rsp_avail[ga*6 +: 6] = avail[5:0];
       assign t_rsp_data[ga*32*WORDS +: 32*WORDS] = shifted[0 +: 32*WORDS];
       wire unused_rsp = ^{avail[31:6], shifted[32*WORDS +: 8*MAXLB]};
@@ -310,17 +320,17 @@ module rtu #(
   wire [3*MB_-1:0]  fill_tag;
   wire [3*8*MAXLB-1:0] fill_data;
   wire [3*32-1:0]   c_hits, c_misses, c_merges, c_full, c_sfull, c_fills;
-  wire [NA-1:0]     n_unused_v, n_unused_m, n_unused_f, l_unused_v, l_unused_m, l_unused_f;
-  wire [NA-1:0]     n_unused_s, l_unused_s;
+  wire [PIPES-1:0]  n_unused_v, n_unused_m, n_unused_f, n_unused_s, n_unused_t;
+  wire [NA-1:0]     l_unused_v, l_unused_m, l_unused_f, l_unused_s;
   wire [IST-1:0]    t_unused_v, t_unused_m, t_unused_f, t_unused_s;
-  wire [NA-1:0]     n_unused_t, l_unused_t;
+  wire [NA-1:0]     l_unused_t;
   wire [IST-1:0]    t_unused_t;
   wire [3*($clog2(MSHRS+1))-1:0] mshr_busy;
 
   ascache #(.SETS(NODE_SETS), .WAYS(WAYS), .LINE_BYTES(NODE_LB), .MSHRS(MSHRS), .HIT_LATENCY(0),
-            .PORTS(NA), .LINE_W(LINE_W), .TAG_BITS(1), .CNT_BITS(32)) u_node (
+            .PORTS(PIPES), .LINE_W(LINE_W), .TAG_BITS(1), .CNT_BITS(32)) u_node (
     .clk_i(clk_i), .rst_ni(rst_ni),
-    .acc_valid_i(t_acc_valid & ~t_acc_list), .acc_line_i(n_line), .acc_tag_i({NA{1'b0}}),
+    .acc_valid_i(n_valid), .acc_line_i(n_line), .acc_tag_i({PIPES{1'b0}}),
     .rsp_valid_o(n_unused_v), .rsp_hit_o(n_hit), .rsp_merge_o(n_unused_m),
     .rsp_full_o(n_unused_f), .rsp_set_full_o(n_unused_s), .rsp_tag_o(n_unused_t), .rsp_data_o(n_data),
     .req_valid_o(req_valid_o[0]), .req_ready_i(req_ready_i[0]),
