@@ -137,6 +137,9 @@ module trv_unit #(
   reg [EW-1:0]   stk_q     [0:NS*DEPTH-1];  // slot s, entry e at {s, e}
   reg [SLOT_BITS-1:0] fq_slot [0:NS-1];
   reg [31:0]     fq_ready  [0:NS-1];
+  reg [6:0]      fq_sp     [0:NS-1];  // the ray's stack pointer as it entered the queue (= sp_q:
+                                      //   only the ray's own passes write it), so the pipe's
+                                      //   stack read does not wait for the slot's
   reg [SLOT_BITS-1:0] head_q;
   reg [SLOT_BITS:0]   cnt_q;
   reg            err_q;
@@ -242,7 +245,7 @@ module trv_unit #(
       assign go_chain[p+1] = go;
       assign go_o[p] = go;
       assign slot_o[p*SLOT_BITS +: SLOT_BITS] = s;
-      wire [6:0] sp = sp_q[s];
+      wire [6:0] sp = fq_sp[qi];
       wire [6:0] sp1 = sp - 7'd1;
       wire [6:0] sp2 = sp - 7'd2;
       wire [EW-1:0] e1 = stk_q[{s, sp1[DB-1:0]}];
@@ -324,6 +327,7 @@ module trv_unit #(
       ray_q[in_slot_i] <= in_ray_i;
       fq_slot[rgu_at] <= in_slot_i;
       fq_ready[rgu_at] <= now_i + 32'd1;
+      fq_sp[rgu_at] <= 7'd0;  // a start pass sets its own (the stack is not read)
     end
     // The pipes' rays (distinct slots, none of them the rgu's).
     for (b = 0; b < PIPES; b = b + 1) begin
@@ -347,6 +351,7 @@ module trv_unit #(
         if (p_qpush[b]) begin
           fq_slot[pipe_at[b*SLOT_BITS +: SLOT_BITS]] <= slot_o[b*SLOT_BITS +: SLOT_BITS];
           fq_ready[pipe_at[b*SLOT_BITS +: SLOT_BITS]] <= p_qready[b*32 +: 32];
+          fq_sp[pipe_at[b*SLOT_BITS +: SLOT_BITS]] <= p_sp[b*7 +: 7];
         end
       end
     end
@@ -360,6 +365,7 @@ module trv_unit #(
         st_q[res_slot_i[b*SLOT_BITS +: SLOT_BITS]] <= S_LEAF_DONE;
         fq_slot[res_at[b*SLOT_BITS +: SLOT_BITS]] <= res_slot_i[b*SLOT_BITS +: SLOT_BITS];
         fq_ready[res_at[b*SLOT_BITS +: SLOT_BITS]] <= now_i + 32'd1;
+        fq_sp[res_at[b*SLOT_BITS +: SLOT_BITS]] <= sp_q[res_slot_i[b*SLOT_BITS +: SLOT_BITS]];
       end
     end
   end
