@@ -30,7 +30,8 @@ SRAM_BIT_NAND2=0.5  # NAND2 eq. per single-port SRAM bit (as sim/sweep/throughpu
 # rgu_latency 16 = STAGES 2; 96 rays in flight -> 2^7 = 128 slots; stack_depth 64; trv_pipes 4;
 # ist_units 2; list lines of 64 B = 16 words; caches node 16 KB, list 8 KB, tri 32 KB, 4 ways,
 # 64 B lines (FP24: two 32-byte triangle records), 8 MSHRs, answering in the access's cycle
-# (HIT_LATENCY 0) on 2 ports per trv pipe (node, list) or 1 per ist unit (tri).
+# (HIT_LATENCY 0) on 1 port per trv pipe (node: access A), 2 per trv pipe (list: A and B) or 1
+# per ist unit (tri).
 CACHE_P="-set WAYS 4 -set LINE_BYTES 64 -set MSHRS 8 -set HIT_LATENCY 0 -set LINE_W 26 -set TAG_BITS 7"
 UNITS=(
   "vtu|vtu|1|fmt|-set STAGES 2 -set TAG_BITS 8"
@@ -38,7 +39,7 @@ UNITS=(
   "trv_unit|trv_unit|1|fmt|-set SLOT_BITS 7 -set DEPTH 64 -set PIPES 4 -set IST 2 -set WORDS 16"
   "hit|hit|1|fmt|-set STAGES 2 -set TAG_BITS 7"
   "rgu|rgu|1|fmt|-set STAGES 2"
-  "ascache node|ascache|1|-|-set SETS 64 -set PORTS 8 $CACHE_P"
+  "ascache node|ascache|1|-|-set SETS 64 -set PORTS 4 $CACHE_P"
   "ascache list|ascache|1|-|-set SETS 32 -set PORTS 8 $CACHE_P"
   "ascache tri|ascache|1|-|-set SETS 128 -set PORTS 2 $CACHE_P"
 )
@@ -131,7 +132,8 @@ section() {
   echo "  (ist_units; the frame's Verilated trv_unit, rtl/units/trv_unit.cmake, takes IST 4 to run with"
   echo "  up to 4 ist units), 16 list words per read; caches 4 ways, 64 B lines, 8 MSHRs, HIT_LATENCY 0"
   echo "  (the frame's caches answer in the access's cycle: asynchronous data-array read ports), PORTS"
-  echo "  8 for node and list (2 accesses per trv pipe x 4) and 2 for tri (1 per ist unit), line index"
+  echo "  4 for node (access A of each trv pipe), 8 for list (A and B of each pipe) and 2 for tri (1 per"
+  echo "  ist unit), line index"
   echo "  LINE_W 26, requester tag 7 bits, 32-bit counters; rgu at its defaults (16-bit coordinates,"
   echo "  8 x 8 tiles, up to 255 RTUs)."
   echo "- **SRAM bits**: the \`\$mem\` cells yosys keeps (SIZE x WIDTH). **SRAM NAND2 eq.**: $SRAM_BIT_NAND2"
