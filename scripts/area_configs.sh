@@ -6,7 +6,7 @@
 # the model misses any of them by more than 10%; `make area-configs` runs this.
 #
 # Every configuration: FP24 rtz, STAGES 2, the cycle model's default caches (node 16 KB, list 8 KB,
-# triangle 32 KB; their ports follow the pipes and ist units: 2 per trv pipe on node and list, 1
+# triangle 32 KB; their ports follow the pipes and ist units: 1 per trv pipe on node, 2 on list, 1
 # per ist unit on the triangle cache), 2^7 ray slots (the study's 96 rays), stack depth 64 (the
 # study's 16 changes only the stack SRAM, which the study counts in bits), PIPES and IST as named.
 # Same measurement as make area (scripts/area_lib.sh: NAND2 weights, memories kept as $mem SRAM
@@ -59,7 +59,7 @@ done
   echo "rtl/units/rtu.v (one RTU) synthesised as one design with its hierarchy kept (as \`make area-rtu\`'s"
   echo "\"rtu whole\": every module once per parameter set, \`stat -top rtu\` summing the instances; yosys"
   echo "\`synth -noshare\`, NanGate45 NAND2 weights, memories kept as SRAM macros and counted in bits),"
-  echo "FP24 rtz, STAGES 2, the default caches (ports: 2 per trv pipe on node and list, 1 per ist unit"
+  echo "FP24 rtz, STAGES 2, the default caches (ports: 1 per trv pipe on node, 2 on list, 1 per ist unit"
   echo "on the triangle cache), 2^7 ray slots, stack depth 64 (rtu.v's defaults but PIPES trv pipes and IST"
   echo "ist units; 4 x 2 is \`make area-rtu\`'s \"rtu whole\" run)."
   echo "\`make throughput\` fits its RTU logic model (a + b x pipes + c x ist units, least squares) to"
