@@ -1,6 +1,6 @@
 // trv_pass - one traversal pass of one ray: what one pipe of the traversal unit does with the ray
 // it takes from the ready queue in a cycle (trv_unit holds the slots, the stacks and the queue and
-// instantiates PIPES of these in a chain). Combinational: the ray's record, its two top stack
+// instantiates PIPES of these side by side). Combinational: the ray's record, its two top stack
 // entries and the cache responses in, the record's next value, the stack push, the queue push,
 // the ist hand-off and the finish out. The rules are systemc/trv.h's (Trv::step and its
 // node_step / list_step / leaf_end / pop), step for step:
@@ -73,7 +73,9 @@ module trv_pass #(
   input  wire [31:0]                   results_i,    // ist results received for this leaf
   input  wire [32+2*(1+EXP_BITS+MAN_BITS)-1:0] e1_i, // stack[sp-1], {node, tnear, tfar} (tfar low)
   input  wire [32+2*(1+EXP_BITS+MAN_BITS)-1:0] e2_i, // stack[sp-2]
-  input  wire [15:0]                   room_i,       // free entries of the ist queue
+  input  wire [15:0]                   room_i,       // free entries of the ist queue left for
+                                                     //   this pipe (trv_unit: after the earlier
+                                                     //   pipes' want_o)
   // Cache accesses: A (node or list), B (list, after a node read), same-cycle responses.
   output wire                          acc_a_valid_o,
   output wire                          acc_a_list_o,
