@@ -293,12 +293,16 @@ module rtu #(
       assign l_line[ga*LINE_W +: LINE_W] = ll32[LINE_W-1:0];
       wire unused_line = ^{nl32, ll32[31:LINE_W]};  // nl32's low bits: the node port's line
       // Access A (even ga) goes to the node or the list cache, access B (odd) always to the list.
-      wire        a_port = (ga % 2) == 0;
-      wire [8*NODE_LB-1:0] nd = a_port ? n_data[(ga/2)*8*NODE_LB +: 8*NODE_LB] : {8*NODE_LB{1'b0}};
-      wire        nh = a_port ? n_hit[ga/2] : 1'b0;
+      wire [8*NODE_LB-1:0] nd;
+      wire        nh;
       if ((ga % 2) == 0) begin : g_node_port
         assign n_line[(ga/2)*LINE_W +: LINE_W] = nl32[LINE_W-1:0];
         assign n_valid[ga/2] = t_acc_valid[ga] & ~lst;
+        assign nd = n_data[(ga/2)*8*NODE_LB +: 8*NODE_LB];
+        assign nh = n_hit[ga/2];
+      end else begin : g_list_only
+        assign nd = {8*NODE_LB{1'b0}};
+        assign nh = 1'b0;
       end
       // The words from the byte on: min((line bytes - offset) / 4, WORDS) of them.
       wire [31:0] off   = lst ? (byte_a & (LIST_LB - 1)) : (byte_a & (NODE_LB - 1));

@@ -232,7 +232,7 @@ module trv_pass #(
   assign acc_a_byte_o  = a_node ? {this_node[28:0], 3'd0} : a_lbyte;
 
   // The pass, in the model's order.
-  reg        do_node, node_fused, do_list, list_fused, list_b, le2, pop2, hit_a, hit_w;
+  reg        do_node, node_fused, do_list, list_fused, list_b, le2, pop2, hit_w;
   reg [31:0] extra, xe, again, nxt, lbyte;
   reg [31:0] nn, avail, left;
   reg [6:0]  sp;
@@ -248,7 +248,7 @@ module trv_pass #(
     leaf_o = 1'b0;  pops_o = 2'd0;  list_steps_o = 1'b0;  fused_o = 2'd0;  err_o = 1'b0;
     acc_b_valid_o = 1'b0;  acc_b_byte_o = 32'd0;
     do_node = 1'b0;  node_fused = 1'b0;  do_list = 1'b0;  list_fused = 1'b0;  list_b = 1'b0;
-    le2 = 1'b0;  pop2 = 1'b0;  hit_a = 1'b0;
+    le2 = 1'b0;  pop2 = 1'b0;
     extra = 32'd0;  xe = 32'd0;  again = 32'd0;  nxt = 32'd0;  lbyte = 32'd0;
     nn = 32'd0;  avail = 32'd0;  left = 32'd0;  words = {32*WORDS{1'b0}};  hit_w = 1'b0;
     if (go_i) begin
@@ -408,9 +408,8 @@ module trv_pass #(
           q_ready_o = again;
         end else begin
           acc_b_valid_o = list_b;
-          hit_a = hit_w;  // access A (a_list) or B read lbyte
           words = list_b ? rsp_b_data_i : rsp_a_data_i;
-          if (!hit_a) begin
+          if (!hit_w) begin  // access A (a_list) or B read lbyte
             if (!list_fused) list_miss_o = 1'b1;
             q_push_o = 1'b1;
             q_ready_o = again;
