@@ -16,7 +16,7 @@ AREA_TIMEOUT=${RAYCORE_AREA_TIMEOUT:-1200}
 # The units that get rows: rtl/units/<unit>.v synthesised with <unit> as the top. Every other
 # rtl/units/*.v must be a helper that one of them instantiates (checked by area_check_units):
 #   ascache_ram/_victim/_touch (ascache), rgu_ray/rgu_walk (rgu), spawn_ops (hit, spawn),
-#   trv_pass (trv_unit: one traversal pass, its trv.v datapath at STAGES 0).
+#   trv_pass (trv_unit: one traversal pass, no arithmetic of its own).
 # trv is the traversal datapath alone (STAGES 2, the pin-level twin's); trv_unit the whole
 # traversal unit (slots, stacks, ready queue, PIPES passes, the ist result reduction).
 AREA_UNITS=(ascache hit ist membus_if rgu spawn trv trv_unit vtu)

@@ -37,6 +37,10 @@ class TrvRtlT final : public TrvRtl {
           " --trv-pipes, " + std::to_string(IST) + " --ist-units, " +
           std::to_string(1u << SLOT_BITS) + " --rays-in-flight and " + std::to_string(4 * WORDS) +
           "-byte list cache lines (rtl/units/trv_unit.cmake)");
+    if (uint64_t(cfg.trv_latency) + cfg.node_cache.hit_latency < 2)
+      throw ConfigError("--rtl trv: " + name_ + " writes an inner node's split back in the cycle "
+                        "after the pass: --trv-latency plus the node cache's hit latency must be "
+                        "at least 2");
     ch_.ist_results = &results_;
     vl::async_reset(m_);
   }
@@ -51,7 +55,7 @@ class TrvRtlT final : public TrvRtl {
     if (!configured_) configure();
     // A cycle in which no pipe can take a ray and no result comes changes nothing in the RTL
     // (every register holds): neither evaluate nor clock it (edge() clocks only with a ray in).
-    stepped_ = !results_.empty() || (m_.head_valid_o && at(now, m_.head_ready_o) <= now);
+    stepped_ = !results_.empty() || m_.pend_o || (m_.head_valid_o && at(now, m_.head_ready_o) <= now);
     probe_ = TrvProbe{};
     probe_.cycle = now;
     probe_.head_valid = m_.head_valid_o;
@@ -166,6 +170,7 @@ class TrvRtlT final : public TrvRtl {
   }
 
   Cycle next_event(Cycle now) const override {
+    if (m_.pend_o) return now + 1;  // the split stage writes back in the next cycle
     if (!m_.head_valid_o) return kNever;
     return at(now, m_.head_ready_o);
   }

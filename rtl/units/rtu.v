@@ -189,7 +189,7 @@ module rtu #(
   wire [NA*32-1:0]     t_acc_byte;
   wire [NA*6-1:0]      t_rsp_avail;
   wire [NA*32*WORDS-1:0] t_rsp_data;
-  wire                 t_head_valid;
+  wire                 t_head_valid, t_pend;
   wire [31:0]          t_head_ready;
   wire [63:0]          c_trv_busy, c_node_miss, c_list_miss, c_ist_full, c_inner, c_leaf, c_pops,
                        c_list_steps, c_fused;
@@ -253,7 +253,7 @@ module rtu #(
     .ist_words_o(t_ist_words),
     .rd_ist_slot_i(i_ray_slot), .rd_ist_o(i_ray_trv), .rd_hit_slot_i(h_rd_slot),
     .rd_hit_o(h_rd), .rd_px_slot_i(h_slot), .rd_px_best_o(px_best),
-    .head_valid_o(t_head_valid), .head_ready_o(t_head_ready),
+    .head_valid_o(t_head_valid), .head_ready_o(t_head_ready), .pend_o(t_pend),
     .cnt_busy_o(c_trv_busy), .cnt_node_miss_o(c_node_miss), .cnt_list_miss_o(c_list_miss),
     .cnt_ist_full_o(c_ist_full), .cnt_inner_o(c_inner), .cnt_leaf_o(c_leaf), .cnt_pops_o(c_pops),
     .cnt_list_steps_o(c_list_steps), .cnt_fused_o(c_fused), .stack_max_o(c_stack_max),
@@ -273,7 +273,7 @@ module rtu #(
   endgenerate
   // The hand-off's tmax and the finished ray's best record are in trv_unit's slots already (read
   // through rd_*); the queue's head is the cycle model's next event.
-  wire unused_trv = ^{t_ist_tmax, t_best, t_head_valid, t_head_ready};
+  wire unused_trv = ^{t_ist_tmax, t_best, t_head_valid, t_head_ready, t_pend};
 
   // ---- the node and list caches: the trv's accesses, in port order ------------------------------
   wire [PIPES-1:0]         n_hit;  // the node cache: access A of each pipe (B reads the list)

@@ -1,16 +1,20 @@
 // trv_pass - one traversal pass of one ray: what one pipe of the traversal unit does with the ray
 // it takes from the ready queue in a cycle (trv_unit holds the slots, the stacks and the queue and
 // instantiates PIPES of these side by side). Combinational: the ray's record, its two top stack
-// entries and the cache responses in, the record's next value, the stack push, the queue push,
-// the ist hand-off and the finish out. The rules are systemc/trv.h's (Trv::step and its
-// node_step / list_step / leaf_end / pop), step for step:
+// entries and the cache responses in, the record's next value, the queue push, the ist hand-off,
+// the finish and an inner node's split inputs out. The rules are systemc/trv.h's (Trv::step and
+// its node_step / list_step / leaf_end / pop), step for step:
 //
-//   start      clip to the scene box (trv.v, op 1); empty tree or no hit: finish; else node 0
+//   start      the clip to the scene box was made when the ray entered (trv_unit: clip_i and the
+//              clipped interval in tnear_i / tfar_i); empty tree or no hit: finish; else node 0
 //              with the clipped interval, back to the queue at now + lat
 //   node       node_step: read the node (access A, node cache, byte node * 8). Miss: back at
-//              now + extra + lat ("looping for the next chance"). Inner node: the split (trv.v,
-//              op 0): go on to the near / far child, or both (far child pushed on the stack), back
-//              at now + extra + lat + node_hl. Leaf: empty -> leaf_end; else the list fields, and
+//              now + extra + lat ("looping for the next chance"). Inner node: back at now + extra
+//              + lat + node_hl, and split_o: the split (trv.v, op 0: on to the near / far child,
+//              or both with the far child pushed on the stack) is trv_unit's, in the cycle after
+//              the pass, from the split_* outputs (nothing else in the pass depends on it, and the
+//              ray is not taken again before it is written back). Leaf: empty -> leaf_end; else
+//              the list fields, and
 //              with fuse its first list line in the same pass (access B), else back as an inner
 //              node's step
 //   list       list_step: with room in the ist queue read a list line (list cache, byte (first +
@@ -28,7 +32,7 @@
 // read), `fused` that the pass already counted itself busy: every counter moves exactly as the
 // model's. A pass makes at most two cache accesses (A: the node, or a list line; B: the fused
 // list line after a node), at most two pops (leaf_end -> pop -> fused node step of an empty leaf
-// -> leaf_end -> pop), one split or clip (trv.v with STAGES = 0) and four comparisons (fp_cmp_nt).
+// -> leaf_end -> pop), and four comparisons (fp_cmp_nt); no arithmetic of its own.
 // Cache responses come back in the same cycle (the cycle model's Ascache::access), access B's
 // request depends on access A's response: the caller evaluates A, answers it, then B.
 // The cache's read port returns the words from the addressed one to the end of its line
@@ -40,8 +44,6 @@
 module trv_pass #(
   parameter integer EXP_BITS = 7,
   parameter integer MAN_BITS = 16,
-  parameter integer RNE      = 0,
-  parameter integer RAYCORE  = 0,
   parameter integer WORDS    = 4   // list words a cache read returns at most (line bytes / 4)
 ) (
   input  wire                          go_i,         // this pipe takes a ray this cycle
@@ -53,11 +55,9 @@ module trv_pass #(
   input  wire                          fuse_i,
   input  wire                          any_hit_i,    // shadow rays end at their first leaf hit
   input  wire                          empty_i,      // the tree is empty
-  input  wire [6:0]                    depth_i,      // stack entries per ray (1..64)
-  input  wire [6:0]                    widen_i,      // interval widening in ulps
-  input  wire [6*(1+EXP_BITS+MAN_BITS)-1:0] box_i,   // {lo x, y, z, hi x, y, z}, x lowest
   // The ray's record.
   input  wire [2:0]                    st_i,
+  input  wire                          clip_i,       // the ray meets the scene box (its clip)
   input  wire                          shadow_i,
   input  wire [11*(1+EXP_BITS+MAN_BITS)-1:0] ray_i,  // {o xyz, d xyz, inv xyz, tmin, tmax}
   input  wire [31:0]                   node_i,
@@ -100,8 +100,15 @@ module trv_pass #(
   output reg  [31:0]                   count_o,
   output reg  [31:0]                   pos_o,
   output reg                           wr_leaf_o,
-  output reg                           push_o,       // stack push of push_e_o at sp_o - 1
-  output reg  [32+2*(1+EXP_BITS+MAN_BITS)-1:0] push_e_o,
+  // An inner node: the split's inputs (trv.v op 0, in trv_unit the cycle after); its results
+  // replace node_o, tnear_o, tfar_o and push the far child at sp_o (sp_o + 1 after).
+  output reg                           split_o,
+  output wire [31:0]                   split_node_o,   // this node
+  output wire [31:0]                   split_child_o,  // the node's other child (Node::index)
+  output wire [EXP_BITS+MAN_BITS:0]    split_plane_o,
+  output wire [EXP_BITS+MAN_BITS:0]    split_tnear_o,
+  output wire [EXP_BITS+MAN_BITS:0]    split_tfar_o,
+  output wire [3*(1+EXP_BITS+MAN_BITS)-1:0] split_ray_o, // {o, d, inv} on the axis (o highest)
   output reg                           q_push_o,     // back to the ready queue at q_ready_o
   output reg  [31:0]                   q_ready_o,
   output reg                           fin_o,        // done: to the hit unit
@@ -120,8 +127,7 @@ module trv_pass #(
   output reg                           leaf_o,
   output reg  [1:0]                    pops_o,
   output reg                           list_steps_o,
-  output reg  [1:0]                    fused_o,
-  output reg                           err_o         // a push beyond depth_i entries
+  output reg  [1:0]                    fused_o
 );
 
   localparam integer W  = 1 + EXP_BITS + MAN_BITS;
@@ -188,34 +194,21 @@ module trv_pass #(
   wire pop1_node = pop1 && (sp_i != 7'd0) && !(bf && c_e1_lt);
   wire node_from_e1 = pop1_node && fuse_i;
 
-  // The datapath: clip (start) or the split of the node read by access A.
-  wire         clip = (st_i == S_START);
+  // The node read by access A, and an inner node's split inputs.
   wire [31:0]  nd_lo = rsp_a_data_i[31:0];
   wire [31:0]  nd_hi = rsp_a_data_i[63:32];
   wire [31:0]  nd_index = {8'd0, nd_hi[23:0]};
   wire [1:0]   nd_axis = nd_hi[25:24];
   wire [31:0]  this_node = node_from_e1 ? e1_node : node_i;
-  wire [W-1:0] dp_tnear_in = clip ? r_tmin : node_from_e1 ? e1_tnear : tnear_i;
-  wire [W-1:0] dp_tfar_in  = clip ? r_tmax : node_from_e1 ? e1_tfar : tfar_i;
-  wire         dp_rdy, dp_vld, dp_op, dp_hit, dp_below;
-  wire [1:0]   dp_visit;
-  wire [W-1:0] dp_tsplit, dp_tnear, dp_tfar, dp_far_tfar;
-  wire [31:0]  dp_node, dp_far_node;
-  wire         dp_tag;
-  trv #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(0),
-        .TAG_BITS(1)) u_dp (
-    .clk_i(1'b0), .rst_ni(1'b1), .widen_i(widen_i), .in_valid_i(1'b1), .in_ready_o(dp_rdy),
-    .in_op_i(clip), .in_axis_i(nd_axis), .in_split_i(nd_lo[W-1:0]), .in_node_i(this_node),
-    .in_child_i(nd_index), .in_o_x_i(r_o_x), .in_o_y_i(r_o_y), .in_o_z_i(r_o_z), .in_d_x_i(r_d_x),
-    .in_d_y_i(r_d_y), .in_d_z_i(r_d_z), .in_inv_x_i(r_inv_x), .in_inv_y_i(r_inv_y),
-    .in_inv_z_i(r_inv_z), .in_tnear_i(dp_tnear_in), .in_tfar_i(dp_tfar_in),
-    .in_lo_x_i(box_i[0 +: W]), .in_lo_y_i(box_i[W +: W]), .in_lo_z_i(box_i[2*W +: W]),
-    .in_hi_x_i(box_i[3*W +: W]), .in_hi_y_i(box_i[4*W +: W]), .in_hi_z_i(box_i[5*W +: W]),
-    .in_tag_i(1'b0), .out_valid_o(dp_vld), .out_ready_i(1'b1), .out_op_o(dp_op), .out_hit_o(dp_hit),
-    .out_visit_o(dp_visit), .out_below_o(dp_below), .out_tsplit_o(dp_tsplit),
-    .out_tnear_o(dp_tnear), .out_tfar_o(dp_tfar), .out_node_o(dp_node),
-    .out_far_node_o(dp_far_node), .out_far_tfar_o(dp_far_tfar), .out_tag_o(dp_tag));
-  wire unused_dp = ^{dp_rdy, dp_vld, dp_op, dp_below, dp_tag, nd_hi[31:26]};
+  wire unused_nd = ^nd_hi[31:26];
+  assign split_node_o  = this_node;
+  assign split_child_o = nd_index;
+  assign split_plane_o = nd_lo[W-1:0];
+  assign split_tnear_o = node_from_e1 ? e1_tnear : tnear_i;
+  assign split_tfar_o  = node_from_e1 ? e1_tfar : tfar_i;
+  assign split_ray_o   = (nd_axis == 2'd2) ? {r_o_z, r_d_z, r_inv_z} :
+                         (nd_axis == 2'd1) ? {r_o_y, r_d_y, r_inv_y} : {r_o_x, r_d_x, r_inv_x};
+  wire unused_ray = ^r_tmin;  // the clip at entry used it
 
   // Access A, decided by the pass's inputs alone and never by a response (in rtu.v the caches
   // answer within the cycle: a response feeding its own access would be a combinational loop):
@@ -240,12 +233,12 @@ module trv_pass #(
   always @* begin
     st_o = st_i;  node_o = node_i;  tnear_o = tnear_i;  tfar_o = tfar_i;  tmax_o = tmax_i;
     sp = sp_i;  best_o = best_i;  first_o = first_i;  count_o = count_i;  pos_o = pos_i;
-    wr_leaf_o = 1'b0;  push_o = 1'b0;  push_e_o = {EW{1'b0}};
+    wr_leaf_o = 1'b0;  split_o = 1'b0;
     q_push_o = 1'b0;  q_ready_o = 32'd0;  fin_o = 1'b0;
     ist_n_o = 6'd0;  ist_pos_o = pos_i;  ist_ready_o = 32'd0;  ist_words_o = {32*WORDS{1'b0}};
     want_o = 16'd0;
     busy_o = 1'b0;  node_miss_o = 1'b0;  list_miss_o = 1'b0;  ist_full_o = 1'b0;  inner_o = 1'b0;
-    leaf_o = 1'b0;  pops_o = 2'd0;  list_steps_o = 1'b0;  fused_o = 2'd0;  err_o = 1'b0;
+    leaf_o = 1'b0;  pops_o = 2'd0;  list_steps_o = 1'b0;  fused_o = 2'd0;
     acc_b_valid_o = 1'b0;  acc_b_byte_o = 32'd0;
     do_node = 1'b0;  node_fused = 1'b0;  do_list = 1'b0;  list_fused = 1'b0;  list_b = 1'b0;
     le2 = 1'b0;  pop2 = 1'b0;
@@ -258,9 +251,7 @@ module trv_pass #(
           best_o = {BW{1'b0}};
           sp = 7'd0;
           tmax_o = r_tmax;
-          tnear_o = dp_tnear;
-          tfar_o = dp_tfar;
-          if (empty_i || !dp_hit) begin
+          if (empty_i || !clip_i) begin
             st_o = S_DONE;
             fin_o = 1'b1;
           end else begin
@@ -325,17 +316,9 @@ module trv_pass #(
           if (!node_fused) busy_o = 1'b1;
           xe = extra + {16'd0, node_hl_i};
           nxt = again + {16'd0, node_hl_i};
-          if (nd_axis != 2'd3) begin  // inner node
+          if (nd_axis != 2'd3) begin  // inner node: the split follows in trv_unit
             inner_o = 1'b1;
-            node_o = dp_node;
-            tnear_o = dp_tnear;
-            tfar_o = dp_tfar;
-            if (dp_visit == 2'd2) begin
-              if (sp >= depth_i) err_o = 1'b1;
-              push_o = 1'b1;
-              push_e_o = {dp_far_node, dp_tsplit, dp_far_tfar};
-              sp = sp + 7'd1;
-            end
+            split_o = 1'b1;
             q_push_o = 1'b1;
             q_ready_o = nxt;
           end else begin

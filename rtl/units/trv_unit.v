@@ -13,12 +13,19 @@
 //      responses; pipe p's access valids depend on the responses to pipes 0 .. p-1 through the
 //      ist queue's room, and its access B on its own access A: the caller answers them in the
 //      order A0, B0, A1, B1, ...), hands list entries to the ist (ist_*) and finished rays to the
-//      hit unit (fin_*), and pushes the ray back with its ready cycle. A response's hit may be
+//      hit unit (fin_*), and pushes the ray back with its ready cycle. An inner node's split
+//      (trv.v, op 0) is not in the pass: the pass registers its inputs, and the split runs in the
+//      next cycle and writes the ray's node, interval and stack push back (the split stage, 4.
+//      below). The ray is not taken again before that: its ready cycle is at least now + 2
+//      (trv_latency + the node cache's hit latency >= 2, which the bindings check), and nothing
+//      else reads its slot or stack in between. A response's hit may be
 //      the line's presence for an access not made (rtu.v's caches): a pass reads it only for
 //      the accesses it makes, and pipe p's room is a sum of the earlier pipes' own results (their
 //      want_o), so no path runs from one pipe's pass through the caches into the next pipe's;
 //   3. a ray from the rgu (in_*: a new primary ray or a shadow ray in its slot) enters the queue
-//      at now + 1.
+//      at now + 1, clipped to the scene box as it enters (trv.v, op 1: hls::trv_clip_box; the
+//      ray's start pass reads the result: the model clips in that pass, from the same inputs);
+//   4. the split stage: the splits of the inner nodes that the pipes read in the cycle before.
 // Queue pushes of a cycle are appended in that order (results, pipes 0.., rgu); the queue is a
 // FIFO whose head blocks the entries behind it until its ready cycle: the cycle model's
 // TimedFifo. Ready cycles are 32-bit cycle numbers compared with now_i as a signed difference.
@@ -30,7 +37,8 @@
 // PIPES (pipes_i <= PIPES at run time), IST (ist results per cycle), WORDS (list words per cache
 // read), READS (1: the slot read ports rd_* for the ist and hit units, as rtu.v wires them; 0: none,
 // the outputs zero, as the frame's binding reads systemc's slots). Not here: the mailbox
-// (--mailbox, refused by the binding).
+// (--mailbox, refused by the binding). pend_o: the split stage holds a split (a binding that skips
+// idle cycles must clock this one).
 // lint: also READS=1 SLOT_BITS=7 DEPTH=64 PIPES=4 IST=2 WORDS=16
 module trv_unit #(
   parameter integer EXP_BITS  = 7,
@@ -97,6 +105,7 @@ module trv_unit #(
   // The queue's head (the cycle model's next event).
   output wire                            head_valid_o,
   output wire [31:0]                     head_ready_o,
+  output wire                            pend_o,
   // Counters (systemc/config.h RtuStats) and the stack-overflow error.
   output reg  [63:0]                     cnt_busy_o,
   output reg  [63:0]                     cnt_node_miss_o,
@@ -127,6 +136,7 @@ module trv_unit #(
   reg [W-1:0]    tnear_q   [0:NS-1];
   reg [W-1:0]    tfar_q    [0:NS-1];
   reg [W-1:0]    tmax_q    [0:NS-1];
+  reg            clip_q    [0:NS-1];  // the ray meets the scene box (clipped as it entered)
   reg [6:0]      sp_q      [0:NS-1];
   reg [BW-1:0]   best_q    [0:NS-1];
   reg [BW-1:0]   leaf_q    [0:NS-1];
@@ -226,15 +236,16 @@ module trv_unit #(
   wire [PIPES*16-1:0] p_want;
   assign go_chain[0] = 1'b1;
   assign used[15:0] = 16'd0;
-  wire [PIPES-1:0] p_push, p_qpush, p_wr_leaf, p_busy, p_node_miss, p_list_miss, p_ist_full,
-                   p_inner, p_leaf, p_list_steps, p_err;
+  wire [PIPES-1:0] p_qpush, p_wr_leaf, p_busy, p_node_miss, p_list_miss, p_ist_full,
+                   p_inner, p_leaf, p_list_steps, p_split;
   wire [PIPES*2-1:0] p_pops, p_fused;
   wire [PIPES*3-1:0] p_st;
   wire [PIPES*7-1:0] p_sp;
   wire [PIPES*32-1:0] p_node, p_first, p_count, p_pos, p_qready;
   wire [PIPES*W-1:0] p_tnear, p_tfar, p_tmax;
-  wire [PIPES*EW-1:0] p_push_e;
-  wire [PIPES*7-1:0] p_top;  // the pushed entry's index: sp after the pass - 1
+  wire [PIPES*32-1:0] p_s_node, p_s_child;
+  wire [PIPES*W-1:0] p_s_plane, p_s_tnear, p_s_tfar;
+  wire [PIPES*3*W-1:0] p_s_ray;
   genvar p;
   generate
     for (p = 0; p < PIPES; p = p + 1) begin : g_pipe
@@ -254,11 +265,10 @@ module trv_unit #(
       wire [15:0] used_p = used[p*16 +: 16];
       wire [15:0] room_p = (room_i > used_p) ? room_i - used_p : 16'd0;
       assign used[(p+1)*16 +: 16] = used_p + p_want[p*16 +: 16];
-      trv_pass #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE),
-                 .WORDS(WORDS)) u_pass (
+      trv_pass #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .WORDS(WORDS)) u_pass (
         .go_i(go), .now_i(now_i), .lat_i(lat_i), .node_hl_i(node_hl_i), .list_hl_i(list_hl_i),
-        .fuse_i(fuse_i), .any_hit_i(any_hit_i), .empty_i(empty_i), .depth_i(depth_i),
-        .widen_i(widen_i), .box_i(box_i), .st_i(st_q[s]), .shadow_i(shadow_q[s]), .ray_i(ray_q[s]),
+        .fuse_i(fuse_i), .any_hit_i(any_hit_i), .empty_i(empty_i), .st_i(st_q[s]),
+        .clip_i(clip_q[s]), .shadow_i(shadow_q[s]), .ray_i(ray_q[s]),
         .node_i(node_q[s]), .tnear_i(tnear_q[s]), .tfar_i(tfar_q[s]), .tmax_i(tmax_q[s]),
         .sp_i(sp), .best_i(best_q[s]), .leaf_i(leaf_q[s]), .first_i(first_q[s]),
         .count_i(count_q[s]), .pos_i(pos_q[s]), .results_i(results_q[s]), .e1_i(e1), .e2_i(e2),
@@ -273,22 +283,95 @@ module trv_unit #(
         .tfar_o(p_tfar[p*W +: W]), .tmax_o(p_tmax[p*W +: W]), .sp_o(p_sp[p*7 +: 7]),
         .best_o(best_o[p*BW +: BW]), .first_o(p_first[p*32 +: 32]),
         .count_o(p_count[p*32 +: 32]), .pos_o(p_pos[p*32 +: 32]), .wr_leaf_o(p_wr_leaf[p]),
-        .push_o(p_push[p]), .push_e_o(p_push_e[p*EW +: EW]), .q_push_o(p_qpush[p]),
+        .split_o(p_split[p]), .split_node_o(p_s_node[p*32 +: 32]),
+        .split_child_o(p_s_child[p*32 +: 32]),
+        .split_plane_o(p_s_plane[p*W +: W]), .split_tnear_o(p_s_tnear[p*W +: W]),
+        .split_tfar_o(p_s_tfar[p*W +: W]), .split_ray_o(p_s_ray[p*3*W +: 3*W]),
+        .q_push_o(p_qpush[p]),
         .q_ready_o(p_qready[p*32 +: 32]), .fin_o(fin_o[p]), .ist_n_o(ist_n_o[p*6 +: 6]),
         .ist_pos_o(ist_pos_o[p*32 +: 32]), .ist_ready_o(ist_ready_o[p*32 +: 32]),
         .ist_words_o(ist_words_o[p*32*WORDS +: 32*WORDS]),
         .want_o(p_want[p*16 +: 16]), .busy_o(p_busy[p]), .node_miss_o(p_node_miss[p]),
         .list_miss_o(p_list_miss[p]), .ist_full_o(p_ist_full[p]), .inner_o(p_inner[p]),
         .leaf_o(p_leaf[p]), .pops_o(p_pops[p*2 +: 2]), .list_steps_o(p_list_steps[p]),
-        .fused_o(p_fused[p*2 +: 2]), .err_o(p_err[p]));
+        .fused_o(p_fused[p*2 +: 2]));
       assign ist_tmax_o[p*W +: W] = p_tmax[p*W +: W];
-      assign p_top[p*7 +: 7] = p_sp[p*7 +: 7] - 7'd1;
       assign acc_list_o[2*p+1] = 1'b1;  // access B is always a list read
     end
   endgenerate
-  wire unused_room = ^{used[PIPES*16 +: 16], go_chain[PIPES], p_top};
+  wire unused_room = ^{used[PIPES*16 +: 16], go_chain[PIPES]};
 
-  assign err_o = err_q || |(p_err & go_o);
+  // ---- 3. the clip of the entering ray (trv.v, op 1) -------------------------------------------
+  // Packing of in_ray_i, lowest bits first: tmax, tmin, inv z, y, x, d z, y, x, o z, y, x.
+  wire         c_rdy, c_vld, c_op, c_hit, c_below, c_tag;
+  wire [1:0]   c_visit;
+  wire [W-1:0] c_tsplit, c_tnear, c_tfar, c_far_tfar;
+  wire [31:0]  c_node, c_far_node;
+  trv #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(0),
+        .TAG_BITS(1)) u_clip (
+    .clk_i(1'b0), .rst_ni(1'b1), .widen_i(widen_i), .in_valid_i(1'b1), .in_ready_o(c_rdy),
+    .in_op_i(1'b1), .in_axis_i(2'd0), .in_split_i({W{1'b0}}), .in_node_i(32'd0),
+    .in_child_i(32'd0), .in_o_x_i(in_ray_i[10*W +: W]), .in_o_y_i(in_ray_i[9*W +: W]),
+    .in_o_z_i(in_ray_i[8*W +: W]), .in_d_x_i(in_ray_i[7*W +: W]), .in_d_y_i(in_ray_i[6*W +: W]),
+    .in_d_z_i(in_ray_i[5*W +: W]), .in_inv_x_i(in_ray_i[4*W +: W]),
+    .in_inv_y_i(in_ray_i[3*W +: W]), .in_inv_z_i(in_ray_i[2*W +: W]),
+    .in_tnear_i(in_ray_i[W +: W]), .in_tfar_i(in_ray_i[0 +: W]),
+    .in_lo_x_i(box_i[0 +: W]), .in_lo_y_i(box_i[W +: W]), .in_lo_z_i(box_i[2*W +: W]),
+    .in_hi_x_i(box_i[3*W +: W]), .in_hi_y_i(box_i[4*W +: W]), .in_hi_z_i(box_i[5*W +: W]),
+    .in_tag_i(1'b0), .out_valid_o(c_vld), .out_ready_i(1'b1), .out_op_o(c_op), .out_hit_o(c_hit),
+    .out_visit_o(c_visit), .out_below_o(c_below), .out_tsplit_o(c_tsplit),
+    .out_tnear_o(c_tnear), .out_tfar_o(c_tfar), .out_node_o(c_node),
+    .out_far_node_o(c_far_node), .out_far_tfar_o(c_far_tfar), .out_tag_o(c_tag));
+  wire unused_clip = ^{c_rdy, c_vld, c_op, c_below, c_tag, c_visit, c_tsplit, c_node, c_far_node,
+                       c_far_tfar};
+
+  // ---- 4. the split stage: last cycle's inner nodes (trv.v, op 0, on the node's axis) ----------
+  // Registered at the pass: the split's inputs, the ray's slot, its stack pointer after the pass
+  // and where its queue entry went (its fq_sp follows the split's push).
+  reg  [PIPES-1:0]         sv_q;
+  reg  [SLOT_BITS-1:0]     ss_q    [0:PIPES-1];
+  reg  [6:0]               ssp_q   [0:PIPES-1];
+  reg  [SLOT_BITS-1:0]     sat_q   [0:PIPES-1];
+  reg  [31:0]              snode_q [0:PIPES-1];
+  reg  [31:0]              schild_q[0:PIPES-1];
+  reg  [W-1:0]             splane_q[0:PIPES-1];
+  reg  [W-1:0]             stn_q   [0:PIPES-1];
+  reg  [W-1:0]             stf_q   [0:PIPES-1];
+  reg  [3*W-1:0]           sray_q  [0:PIPES-1];
+  wire [PIPES-1:0]         s_push, s_err;
+  wire [PIPES*32-1:0]      s_node;
+  wire [PIPES*W-1:0]       s_tnear, s_tfar;
+  wire [PIPES*EW-1:0]      s_push_e;
+  genvar q;
+  generate
+    for (q = 0; q < PIPES; q = q + 1) begin : g_split
+      wire         d_rdy, d_vld, d_op, d_hit, d_below, d_tag;
+      wire [1:0]   d_visit;
+      wire [W-1:0] d_tsplit, d_far_tfar;
+      wire [31:0]  d_far_node;
+      wire [3*W-1:0] sr = sray_q[q];  // {o, d, inv} on the node's axis, fed as lane x
+      trv #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(0),
+            .TAG_BITS(1)) u_dp (
+        .clk_i(1'b0), .rst_ni(1'b1), .widen_i(widen_i), .in_valid_i(1'b1), .in_ready_o(d_rdy),
+        .in_op_i(1'b0), .in_axis_i(2'd0), .in_split_i(splane_q[q]), .in_node_i(snode_q[q]),
+        .in_child_i(schild_q[q]), .in_o_x_i(sr[2*W +: W]), .in_o_y_i({W{1'b0}}),
+        .in_o_z_i({W{1'b0}}), .in_d_x_i(sr[W +: W]), .in_d_y_i({W{1'b0}}), .in_d_z_i({W{1'b0}}),
+        .in_inv_x_i(sr[0 +: W]), .in_inv_y_i({W{1'b0}}), .in_inv_z_i({W{1'b0}}),
+        .in_tnear_i(stn_q[q]), .in_tfar_i(stf_q[q]), .in_lo_x_i({W{1'b0}}),
+        .in_lo_y_i({W{1'b0}}), .in_lo_z_i({W{1'b0}}), .in_hi_x_i({W{1'b0}}),
+        .in_hi_y_i({W{1'b0}}), .in_hi_z_i({W{1'b0}}), .in_tag_i(1'b0), .out_valid_o(d_vld),
+        .out_ready_i(1'b1), .out_op_o(d_op), .out_hit_o(d_hit), .out_visit_o(d_visit),
+        .out_below_o(d_below), .out_tsplit_o(d_tsplit), .out_tnear_o(s_tnear[q*W +: W]),
+        .out_tfar_o(s_tfar[q*W +: W]), .out_node_o(s_node[q*32 +: 32]),
+        .out_far_node_o(d_far_node), .out_far_tfar_o(d_far_tfar), .out_tag_o(d_tag));
+      wire unused_dp = ^{d_rdy, d_vld, d_op, d_hit, d_below, d_tag};
+      assign s_push[q] = sv_q[q] && (d_visit == 2'd2);
+      assign s_err[q] = s_push[q] && (ssp_q[q] >= depth_i);
+      assign s_push_e[q*EW +: EW] = {d_far_node, d_tsplit, d_far_tfar};
+    end
+  endgenerate
+  assign pend_o = |sv_q;
+  assign err_o = err_q || |s_err;
 
   // ---- 3. state update -------------------------------------------------------------------------
   // Where each queue push goes: after the live entries, in the order results, pipes, rgu (the
@@ -325,6 +408,9 @@ module trv_unit #(
       st_q[in_slot_i] <= S_START;
       shadow_q[in_slot_i] <= in_shadow_i;
       ray_q[in_slot_i] <= in_ray_i;
+      clip_q[in_slot_i] <= c_hit;
+      tnear_q[in_slot_i] <= c_tnear;
+      tfar_q[in_slot_i] <= c_tfar;
       fq_slot[rgu_at] <= in_slot_i;
       fq_ready[rgu_at] <= now_i + 32'd1;
       fq_sp[rgu_at] <= 7'd0;  // a start pass sets its own (the stack is not read)
@@ -346,13 +432,38 @@ module trv_unit #(
           leaf_q[slot_o[b*SLOT_BITS +: SLOT_BITS]] <= {BW{1'b0}};
           results_q[slot_o[b*SLOT_BITS +: SLOT_BITS]] <= 32'd0;
         end
-        if (p_push[b])
-          stk_q[{slot_o[b*SLOT_BITS +: SLOT_BITS], p_top[b*7 +: DB]}] <= p_push_e[b*EW +: EW];
         if (p_qpush[b]) begin
           fq_slot[pipe_at[b*SLOT_BITS +: SLOT_BITS]] <= slot_o[b*SLOT_BITS +: SLOT_BITS];
           fq_ready[pipe_at[b*SLOT_BITS +: SLOT_BITS]] <= p_qready[b*32 +: 32];
           fq_sp[pipe_at[b*SLOT_BITS +: SLOT_BITS]] <= p_sp[b*7 +: 7];
         end
+      end
+    end
+    // The split stage's write-back (last cycle's rays: none of this cycle's pipes' or the rgu's).
+    for (b = 0; b < PIPES; b = b + 1) begin
+      if (sv_q[b]) begin
+        node_q[ss_q[b]]  <= s_node[b*32 +: 32];
+        tnear_q[ss_q[b]] <= s_tnear[b*W +: W];
+        tfar_q[ss_q[b]]  <= s_tfar[b*W +: W];
+        if (s_push[b]) begin
+          stk_q[{ss_q[b], ssp_q[b][DB-1:0]}] <= s_push_e[b*EW +: EW];
+          sp_q[ss_q[b]] <= ssp_q[b] + 7'd1;
+          fq_sp[sat_q[b]] <= ssp_q[b] + 7'd1;
+        end
+      end
+    end
+    // This cycle's splits, for the stage.
+    for (b = 0; b < PIPES; b = b + 1) begin
+      if (go_o[b] && p_split[b]) begin
+        ss_q[b]     <= slot_o[b*SLOT_BITS +: SLOT_BITS];
+        ssp_q[b]    <= p_sp[b*7 +: 7];
+        sat_q[b]    <= pipe_at[b*SLOT_BITS +: SLOT_BITS];
+        snode_q[b]  <= p_s_node[b*32 +: 32];
+        schild_q[b] <= p_s_child[b*32 +: 32];
+        splane_q[b] <= p_s_plane[b*W +: W];
+        stn_q[b]    <= p_s_tnear[b*W +: W];
+        stf_q[b]    <= p_s_tfar[b*W +: W];
+        sray_q[b]   <= p_s_ray[b*3*W +: 3*W];
       end
     end
     // ist results, in port order (a later port of the same ray holds the reduction so far).
@@ -390,14 +501,15 @@ module trv_unit #(
         d_pops = d_pops + {62'd0, p_pops[c*2 +: 2]};
         d_list_steps = d_list_steps + {63'd0, p_list_steps[c]};
         d_fused = d_fused + {62'd0, p_fused[c*2 +: 2]};
-        if (p_push[c] && (p_sp[c*7 +: 7] > smax)) smax = p_sp[c*7 +: 7];
       end
+      if (s_push[c] && (ssp_q[c] + 7'd1 > smax)) smax = ssp_q[c] + 7'd1;
     end
   end
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       head_q <= {SLOT_BITS{1'b0}};
       cnt_q <= {(SLOT_BITS+1){1'b0}};
+      sv_q <= {PIPES{1'b0}};
       err_q <= 1'b0;
       cnt_busy_o <= 64'd0;
       cnt_node_miss_o <= 64'd0;
@@ -412,6 +524,7 @@ module trv_unit #(
     end else begin
       head_q <= head_q + pops[SLOT_BITS-1:0];
       cnt_q <= cnt_q - pops + pushes;
+      sv_q <= go_o & p_split;
       err_q <= err_o;
       cnt_busy_o <= cnt_busy_o + d_busy;
       cnt_node_miss_o <= cnt_node_miss_o + d_node_miss;
