@@ -11,28 +11,32 @@ import re
 import sys
 
 W = "W"
-# Sublevels: (stages, [groups], [post wires]). A group is (op, [(out, a, b, c, sub)]); op: mul,
+# Sublevels: (weight, [groups], [post wires]). The weight is the number of registers the
+# sublevel's logic needs for 95 FO4 (docs/timing.md's operators: an add or mul 1, an add3 3, a
+# divider or square root 7, the sublevel's slowest operator); the hit unit's 10 x STAGES registers
+# are shared out in proportion (cumulative, so that they add up: sublevel l takes
+# 10 STAGES Q_l / QT - 10 STAGES Q_l-1 / QT, Q the running sum of the weights, QT their total). A group is (op, [(out, a, b, c, sub)]); op: mul,
 # add (sub = 1'b1 subtracts), add3, rcp (1 / b), sqrt (of a). Expressions name values in braces:
 # {x} is x as available at the input of the sublevel (or at its output, for post wires and the
 # outputs). Post wires: (name, width, expr), combinational after the sublevel's registers.
 Z = "{W{1'b0}}"
 LEVELS = [
     # 1 (level 1, first half): the hit point's products and the primary ray's error terms
-    ("SA", [
+    (1, [
         ("mul", [("td_x", "{th}", "{d_x}"), ("td_y", "{th}", "{d_y}"), ("td_z", "{th}", "{d_z}"),
                  ("nuou", "{nu}", "{ou}"), ("nvov", "{nv}", "{ov}"), ("nudu", "{nu}", "{du}"),
                  ("nvdv", "{nv}", "{dv}"), ("tden", "{t}", "{den}")]),
         ("add", [("ndok", "{and}", "fabs({ok})")]),
     ], []),
     # 2 (level 1, second half): h = o + t d; e_num, e_den
-    ("SB", [
+    (3, [
         ("add", [("h_x", "{o_x}", "{td_x}"), ("h_y", "{o_y}", "{td_y}"), ("h_z", "{o_z}", "{td_z}")]),
         ("add3", [("e_num", "{ndok}", "fabs({nuou})", "fabs({nvov})"),
                   ("e_den", "fabs({dk})", "fabs({nudu})", "fabs({nvdv})")]),
     ], []),
     # 3 (level 2): light - h; |t d_i| + |h_i|, |n_i| |h_i|, |n_d| + |h_k|, n_u h_u, n_v h_v,
     #   5 e_num, |t| e_den, 2 |t den|; the slab 2 ulps ulp(max |h_i|)
-    ("STAGES", [
+    (1, [
         ("sub", [("ld_x", "light_x_i", "{h_x}"), ("ld_y", "light_y_i", "{h_y}"),
                  ("ld_z", "light_z_i", "{h_z}")]),
         ("add", [("s_x", "fabs({td_x})", "fabs({h_x})"), ("s_y", "fabs({td_y})", "fabs({h_y})"),
@@ -47,7 +51,7 @@ LEVELS = [
                  ("slab", "slab_scale_i", "ulp_max({h_x}[W-2:M], {h_y}[W-2:M], {h_z}[W-2:M])")]),
     ], []),
     # 4 (level 3): squares; |n_i| (|t d_i| + |h_i|); e_move's first sum; e_snum; 3 |t| e_den
-    ("STAGES", [
+    (3, [
         ("mul", [("sq_x", "{ld_x}", "{ld_x}"), ("sq_y", "{ld_y}", "{ld_y}"),
                  ("sq_z", "{ld_z}", "{ld_z}"),
                  ("x_x", "fabs({n_x})", "{s_x}"), ("x_y", "fabs({n_y})", "{s_y}"),
@@ -56,30 +60,30 @@ LEVELS = [
         ("add3", [("e_snum", "{ndhk}", "fabs({nuhu})", "fabs({nvhv})")]),
     ], []),
     # 5 (level 4): |light - h|^2; b1; e_hit's first sum, e_move; 5 e_snum
-    ("STAGES", [
+    (3, [
         ("add3", [("len2", "{sq_x}", "{sq_y}", "{sq_z}"),
                   ("b1", "{c5num}", "{c3ted}", "{c2tden}")]),
         ("add", [("eh1", "{x_x}", "{x_y}"), ("em", "{em1}", "{m_z}")]),
         ("mul", [("c5snum", "C5", "{e_snum}")]),
     ], []),
     # 6 (level 5): the distance to the light; e_hit; 5 e_snum + e_move
-    ("STAGES", [
+    (7, [
         ("sqrt", [("len", "{len2}")]),
         ("add", [("eh", "{eh1}", "{x_z}"), ("snmv", "{c5snum}", "{em}")]),
     ], []),
     # 7 (level 6): 1 / len; 2 e_hit
-    ("STAGES", [
+    (7, [
         ("rcp", [("rl", "{len}")]),
         ("mul", [("c2hit", "C2", "{eh}")]),
     ], []),
     # 8 (level 7): the unit direction; the bound B. Then the shadow direction (segment: light - h)
-    ("STAGES", [
+    (3, [
         ("mul", [("dd_x", "{ld_x}", "{rl}"), ("dd_y", "{ld_y}", "{rl}"), ("dd_z", "{ld_z}", "{rl}")]),
         ("add3", [("b2", "{b1}", "{c2hit}", "{snmv}")]),
     ], [("ds_x", W, "segment_i ? {ld_x} : {dd_x}"), ("ds_y", W, "segment_i ? {ld_y} : {dd_y}"),
         ("ds_z", W, "segment_i ? {ld_z} : {dd_z}")]),
     # 9 (level 8): 1 / d_i; n_u d_u, n_v d_v; u B
-    ("STAGES", [
+    (7, [
         ("rcp", [("inv_x", "{ds_x}"), ("inv_y", "{ds_y}"), ("inv_z", "{ds_z}")]),
         ("mul", [("nud", "pu({k}, {n_x}, {n_y}, {n_z})", "pu({k}, {ds_x}, {ds_y}, {ds_z})"),
                  ("nvd", "pv({k}, {n_x}, {n_y}, {n_z})", "pv({k}, {ds_x}, {ds_y}, {ds_z})"),
@@ -87,7 +91,7 @@ LEVELS = [
     ], []),
     # 10 (level 9): dens = n . d_shadow; delta = 2 u B. Then the light side and the operands of the
     #   last level: n_i or -n_i (the side of the light), max(|dens|, 1/16)
-    ("STAGES", [
+    (3, [
         ("add3", [("dens", "pk({k}, {ds_x}, {ds_y}, {ds_z})", "{nud}", "{nvd}")]),
         ("mul", [("delta", "C2", "{ub}")]),
     ], [("front", "1", "{dens}[W-2:M] != {E{1'b0}} && {den}[W-2:M] != {E{1'b0}} && "
@@ -98,7 +102,7 @@ LEVELS = [
         ("dmax", W, "fmax_sixteenth({dens})")]),
     # 11 (level 10, first half): 1 / max(|dens|, 1/16); delta n_i (error-bound) or fixed * (+-n_i)
     #   (ulp-offset), scale * (+-n_i); then the ulp-offset origin away from zero
-    ("SA", [
+    (7, [
         ("rcp", [("rd", "{dmax}")]),
         ("mul", [("ma_x", "s_eb ? {delta} : fixed_i", "s_eb ? {n_x} : {sn_x}"),
                  ("ma_y", "s_eb ? {delta} : fixed_i", "s_eb ? {n_y} : {sn_y}"),
@@ -108,14 +112,13 @@ LEVELS = [
     ], [("q_x", W, "add_ulps_num({h_x}, {ps_x})"), ("q_y", W, "add_ulps_num({h_y}, {ps_y})"),
         ("q_z", W, "add_ulps_num({h_z}, {ps_z})")]),
     # 12 (level 10, second half): the slab's t_min; h +- delta n (error-bound), h + fixed n_i
-    ("SB", [
+    (1, [
         ("mul", [("t0", "{slab}", "{rd}")]),
         ("add", [("oa_x", "{h_x}", "{ma_x}", None, "s_eb & {dens}[W-1]"),
                  ("oa_y", "{h_y}", "{ma_y}", None, "s_eb & {dens}[W-1]"),
                  ("oa_z", "{h_z}", "{ma_z}", None, "s_eb & {dens}[W-1]")]),
     ], []),
 ]
-# The sublevels of the two fused levels: 1-2 (SA + SB = STAGES) and 11-12; the others STAGES.
 
 # Values available at the input (level 0) and their widths (default W).
 INPUTS = {"tag": "TAG_BITS", "id": "32", "k": "2", "th": W, "t": W, "at": W, "and": W, "den": W,
@@ -206,7 +209,18 @@ import os
 w(open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "gen_hit_head.v")).read().rstrip("\n") + "\n")
 unused = []
 v = lambda i: f"v[{i}]"
-for li, (stg, groups, posts) in enumerate(LEVELS, 1):
+QT = sum(lv[0] for lv in LEVELS)
+q = 0
+w("  // Registers per sublevel: the 10 x STAGES of the latency shared out by the weights of")
+w(f"  // scripts/gen_hit.py (the registers each needs for 95 FO4; {QT} in all), cumulatively.")
+for li, (wt, _, _) in enumerate(LEVELS, 1):
+    lo = f"(10 * STAGES * {q}) / {QT}"
+    q += wt
+    hi = f"(10 * STAGES * {q}) / {QT}"
+    w(f"  localparam integer S{li} = {hi} - {lo};  // weight {wt}")
+w("")
+for li, (_, groups, posts) in enumerate(LEVELS, 1):
+    stg = f"S{li}"
     w(f"  // ---- sublevel {li} " + "-" * 78)
     cs = carried(li)
     cw = " + ".join(width[n] for n in cs)

@@ -19,9 +19,10 @@
 // All registers are static while rays are in flight (read where they are used, not carried).
 // k = 3 is treated as k = 0.
 //
-// Ten operator levels; levels 1 and 10 are two operators deep (sublevels 1-2 and 11-12, with
-// ceil(STAGES/2) and floor(STAGES/2) registers: STAGES = 1 leaves the second operator
-// combinational), the others one (STAGES registers each, as every rtl/fp operator):
+// Ten operator levels; levels 1 and 10 are two operators deep (sublevels 1-2 and 11-12), the
+// others one. The 10 x STAGES registers of the latency are shared out over the twelve sublevels
+// by the logic each holds (S1 .. S12 below: a divider or square root takes 7 shares, an add3 3,
+// an add or mul 1; a sublevel with none left is combinational into the next):
 //    1  t d_i, h_i = o_i + t d_i (t backed off by back_i ulps with skip-back); error-bound's
 //       products of the primary ray
 //    2  light - h; error-bound terms of h; the slab 2 ulps ulp(max |h_i|)
@@ -100,8 +101,6 @@ module hit #(
   localparam integer M    = MAN_BITS;
   localparam integer W    = 1 + E + M;
   localparam integer BIAS = (1 << (E - 1)) - 1;
-  localparam integer SA   = (STAGES + 1) / 2;  // the fused levels' halves
-  localparam integer SB   = STAGES / 2;
   localparam integer B1 = BIAS + 1, B2 = BIAS + 2, BM4 = BIAS - 4, BM5 = BIAS - 5;
   // The unit roundoff (hls::unit_roundoff): 2^-M (rtz), 2^-(M+1) (rne), 2^(1-M) (raycore).
   localparam integer BU = RAYCORE != 0 ? BIAS + 1 - M : (RNE != 0 ? BIAS - M - 1 : BIAS - M);

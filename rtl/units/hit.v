@@ -19,9 +19,10 @@
 // All registers are static while rays are in flight (read where they are used, not carried).
 // k = 3 is treated as k = 0.
 //
-// Ten operator levels; levels 1 and 10 are two operators deep (sublevels 1-2 and 11-12, with
-// ceil(STAGES/2) and floor(STAGES/2) registers: STAGES = 1 leaves the second operator
-// combinational), the others one (STAGES registers each, as every rtl/fp operator):
+// Ten operator levels; levels 1 and 10 are two operators deep (sublevels 1-2 and 11-12), the
+// others one. The 10 x STAGES registers of the latency are shared out over the twelve sublevels
+// by the logic each holds (S1 .. S12 below: a divider or square root takes 7 shares, an add3 3,
+// an add or mul 1; a sublevel with none left is combinational into the next):
 //    1  t d_i, h_i = o_i + t d_i (t backed off by back_i ulps with skip-back); error-bound's
 //       products of the primary ray
 //    2  light - h; error-bound terms of h; the slab 2 ulps ulp(max |h_i|)
@@ -100,8 +101,6 @@ module hit #(
   localparam integer M    = MAN_BITS;
   localparam integer W    = 1 + E + M;
   localparam integer BIAS = (1 << (E - 1)) - 1;
-  localparam integer SA   = (STAGES + 1) / 2;  // the fused levels' halves
-  localparam integer SB   = STAGES / 2;
   localparam integer B1 = BIAS + 1, B2 = BIAS + 2, BM4 = BIAS - 4, BM5 = BIAS - 5;
   // The unit roundoff (hls::unit_roundoff): 2^-M (rtz), 2^-(M+1) (rne), 2^(1-M) (raycore).
   localparam integer BU = RAYCORE != 0 ? BIAS + 1 - M : (RNE != 0 ? BIAS - M - 1 : BIAS - M);
@@ -241,6 +240,21 @@ module hit #(
   wire [W-1:0] du_0 = pu(in_k_i, in_d_x_i, in_d_y_i, in_d_z_i);
   wire [W-1:0] dv_0 = pv(in_k_i, in_d_x_i, in_d_y_i, in_d_z_i);
 
+  // Registers per sublevel: the 10 x STAGES of the latency shared out by the weights of
+  // scripts/gen_hit.py (the registers each needs for 95 FO4; 46 in all), cumulatively.
+  localparam integer S1 = (10 * STAGES * 1) / 46 - (10 * STAGES * 0) / 46;  // weight 1
+  localparam integer S2 = (10 * STAGES * 4) / 46 - (10 * STAGES * 1) / 46;  // weight 3
+  localparam integer S3 = (10 * STAGES * 5) / 46 - (10 * STAGES * 4) / 46;  // weight 1
+  localparam integer S4 = (10 * STAGES * 8) / 46 - (10 * STAGES * 5) / 46;  // weight 3
+  localparam integer S5 = (10 * STAGES * 11) / 46 - (10 * STAGES * 8) / 46;  // weight 3
+  localparam integer S6 = (10 * STAGES * 18) / 46 - (10 * STAGES * 11) / 46;  // weight 7
+  localparam integer S7 = (10 * STAGES * 25) / 46 - (10 * STAGES * 18) / 46;  // weight 7
+  localparam integer S8 = (10 * STAGES * 28) / 46 - (10 * STAGES * 25) / 46;  // weight 3
+  localparam integer S9 = (10 * STAGES * 35) / 46 - (10 * STAGES * 28) / 46;  // weight 7
+  localparam integer S10 = (10 * STAGES * 38) / 46 - (10 * STAGES * 35) / 46;  // weight 3
+  localparam integer S11 = (10 * STAGES * 45) / 46 - (10 * STAGES * 38) / 46;  // weight 7
+  localparam integer S12 = (10 * STAGES * 46) / 46 - (10 * STAGES * 45) / 46;  // weight 1
+
   // ---- sublevel 1 ------------------------------------------------------------------------------
   localparam integer C1_W = TAG_BITS + 32 + 2 + W + W + W + W + W + W + W + W + W + W;
   wire [TAG_BITS-1:0] tag_c1;
@@ -256,14 +270,14 @@ module hit #(
   wire [W-1:0] o_y_c1;
   wire [W-1:0] o_z_c1;
   wire [W-1:0] dk_c1;
-  fp_pipe #(.WIDTH(C1_W), .STAGES(SA)) u_c1 (
+  fp_pipe #(.WIDTH(C1_W), .STAGES(S1)) u_c1 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(r[1]),
     .in_data_i({tag_0, id_0, k_0, at_0, and_0, den_0, n_x_0, n_y_0, n_z_0, o_x_0, o_y_0, o_z_0, dk_0}),
     .out_valid_o(v[1]), .out_ready_i(r[2]),
     .out_data_o({tag_c1, id_c1, k_c1, at_c1, and_c1, den_c1, n_x_c1, n_y_c1, n_z_c1, o_x_c1, o_y_c1, o_z_c1, dk_c1}));
   wire [8*W-1:0] g1_mul_res;
   wire g1_mul_ur, g1_mul_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(SA),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1),
               .OP(0), .N(8)) u_g1_mul (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(g1_mul_ur),
     .in_a_i({t_0, nv_0, nu_0, nv_0, nu_0, th_0, th_0, th_0}),
@@ -280,7 +294,7 @@ module hit #(
   wire [W-1:0] tden = g1_mul_res[7*W +: W];
   wire [1*W-1:0] g1_add_res;
   wire g1_add_ur, g1_add_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(SA),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1),
               .OP(1), .N(1)) u_g1_add (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(g1_add_ur),
     .in_a_i({and_0}),
@@ -304,14 +318,14 @@ module hit #(
   wire [W-1:0] td_y_c2;
   wire [W-1:0] td_z_c2;
   wire [W-1:0] tden_c2;
-  fp_pipe #(.WIDTH(C2_W), .STAGES(SB)) u_c2 (
+  fp_pipe #(.WIDTH(C2_W), .STAGES(S2)) u_c2 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(r[2]),
     .in_data_i({tag_c1, id_c1, k_c1, at_c1, and_c1, den_c1, n_x_c1, n_y_c1, n_z_c1, td_x, td_y, td_z, tden}),
     .out_valid_o(v[2]), .out_ready_i(r[3]),
     .out_data_o({tag_c2, id_c2, k_c2, at_c2, and_c2, den_c2, n_x_c2, n_y_c2, n_z_c2, td_x_c2, td_y_c2, td_z_c2, tden_c2}));
   wire [3*W-1:0] g2_add_res;
   wire g2_add_ur, g2_add_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(SB),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S2),
               .OP(1), .N(3)) u_g2_add (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(g2_add_ur),
     .in_a_i({o_z_c1, o_y_c1, o_x_c1}),
@@ -323,7 +337,7 @@ module hit #(
   wire [W-1:0] h_z = g2_add_res[2*W +: W];
   wire [2*W-1:0] g2_add3_res;
   wire g2_add3_ur, g2_add3_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(SB),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S2),
               .OP(2), .N(2)) u_g2_add3 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(g2_add3_ur),
     .in_a_i({fabs(dk_c1), ndok}),
@@ -345,14 +359,14 @@ module hit #(
   wire [W-1:0] h_x_c3;
   wire [W-1:0] h_y_c3;
   wire [W-1:0] h_z_c3;
-  fp_pipe #(.WIDTH(C3_W), .STAGES(STAGES)) u_c3 (
+  fp_pipe #(.WIDTH(C3_W), .STAGES(S3)) u_c3 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(r[3]),
     .in_data_i({tag_c2, id_c2, k_c2, den_c2, n_x_c2, n_y_c2, n_z_c2, h_x, h_y, h_z}),
     .out_valid_o(v[3]), .out_ready_i(r[4]),
     .out_data_o({tag_c3, id_c3, k_c3, den_c3, n_x_c3, n_y_c3, n_z_c3, h_x_c3, h_y_c3, h_z_c3}));
   wire [3*W-1:0] g3_sub_res;
   wire g3_sub_ur, g3_sub_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S3),
               .OP(1), .N(3)) u_g3_sub (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(g3_sub_ur),
     .in_a_i({light_z_i, light_y_i, light_x_i}),
@@ -364,7 +378,7 @@ module hit #(
   wire [W-1:0] ld_z = g3_sub_res[2*W +: W];
   wire [4*W-1:0] g3_add_res;
   wire g3_add_ur, g3_add_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S3),
               .OP(1), .N(4)) u_g3_add (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(g3_add_ur),
     .in_a_i({and_c2, fabs(td_z_c2), fabs(td_y_c2), fabs(td_x_c2)}),
@@ -377,7 +391,7 @@ module hit #(
   wire [W-1:0] ndhk = g3_add_res[3*W +: W];
   wire [9*W-1:0] g3_mul_res;
   wire g3_mul_ur, g3_mul_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S3),
               .OP(0), .N(9)) u_g3_mul (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(g3_mul_ur),
     .in_a_i({slab_scale_i, C2, at_c2, C5, pv(k_c2, n_x_c2, n_y_c2, n_z_c2), pu(k_c2, n_x_c2, n_y_c2, n_z_c2), fabs(n_z_c2), fabs(n_y_c2), fabs(n_x_c2)}),
@@ -413,14 +427,14 @@ module hit #(
   wire [W-1:0] c5num_c4;
   wire [W-1:0] c2tden_c4;
   wire [W-1:0] slab_c4;
-  fp_pipe #(.WIDTH(C4_W), .STAGES(STAGES)) u_c4 (
+  fp_pipe #(.WIDTH(C4_W), .STAGES(S4)) u_c4 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(r[4]),
     .in_data_i({tag_c3, id_c3, k_c3, den_c3, n_x_c3, n_y_c3, n_z_c3, h_x_c3, h_y_c3, h_z_c3, ld_x, ld_y, ld_z, m_z, c5num, c2tden, slab}),
     .out_valid_o(v[4]), .out_ready_i(r[5]),
     .out_data_o({tag_c4, id_c4, k_c4, den_c4, n_x_c4, n_y_c4, n_z_c4, h_x_c4, h_y_c4, h_z_c4, ld_x_c4, ld_y_c4, ld_z_c4, m_z_c4, c5num_c4, c2tden_c4, slab_c4}));
   wire [7*W-1:0] g4_mul_res;
   wire g4_mul_ur, g4_mul_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S4),
               .OP(0), .N(7)) u_g4_mul (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(g4_mul_ur),
     .in_a_i({C3, fabs(n_z_c3), fabs(n_y_c3), fabs(n_x_c3), ld_z, ld_y, ld_x}),
@@ -436,7 +450,7 @@ module hit #(
   wire [W-1:0] c3ted = g4_mul_res[6*W +: W];
   wire [1*W-1:0] g4_add_res;
   wire g4_add_ur, g4_add_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S4),
               .OP(1), .N(1)) u_g4_add (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(g4_add_ur),
     .in_a_i({m_x}),
@@ -446,7 +460,7 @@ module hit #(
   wire [W-1:0] em1 = g4_add_res[0*W +: W];
   wire [1*W-1:0] g4_add3_res;
   wire g4_add3_ur, g4_add3_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S4),
               .OP(2), .N(1)) u_g4_add3 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(g4_add3_ur),
     .in_a_i({ndhk}),
@@ -472,14 +486,14 @@ module hit #(
   wire [W-1:0] ld_z_c5;
   wire [W-1:0] slab_c5;
   wire [W-1:0] x_z_c5;
-  fp_pipe #(.WIDTH(C5_W), .STAGES(STAGES)) u_c5 (
+  fp_pipe #(.WIDTH(C5_W), .STAGES(S5)) u_c5 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(r[5]),
     .in_data_i({tag_c4, id_c4, k_c4, den_c4, n_x_c4, n_y_c4, n_z_c4, h_x_c4, h_y_c4, h_z_c4, ld_x_c4, ld_y_c4, ld_z_c4, slab_c4, x_z}),
     .out_valid_o(v[5]), .out_ready_i(r[6]),
     .out_data_o({tag_c5, id_c5, k_c5, den_c5, n_x_c5, n_y_c5, n_z_c5, h_x_c5, h_y_c5, h_z_c5, ld_x_c5, ld_y_c5, ld_z_c5, slab_c5, x_z_c5}));
   wire [2*W-1:0] g5_add3_res;
   wire g5_add3_ur, g5_add3_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S5),
               .OP(2), .N(2)) u_g5_add3 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(g5_add3_ur),
     .in_a_i({c5num_c4, sq_x}),
@@ -490,7 +504,7 @@ module hit #(
   wire [W-1:0] b1 = g5_add3_res[1*W +: W];
   wire [2*W-1:0] g5_add_res;
   wire g5_add_ur, g5_add_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S5),
               .OP(1), .N(2)) u_g5_add (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(g5_add_ur),
     .in_a_i({em1, x_x}),
@@ -501,7 +515,7 @@ module hit #(
   wire [W-1:0] em = g5_add_res[1*W +: W];
   wire [1*W-1:0] g5_mul_res;
   wire g5_mul_ur, g5_mul_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S5),
               .OP(0), .N(1)) u_g5_mul (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(g5_mul_ur),
     .in_a_i({C5}),
@@ -527,14 +541,14 @@ module hit #(
   wire [W-1:0] ld_z_c6;
   wire [W-1:0] slab_c6;
   wire [W-1:0] b1_c6;
-  fp_pipe #(.WIDTH(C6_W), .STAGES(STAGES)) u_c6 (
+  fp_pipe #(.WIDTH(C6_W), .STAGES(S6)) u_c6 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(r[6]),
     .in_data_i({tag_c5, id_c5, k_c5, den_c5, n_x_c5, n_y_c5, n_z_c5, h_x_c5, h_y_c5, h_z_c5, ld_x_c5, ld_y_c5, ld_z_c5, slab_c5, b1}),
     .out_valid_o(v[6]), .out_ready_i(r[7]),
     .out_data_o({tag_c6, id_c6, k_c6, den_c6, n_x_c6, n_y_c6, n_z_c6, h_x_c6, h_y_c6, h_z_c6, ld_x_c6, ld_y_c6, ld_z_c6, slab_c6, b1_c6}));
   wire [1*W-1:0] g6_sqrt_res;
   wire g6_sqrt_ur, g6_sqrt_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S6),
               .OP(4), .N(1)) u_g6_sqrt (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(g6_sqrt_ur),
     .in_a_i({len2}),
@@ -544,7 +558,7 @@ module hit #(
   wire [W-1:0] len = g6_sqrt_res[0*W +: W];
   wire [2*W-1:0] g6_add_res;
   wire g6_add_ur, g6_add_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S6),
               .OP(1), .N(2)) u_g6_add (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(g6_add_ur),
     .in_a_i({c5snum, eh1}),
@@ -573,14 +587,14 @@ module hit #(
   wire [W-1:0] b1_c7;
   wire [W-1:0] len_c7;
   wire [W-1:0] snmv_c7;
-  fp_pipe #(.WIDTH(C7_W), .STAGES(STAGES)) u_c7 (
+  fp_pipe #(.WIDTH(C7_W), .STAGES(S7)) u_c7 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(r[7]),
     .in_data_i({tag_c6, id_c6, k_c6, den_c6, n_x_c6, n_y_c6, n_z_c6, h_x_c6, h_y_c6, h_z_c6, ld_x_c6, ld_y_c6, ld_z_c6, slab_c6, b1_c6, len, snmv}),
     .out_valid_o(v[7]), .out_ready_i(r[8]),
     .out_data_o({tag_c7, id_c7, k_c7, den_c7, n_x_c7, n_y_c7, n_z_c7, h_x_c7, h_y_c7, h_z_c7, ld_x_c7, ld_y_c7, ld_z_c7, slab_c7, b1_c7, len_c7, snmv_c7}));
   wire [1*W-1:0] g7_rcp_res;
   wire g7_rcp_ur, g7_rcp_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S7),
               .OP(3), .N(1)) u_g7_rcp (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(g7_rcp_ur),
     .in_a_i({ONE}),
@@ -590,7 +604,7 @@ module hit #(
   wire [W-1:0] rl = g7_rcp_res[0*W +: W];
   wire [1*W-1:0] g7_mul_res;
   wire g7_mul_ur, g7_mul_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S7),
               .OP(0), .N(1)) u_g7_mul (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(g7_mul_ur),
     .in_a_i({C2}),
@@ -616,14 +630,14 @@ module hit #(
   wire [W-1:0] ld_z_c8;
   wire [W-1:0] slab_c8;
   wire [W-1:0] len_c8;
-  fp_pipe #(.WIDTH(C8_W), .STAGES(STAGES)) u_c8 (
+  fp_pipe #(.WIDTH(C8_W), .STAGES(S8)) u_c8 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(r[8]),
     .in_data_i({tag_c7, id_c7, k_c7, den_c7, n_x_c7, n_y_c7, n_z_c7, h_x_c7, h_y_c7, h_z_c7, ld_x_c7, ld_y_c7, ld_z_c7, slab_c7, len_c7}),
     .out_valid_o(v[8]), .out_ready_i(r[9]),
     .out_data_o({tag_c8, id_c8, k_c8, den_c8, n_x_c8, n_y_c8, n_z_c8, h_x_c8, h_y_c8, h_z_c8, ld_x_c8, ld_y_c8, ld_z_c8, slab_c8, len_c8}));
   wire [3*W-1:0] g8_mul_res;
   wire g8_mul_ur, g8_mul_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S8),
               .OP(0), .N(3)) u_g8_mul (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(g8_mul_ur),
     .in_a_i({ld_z_c7, ld_y_c7, ld_x_c7}),
@@ -635,7 +649,7 @@ module hit #(
   wire [W-1:0] dd_z = g8_mul_res[2*W +: W];
   wire [1*W-1:0] g8_add3_res;
   wire g8_add3_ur, g8_add3_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S8),
               .OP(2), .N(1)) u_g8_add3 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(g8_add3_ur),
     .in_a_i({b1_c7}),
@@ -664,14 +678,14 @@ module hit #(
   wire [W-1:0] ds_x_c9;
   wire [W-1:0] ds_y_c9;
   wire [W-1:0] ds_z_c9;
-  fp_pipe #(.WIDTH(C9_W), .STAGES(STAGES)) u_c9 (
+  fp_pipe #(.WIDTH(C9_W), .STAGES(S9)) u_c9 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[8]), .in_ready_o(r[9]),
     .in_data_i({tag_c8, id_c8, k_c8, den_c8, n_x_c8, n_y_c8, n_z_c8, h_x_c8, h_y_c8, h_z_c8, slab_c8, len_c8, ds_x, ds_y, ds_z}),
     .out_valid_o(v[9]), .out_ready_i(r[10]),
     .out_data_o({tag_c9, id_c9, k_c9, den_c9, n_x_c9, n_y_c9, n_z_c9, h_x_c9, h_y_c9, h_z_c9, slab_c9, len_c9, ds_x_c9, ds_y_c9, ds_z_c9}));
   wire [3*W-1:0] g9_rcp_res;
   wire g9_rcp_ur, g9_rcp_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S9),
               .OP(3), .N(3)) u_g9_rcp (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[8]), .in_ready_o(g9_rcp_ur),
     .in_a_i({ONE, ONE, ONE}),
@@ -683,7 +697,7 @@ module hit #(
   wire [W-1:0] inv_z = g9_rcp_res[2*W +: W];
   wire [3*W-1:0] g9_mul_res;
   wire g9_mul_ur, g9_mul_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S9),
               .OP(0), .N(3)) u_g9_mul (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[8]), .in_ready_o(g9_mul_ur),
     .in_a_i({UU, pv(k_c8, n_x_c8, n_y_c8, n_z_c8), pu(k_c8, n_x_c8, n_y_c8, n_z_c8)}),
@@ -713,14 +727,14 @@ module hit #(
   wire [W-1:0] inv_x_c10;
   wire [W-1:0] inv_y_c10;
   wire [W-1:0] inv_z_c10;
-  fp_pipe #(.WIDTH(C10_W), .STAGES(STAGES)) u_c10 (
+  fp_pipe #(.WIDTH(C10_W), .STAGES(S10)) u_c10 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[9]), .in_ready_o(r[10]),
     .in_data_i({tag_c9, id_c9, den_c9, n_x_c9, n_y_c9, n_z_c9, h_x_c9, h_y_c9, h_z_c9, slab_c9, len_c9, ds_x_c9, ds_y_c9, ds_z_c9, inv_x, inv_y, inv_z}),
     .out_valid_o(v[10]), .out_ready_i(r[11]),
     .out_data_o({tag_c10, id_c10, den_c10, n_x_c10, n_y_c10, n_z_c10, h_x_c10, h_y_c10, h_z_c10, slab_c10, len_c10, ds_x_c10, ds_y_c10, ds_z_c10, inv_x_c10, inv_y_c10, inv_z_c10}));
   wire [1*W-1:0] g10_add3_res;
   wire g10_add3_ur, g10_add3_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S10),
               .OP(2), .N(1)) u_g10_add3 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[9]), .in_ready_o(g10_add3_ur),
     .in_a_i({pk(k_c9, ds_x_c9, ds_y_c9, ds_z_c9)}),
@@ -730,7 +744,7 @@ module hit #(
   wire [W-1:0] dens = g10_add3_res[0*W +: W];
   wire [1*W-1:0] g10_mul_res;
   wire g10_mul_ur, g10_mul_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S10),
               .OP(0), .N(1)) u_g10_mul (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[9]), .in_ready_o(g10_mul_ur),
     .in_a_i({C2}),
@@ -761,14 +775,14 @@ module hit #(
   wire [W-1:0] inv_z_c11;
   wire [W-1:0] dens_c11;
   wire [1-1:0] front_c11;
-  fp_pipe #(.WIDTH(C11_W), .STAGES(SA)) u_c11 (
+  fp_pipe #(.WIDTH(C11_W), .STAGES(S11)) u_c11 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[10]), .in_ready_o(r[11]),
     .in_data_i({tag_c10, id_c10, h_x_c10, h_y_c10, h_z_c10, slab_c10, len_c10, ds_x_c10, ds_y_c10, ds_z_c10, inv_x_c10, inv_y_c10, inv_z_c10, dens, front}),
     .out_valid_o(v[11]), .out_ready_i(r[12]),
     .out_data_o({tag_c11, id_c11, h_x_c11, h_y_c11, h_z_c11, slab_c11, len_c11, ds_x_c11, ds_y_c11, ds_z_c11, inv_x_c11, inv_y_c11, inv_z_c11, dens_c11, front_c11}));
   wire [1*W-1:0] g11_rcp_res;
   wire g11_rcp_ur, g11_rcp_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(SA),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S11),
               .OP(3), .N(1)) u_g11_rcp (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[10]), .in_ready_o(g11_rcp_ur),
     .in_a_i({ONE}),
@@ -778,7 +792,7 @@ module hit #(
   wire [W-1:0] rd = g11_rcp_res[0*W +: W];
   wire [6*W-1:0] g11_mul_res;
   wire g11_mul_ur, g11_mul_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(SA),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S11),
               .OP(0), .N(6)) u_g11_mul (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[10]), .in_ready_o(g11_mul_ur),
     .in_a_i({scale_i, scale_i, scale_i, s_eb ? delta : fixed_i, s_eb ? delta : fixed_i, s_eb ? delta : fixed_i}),
@@ -814,14 +828,14 @@ module hit #(
   wire [W-1:0] q_x_c12;
   wire [W-1:0] q_y_c12;
   wire [W-1:0] q_z_c12;
-  fp_pipe #(.WIDTH(C12_W), .STAGES(SB)) u_c12 (
+  fp_pipe #(.WIDTH(C12_W), .STAGES(S12)) u_c12 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[11]), .in_ready_o(r[12]),
     .in_data_i({tag_c11, id_c11, h_x_c11, h_y_c11, h_z_c11, len_c11, ds_x_c11, ds_y_c11, ds_z_c11, inv_x_c11, inv_y_c11, inv_z_c11, dens_c11, front_c11, q_x, q_y, q_z}),
     .out_valid_o(v[12]), .out_ready_i(r[13]),
     .out_data_o({tag_c12, id_c12, h_x_c12, h_y_c12, h_z_c12, len_c12, ds_x_c12, ds_y_c12, ds_z_c12, inv_x_c12, inv_y_c12, inv_z_c12, dens_c12, front_c12, q_x_c12, q_y_c12, q_z_c12}));
   wire [1*W-1:0] g12_mul_res;
   wire g12_mul_ur, g12_mul_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(SB),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S12),
               .OP(0), .N(1)) u_g12_mul (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[11]), .in_ready_o(g12_mul_ur),
     .in_a_i({slab_c11}),
@@ -831,7 +845,7 @@ module hit #(
   wire [W-1:0] t0 = g12_mul_res[0*W +: W];
   wire [3*W-1:0] g12_add_res;
   wire g12_add_ur, g12_add_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(SB),
+  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S12),
               .OP(1), .N(3)) u_g12_add (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[11]), .in_ready_o(g12_add_ur),
     .in_a_i({h_z_c11, h_y_c11, h_x_c11}),

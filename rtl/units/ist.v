@@ -15,9 +15,9 @@
 // k (the projection axis) selects u = (k+1)%3, v = (k+2)%3 with operand muxes; k = 3 is not a
 // valid record and is treated as k = 0.
 //
-// Levels (every FP operator has STAGES pipeline registers; all operators of a level run side by
-// side and a per-level fp_pipe of the same depth carries the values needed later, the tag and the
-// phase flags):
+// Levels (all operators of a level run side by side with the same number of pipeline registers,
+// S1 .. S10 below: the level's share of the 10 x STAGES by its logic; a per-level fp_pipe of the
+// same depth carries the values needed later, the tag and the phase flags):
 //    1  m_nud = n_u*d_u, m_nvd = n_v*d_v, m_nuo = n_u*o_u, m_nvo = n_v*o_v, s1 = n_d - o_k
 //    2  den = add3(d_k, m_nud, m_nvd), s2 = m_nuo + m_nvo
 //    3  num = s1 - s2, rcp = 1 / den (fp_div; RAYCORE: fp_rcp, the table reciprocal)
@@ -81,6 +81,22 @@ module ist #(
   localparam integer M = MAN_BITS;
   localparam integer W = 1 + E + M;
   localparam integer BIAS = (1 << (E - 1)) - 1;
+  // Registers per level: the 10 x STAGES of the latency shared out by the logic each level holds,
+  // so that the stages are balanced (a level of one add, mul or compare weighs 1, an add3 3, the
+  // divider 7: the registers each needs for 95 FO4, docs/timing.md's operators at STAGES 1-7).
+  // Level l takes (STAGES * Q_l) / 2 - (STAGES * Q_l-1) / 2 of them, Q the cumulative weights
+  // (20 in all): at STAGES 2 the weights themselves, 1 3 7 1 1 1 1 3 1 1.
+  localparam integer Q1 = 1, Q2 = 4, Q3 = 11, Q4 = 12, Q5 = 13, Q6 = 14, Q7 = 15, Q8 = 18, Q9 = 19;
+  localparam integer S1  = (STAGES * Q1) / 2;
+  localparam integer S2  = (STAGES * Q2) / 2 - (STAGES * Q1) / 2;
+  localparam integer S3  = (STAGES * Q3) / 2 - (STAGES * Q2) / 2;
+  localparam integer S4  = (STAGES * Q4) / 2 - (STAGES * Q3) / 2;
+  localparam integer S5  = (STAGES * Q5) / 2 - (STAGES * Q4) / 2;
+  localparam integer S6  = (STAGES * Q6) / 2 - (STAGES * Q5) / 2;
+  localparam integer S7  = (STAGES * Q7) / 2 - (STAGES * Q6) / 2;
+  localparam integer S8  = (STAGES * Q8) / 2 - (STAGES * Q7) / 2;
+  localparam integer S9  = (STAGES * Q9) / 2 - (STAGES * Q8) / 2;
+  localparam integer S10 = 10 * STAGES - (STAGES * Q9) / 2;
   localparam [W-1:0] ONE = {1'b0, BIAS[E-1:0], {M{1'b0}}};  // 1.0
 
   // Level handshakes: v[L] / r[L] = valid / ready at the output of level L (index 0 = the input).
@@ -119,7 +135,7 @@ module ist #(
   wire [6*W-1:0] c1_ka, c2_ka, c3_ka, c4_ka, c1_kb, c2_kb, c3_kb, c4_kb;
   wire [W-1:0] c1_dk, c1_du, c1_dv, c1_ou, c1_ov, c1_tmin, c1_tmax;
   assign c1_ka = {c1_tmin, c1_tmax, c1_du, c1_dv, c1_ou, c1_ov};
-  fp_pipe #(.WIDTH(C_W), .STAGES(STAGES)) u_carry1 (
+  fp_pipe #(.WIDTH(C_W), .STAGES(S1)) u_carry1 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(r[1]),
     .in_data_i({in_tag_i, in_tmin_i, in_tmax_i, d_k, d_u, d_v, o_u, o_v,
                 in_c3_i, in_c4_i, in_c5_i, in_c6_i, in_c7_i, in_c8_i}),
@@ -134,13 +150,13 @@ module ist #(
   genvar gj;
   generate
     for (gj = 0; gj < 4; gj = gj + 1) begin : g_l1_mul
-      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_mul (
+      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1)) u_mul (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[gj]),
         .in_a_i(l1_pa[gj*W +: W]), .in_b_i(l1_pb[gj*W +: W]), .out_valid_o(l1_unused_v[gj]),
         .out_ready_i(r[2]), .out_res_o(l1_prod[gj*W +: W]));
     end
   endgenerate
-  fp_op2_nt #(.OP("sub"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_l1_s1 (
+  fp_op2_nt #(.OP("sub"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1)) u_l1_s1 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[4]),
     .in_a_i(in_c2_i), .in_b_i(o_k), .out_valid_o(l1_unused_v[4]), .out_ready_i(r[2]),
     .out_res_o(l1_s1));
@@ -149,15 +165,15 @@ module ist #(
   wire [W-1:0] l2_den, l2_s2;
   wire [1:0]   l2_unused_v, l2_unused_r;
   wire [W-1:0] c2_s1;
-  fp_pipe #(.WIDTH(C_W), .STAGES(STAGES)) u_carry2 (
+  fp_pipe #(.WIDTH(C_W), .STAGES(S2)) u_carry2 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(r[2]),
     .in_data_i({c1_tag, c1_ka, l1_s1, c1_kb}), .out_valid_o(v[2]), .out_ready_i(r[3]),
     .out_data_o({c2_tag, c2_ka, c2_s1, c2_kb}));
-  fp_add3_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_l2_den (
+  fp_add3_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S2)) u_l2_den (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[0]),
     .in_a_i(c1_dk), .in_b_i(l1_nud), .in_c_i(l1_nvd), .out_valid_o(l2_unused_v[0]),
     .out_ready_i(r[3]), .out_res_o(l2_den));
-  fp_op2_nt #(.OP("add"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_l2_s2 (
+  fp_op2_nt #(.OP("add"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S2)) u_l2_s2 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[1]),
     .in_a_i(l1_nuo), .in_b_i(l1_nvo), .out_valid_o(l2_unused_v[1]), .out_ready_i(r[3]),
     .out_res_o(l2_s2));
@@ -166,23 +182,23 @@ module ist #(
   wire [W-1:0] l3_num, l3_rcp;
   wire [1:0]   l3_unused_v, l3_unused_r;
   wire [W-1:0] c3_den;
-  fp_pipe #(.WIDTH(C_W), .STAGES(STAGES)) u_carry3 (
+  fp_pipe #(.WIDTH(C_W), .STAGES(S3)) u_carry3 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(r[3]),
     .in_data_i({c2_tag, c2_ka, l2_den, c2_kb}), .out_valid_o(v[3]), .out_ready_i(r[4]),
     .out_data_o({c3_tag, c3_ka, c3_den, c3_kb}));
-  fp_op2_nt #(.OP("sub"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_l3_num (
+  fp_op2_nt #(.OP("sub"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S3)) u_l3_num (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[0]),
     .in_a_i(c2_s1), .in_b_i(l2_s2), .out_valid_o(l3_unused_v[0]), .out_ready_i(r[4]),
     .out_res_o(l3_num));
   generate
     if (RAYCORE != 0) begin : g_rcp_table  // raycore: the table reciprocal (hls::rcp<F, raycore>)
       wire unused_tag;
-      fp_rcp #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(STAGES)) u_l3_rcp (
+      fp_rcp #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(S3)) u_l3_rcp (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[1]),
         .in_a_i(l2_den), .in_tag_i(1'b0), .out_valid_o(l3_unused_v[1]),
         .out_ready_i(r[4]), .out_res_o(l3_rcp), .out_tag_o(unused_tag));
     end else begin : g_rcp_div  // rtz, rne: 1 / den, rounded once
-      fp_op2_nt #(.OP("div"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l3_rcp (
+      fp_op2_nt #(.OP("div"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(S3)) u_l3_rcp (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[1]),
         .in_a_i(ONE), .in_b_i(l2_den), .out_valid_o(l3_unused_v[1]),
         .out_ready_i(r[4]), .out_res_o(l3_rcp));
@@ -193,13 +209,13 @@ module ist #(
   wire [W-1:0] l4_t;
   wire         l4_unused_v, l4_unused_r;
   wire [W-1:0] c4_den;
-  fp_pipe #(.WIDTH(C_W), .STAGES(STAGES)) u_carry4 (
+  fp_pipe #(.WIDTH(C_W), .STAGES(S4)) u_carry4 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(r[4]),
     .in_data_i({c3_tag, c3_ka, c3_den, c3_kb}), .out_valid_o(v[4]), .out_ready_i(r[5]),
     .out_data_o({c4_tag, c4_ka, c4_den, c4_kb}));
   wire [W-1:0] c4_tmin = c4_ka[5*W +: W];
   wire [W-1:0] c4_tmax = c4_ka[4*W +: W];
-  fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_l4_t (
+  fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S4)) u_l4_t (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(l4_unused_r),
     .in_a_i(l3_num), .in_b_i(l3_rcp), .out_valid_o(l4_unused_v), .out_ready_i(r[5]),
     .out_res_o(l4_t));
@@ -211,7 +227,7 @@ module ist #(
   wire [TAG_BITS-1:0] c5_tag;
   wire [W-1:0] c5_ou, c5_ov, c5_den, c5_t;
   wire [6*W-1:0] c5_kb;
-  fp_pipe #(.WIDTH(C5_W), .STAGES(STAGES)) u_carry5 (
+  fp_pipe #(.WIDTH(C5_W), .STAGES(S5)) u_carry5 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(r[5]),
     .in_data_i({c4_tag, c4_ka[0 +: 2*W], c4_den, l4_t, c4_kb}),
     .out_valid_o(v[5]), .out_ready_i(r[6]),
@@ -226,12 +242,12 @@ module ist #(
   wire [4*W-1:0] l5_unused_mm;  // min/max: not needed
   generate
     for (gj = 0; gj < 2; gj = gj + 1) begin : g_l5
-      fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(STAGES)) u_lt (
+      fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(S5)) u_lt (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(l5_unused_r[gj]),
         .in_a_i(l5_ca[gj*W +: W]), .in_b_i(l5_cb[gj*W +: W]), .out_valid_o(l5_unused_v[gj]),
         .out_ready_i(r[6]), .out_lt_o(l5_lt[gj]), .out_eq_o(l5_unused_eq[gj]),
         .out_min_o(l5_unused_mm[2*gj*W +: W]), .out_max_o(l5_unused_mm[(2*gj+1)*W +: W]));
-      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_mul (
+      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S5)) u_mul (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(l5_unused_r[2+gj]),
         .in_a_i(l4_t), .in_b_i(l5_pb[gj*W +: W]), .out_valid_o(l5_unused_v[2+gj]),
         .out_ready_i(r[6]), .out_res_o(l5_prod[gj*W +: W]));
@@ -244,7 +260,7 @@ module ist #(
   wire [TAG_BITS-1:0] c6_tag;
   wire [W-1:0] c6_den, c6_t, c6_bnu, c6_bnv, c6_bd, c6_cnu, c6_cnv, c6_cd;
   wire         c6_p1;  // phase 1 passed: tmin < t < tmax
-  fp_pipe #(.WIDTH(C6_W), .STAGES(STAGES)) u_carry6 (
+  fp_pipe #(.WIDTH(C6_W), .STAGES(S6)) u_carry6 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(r[6]),
     .in_data_i({c5_tag, c5_den, c5_t, c5_kb, &l5_lt}),
     .out_valid_o(v[6]), .out_ready_i(r[7]),
@@ -255,7 +271,7 @@ module ist #(
   wire [2*W-1:0] l6_sum;  // {hv, hu}
   generate
     for (gj = 0; gj < 2; gj = gj + 1) begin : g_l6_add
-      fp_op2_nt #(.OP("add"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_add (
+      fp_op2_nt #(.OP("add"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S6)) u_add (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(l6_unused_r[gj]),
         .in_a_i(l6_a[gj*W +: W]), .in_b_i(l5_prod[gj*W +: W]), .out_valid_o(l6_unused_v[gj]),
         .out_ready_i(r[7]), .out_res_o(l6_sum[gj*W +: W]));
@@ -268,7 +284,7 @@ module ist #(
   wire [TAG_BITS-1:0] c7_tag;
   wire [W-1:0] c7_den, c7_t, c7_bd, c7_cd;
   wire         c7_p1;
-  fp_pipe #(.WIDTH(C7_W), .STAGES(STAGES)) u_carry7 (
+  fp_pipe #(.WIDTH(C7_W), .STAGES(S7)) u_carry7 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(r[7]),
     .in_data_i({c6_tag, c6_den, c6_t, c6_bd, c6_cd, c6_p1}),
     .out_valid_o(v[7]), .out_ready_i(r[8]),
@@ -279,7 +295,7 @@ module ist #(
   wire [4*W-1:0] l7_prod;  // {cv, cu, bv, bu}
   generate
     for (gj = 0; gj < 4; gj = gj + 1) begin : g_l7_mul
-      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_mul (
+      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S7)) u_mul (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(l7_unused_r[gj]),
         .in_a_i(l7_pa[gj*W +: W]), .in_b_i(l6_sum[(gj%2)*W +: W]), .out_valid_o(l7_unused_v[gj]),
         .out_ready_i(r[8]), .out_res_o(l7_prod[gj*W +: W]));
@@ -293,7 +309,7 @@ module ist #(
   wire [TAG_BITS-1:0] c8_tag;
   wire [W-1:0] c8_den, c8_t;
   wire         c8_p1;
-  fp_pipe #(.WIDTH(C8_W), .STAGES(STAGES)) u_carry8 (
+  fp_pipe #(.WIDTH(C8_W), .STAGES(S8)) u_carry8 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(r[8]),
     .in_data_i({c7_tag, c7_den, c7_t, c7_p1}),
     .out_valid_o(v[8]), .out_ready_i(r[9]),
@@ -305,7 +321,7 @@ module ist #(
   assign {l8_gamma, l8_beta} = l8_sum;
   generate
     for (gj = 0; gj < 2; gj = gj + 1) begin : g_l8_add3
-      fp_add3_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_add3 (
+      fp_add3_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S8)) u_add3 (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(l8_unused_r[gj]),
         .in_a_i(l7_prod[2*gj*W +: W]), .in_b_i(l7_prod[(2*gj+1)*W +: W]),
         .in_c_i(l8_c[gj*W +: W]), .out_valid_o(l8_unused_v[gj]), .out_ready_i(r[9]),
@@ -327,13 +343,13 @@ module ist #(
   wire [TAG_BITS-1:0] c9_tag;
   wire [W-1:0] c9_den, c9_t;
   wire         c9_p1, c9_bfail, c9_gfail;
-  fp_pipe #(.WIDTH(C9_W), .STAGES(STAGES)) u_carry9 (
+  fp_pipe #(.WIDTH(C9_W), .STAGES(S9)) u_carry9 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[8]), .in_ready_o(r[9]),
     .in_data_i({c8_tag, c8_den, c8_t, c8_p1, l8_bfail, l8_gfail}),
     .out_valid_o(v[9]), .out_ready_i(r[10]),
     .out_data_o({c9_tag, c9_den, c9_t, c9_p1, c9_bfail, c9_gfail})
   );
-  fp_op2_nt #(.OP("add"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_l9_sum (
+  fp_op2_nt #(.OP("add"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S9)) u_l9_sum (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[8]), .in_ready_o(l9_unused_r),
     .in_a_i(l8_beta), .in_b_i(l8_gamma), .out_valid_o(l9_unused_v), .out_ready_i(r[10]),
     .out_res_o(l9_sum));
@@ -343,7 +359,7 @@ module ist #(
   wire         l10_unused_v, l10_unused_r;
   localparam integer C10_W = TAG_BITS + 2 * W + 3;
   wire         c10_p1, c10_bfail, c10_gfail;
-  fp_pipe #(.WIDTH(C10_W), .STAGES(STAGES)) u_carry10 (
+  fp_pipe #(.WIDTH(C10_W), .STAGES(S10)) u_carry10 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[9]), .in_ready_o(r[10]),
     .in_data_i({c9_tag, c9_den, c9_t, c9_p1, c9_bfail, c9_gfail}),
     .out_valid_o(v[10]), .out_ready_i(r[11]),
@@ -351,7 +367,7 @@ module ist #(
   );
   wire         l10_unused_eq;
   wire [W-1:0] l10_unused_min, l10_unused_max;
-  fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(STAGES)) u_l10_sum (
+  fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(S10)) u_l10_sum (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[9]), .in_ready_o(l10_unused_r),
     .in_a_i(one_eps_i), .in_b_i(l9_sum), .out_valid_o(l10_unused_v), .out_ready_i(r[11]),
     .out_lt_o(l10_sfail), .out_eq_o(l10_unused_eq), .out_min_o(l10_unused_min),
