@@ -110,6 +110,8 @@ module ascache #(
   localparam integer LAST = MSHRS - 1;
   localparam [MW-1:0] LAST_MSHR = LAST[MW-1:0];
   localparam [CNT_BITS-1:0] CNT_ONE = 1;
+  localparam integer QW = (MW > CW ? MW : CW) + 1;        // tail + allocations before the wrap
+  localparam [QW-1:0] MSHRS_QW = MSHRS[QW-1:0];
 
   // A line's set and its tag within the set.
   localparam [LINE_W-1:0] NSETS = SETS[LINE_W-1:0];
@@ -191,9 +193,13 @@ module ascache #(
     .rank_i(f_rank), .way_i(f_way), .rank_o(f_rank_new));
 
   // ---------------------------------------------------------------------------------------------
-  // Access side: PORTS lookups chained in port order. Port k sees the set as the fill leaves it,
-  // the LRU ranks and pins as the hits of ports 0 .. k-1 leave them, and the MSHRs after the fill
-  // and the allocations of ports 0 .. k-1 (Ascache::access called k times in a cycle).
+  // Access side: PORTS lookups in port order. Port k sees the set as the fill leaves it, the LRU
+  // ranks and pins as the hits of ports 0 .. k-1 leave them, and the MSHRs after the fill and the
+  // allocations of ports 0 .. k-1 (Ascache::access called k times in a cycle). A hit depends on
+  // the tags alone; the MSHRs' part is a prefix over the ports (below): each port's allocation
+  // needs only which earlier ports allocated (the same line: a merge; their count: the free MSHR
+  // it takes and whether any is left; those of its set: set full), not the MSHR arrays as the
+  // earlier ports rewrote them.
   wire [PORTS-1:0]           a_hit_v;
   wire [PORTS-1:0]           a_there_v;  // the line is present (valid access or not)
   wire [PORTS-1:0]           a_miss_v;
@@ -205,11 +211,10 @@ module ascache #(
   wire [PORTS*RW-1:0]        a_way_v;
   wire [PORTS*WAYS*RW-1:0]   a_rank_new_v  /* verilator split_var */;
   wire [PORTS*WAYS*RW-1:0]   a_rank_out = a_rank_new_v;  // read at a run-time index
-  wire [(PORTS+1)*MSHRS-1:0] mv_chain      /* verilator split_var */;   // MSHR valid after port k
-  wire [(PORTS+1)*MSHRS*LINE_W-1:0] ml_chain /* verilator split_var */; // MSHR lines after port k
-  wire [(PORTS+1)*MSHRS*SW-1:0] ms_chain   /* verilator split_var */;   // their sets after port k
-  wire [(PORTS+1)*MW-1:0]    tail_chain    /* verilator split_var */;   // queue tail after port k
-  wire [(PORTS+1)*MSHRS*MW-1:0] fifo_chain /* verilator split_var */;   // queue entries after k
+  wire [PORTS-1:0]           a_base;     // a valid miss of no MSHR valid at the start
+  wire [PORTS-1:0]           a_infl0;    // its line is fetched by an MSHR valid at the start
+  wire [PORTS*PW-1:0]        a_held0;    // its set's ways pinned + awaited at the start
+  wire [PORTS*LINE_W-1:0]    a_line_v;
 
   // MSHRs before port 0: the fill frees its own first.
   reg [MSHRS-1:0] mv_post;
@@ -218,11 +223,19 @@ module ascache #(
     for (i = 0; i < MSHRS; i = i + 1)
       if (fill_go && fill_tag_i == i[MW-1:0]) mv_post[i] = 1'b0;
   end
-  assign mv_chain[MSHRS-1:0]          = mv_post;
-  assign ml_chain[MSHRS*LINE_W-1:0]   = ml_q;
-  assign ms_chain[MSHRS*SW-1:0]       = ms_q;
-  assign tail_chain[MW-1:0]           = tail_q;
-  assign fifo_chain[MSHRS*MW-1:0]     = fifo_q;
+  // The free MSHRs in index order (fl: the i-th lowest at [i*MW +: MW], i < nfree): an allocation
+  // takes the lowest free one, so the port with n allocations before it takes the n-th.
+  reg [MSHRS*MW-1:0] fl;
+  reg [CW-1:0]       nfree;
+  always @* begin
+    fl = {(MSHRS*MW){1'b0}};
+    nfree = {CW{1'b0}};
+    for (i = 0; i < MSHRS; i = i + 1)
+      if (!mv_post[i]) begin
+        fl[nfree*MW +: MW] = i[MW-1:0];
+        nfree = nfree + 1'b1;
+      end
+  end
 
   genvar gk, gj;
   generate
@@ -264,21 +277,16 @@ module ascache #(
       end
       ascache_touch #(.WAYS(WAYS), .RW(RW)) u_touch (
         .rank_i(rank_pre), .way_i(way), .rank_o(a_rank_new_v[gk*WAYS*RW +: WAYS*RW]));
-      // MSHRs as ports 0 .. k-1 leave them: merge, or allocate the lowest free one.
-      wire [MSHRS-1:0]        mv = mv_chain[gk*MSHRS +: MSHRS];
-      wire [MSHRS*LINE_W-1:0] ml = ml_chain[gk*MSHRS*LINE_W +: MSHRS*LINE_W];
-      wire [MSHRS*SW-1:0]     ms = ms_chain[gk*MSHRS*SW +: MSHRS*SW];
-      wire [MW-1:0]           tl = tail_chain[gk*MW +: MW];
-      wire [MSHRS*MW-1:0]     fq = fifo_chain[gk*MSHRS*MW +: MSHRS*MW];
+      // The MSHRs valid at the start: one fetching the line (a merge), those of the line's set.
       reg          inflight;
-      reg [MW-1:0] free;
+      reg [PW-1:0] awaited;
       integer mk;
       always @* begin
         inflight = 1'b0;
-        free     = {MW{1'b0}};
-        for (mk = MSHRS - 1; mk >= 0; mk = mk - 1) begin
-          if (mv[mk] && ml[mk*LINE_W +: LINE_W] == line) inflight = 1'b1;
-          if (!mv[mk]) free = mk[MW-1:0];
+        awaited  = {PW{1'b0}};
+        for (mk = 0; mk < MSHRS; mk = mk + 1) begin
+          if (mv_post[mk] && ml_q[mk*LINE_W +: LINE_W] == line) inflight = 1'b1;
+          if (mv_post[mk] && ms_q[mk*SW +: SW] == set) awaited = awaited + 1'b1;
         end
       end
       // The set's pins as the fill and the hits of ports 0 .. k-1 leave them (a fill pins its way,
@@ -302,46 +310,59 @@ module ascache #(
       reg [PW-1:0] held;
       integer hk;
       always @* begin
-        held = {PW{1'b0}};
+        held = awaited;
         for (hk = 0; hk < WAYS; hk = hk + 1)
           if (pin_pre[hk]) held = held + 1'b1;
-        for (hk = 0; hk < MSHRS; hk = hk + 1)
-          if (mv[hk] && ms[hk*SW +: SW] == set) held = held + 1'b1;
       end
-      wire set_full = held >= NWAYS;
-      wire alloc = av && !hit && !inflight && !(&mv) && !set_full;
       assign a_hit_v[gk]   = av && hit;
       assign a_there_v[gk] = hit;
       assign a_miss_v[gk]  = av && !hit;
-      assign a_merge_v[gk] = av && !hit && inflight;
-      assign a_full_v[gk]  = av && !hit && !inflight && (&mv);
-      assign a_sfull_v[gk] = av && !hit && !inflight && !(&mv) && set_full;
-      assign a_alloc_v[gk] = alloc;
+      assign a_base[gk]    = av && !hit && !inflight;
+      assign a_infl0[gk]   = inflight;
+      assign a_held0[gk*PW +: PW] = held;
+      assign a_line_v[gk*LINE_W +: LINE_W] = line;
       assign a_set_v[gk*SW +: SW] = set;
       assign a_way_v[gk*RW +: RW] = way;
-      reg [MSHRS-1:0]        mv_n;
-      reg [MSHRS*LINE_W-1:0] ml_n;
-      reg [MSHRS*SW-1:0]     ms_n;
-      reg [MSHRS*MW-1:0]     fq_n;
-      always @* begin
-        mv_n = mv;
-        ml_n = ml;
-        ms_n = ms;
-        fq_n = fq;
-        for (mk = 0; mk < MSHRS; mk = mk + 1) begin
-          if (alloc && free == mk[MW-1:0]) begin
-            mv_n[mk] = 1'b1;
-            ml_n[mk*LINE_W +: LINE_W] = line;
-            ms_n[mk*SW +: SW] = set;
-          end
-          if (alloc && tl == mk[MW-1:0]) fq_n[mk*MW +: MW] = free;
-        end
+    end
+  endgenerate
+
+  // The allocations, in port order: port k allocates unless an earlier port allocated its line
+  // (then it merges), the earlier allocations took the last free MSHR (full), or its set's ways
+  // pinned or awaited reach WAYS with the earlier allocations of its set (set full). a_at: the
+  // allocations before port k (the free MSHR it takes: fl's a_at-th; its queue entry: tail + a_at).
+  reg [PORTS-1:0]    a_mrg, a_fl, a_sf, a_alc;
+  reg [PORTS*CW-1:0] a_at;
+  reg [CW-1:0]       n_alloc;
+  reg [PW-1:0]       same;
+  integer ak, aj;
+  always @* begin
+    n_alloc = {CW{1'b0}};
+    a_mrg = {PORTS{1'b0}};
+    a_fl = {PORTS{1'b0}};
+    a_sf = {PORTS{1'b0}};
+    a_alc = {PORTS{1'b0}};
+    a_at = {(PORTS*CW){1'b0}};
+    for (ak = 0; ak < PORTS; ak = ak + 1) begin
+      same = {PW{1'b0}};
+      for (aj = 0; aj < ak; aj = aj + 1) begin
+        if (a_alc[aj] && a_line_v[aj*LINE_W +: LINE_W] == a_line_v[ak*LINE_W +: LINE_W])
+          a_mrg[ak] = 1'b1;
+        if (a_alc[aj] && a_set_v[aj*SW +: SW] == a_set_v[ak*SW +: SW]) same = same + 1'b1;
       end
-      assign mv_chain[(gk+1)*MSHRS +: MSHRS] = mv_n;
-      assign ml_chain[(gk+1)*MSHRS*LINE_W +: MSHRS*LINE_W] = ml_n;
-      assign ms_chain[(gk+1)*MSHRS*SW +: MSHRS*SW] = ms_n;
-      assign fifo_chain[(gk+1)*MSHRS*MW +: MSHRS*MW] = fq_n;
-      assign tail_chain[(gk+1)*MW +: MW] = !alloc ? tl : (tl == LAST_MSHR ? {MW{1'b0}} : tl + 1'b1);
+      a_at[ak*CW +: CW] = n_alloc;
+      a_fl[ak] = (n_alloc >= nfree);
+      a_sf[ak] = (a_held0[ak*PW +: PW] + same >= NWAYS);
+      a_alc[ak] = a_base[ak] && !a_mrg[ak] && !a_fl[ak] && !a_sf[ak];
+      if (a_alc[ak]) n_alloc = n_alloc + 1'b1;
+    end
+  end
+  generate
+    for (gk = 0; gk < PORTS; gk = gk + 1) begin : g_alloc
+      wire miss0 = a_miss_v[gk];
+      assign a_alloc_v[gk] = a_alc[gk];
+      assign a_merge_v[gk] = miss0 && (a_infl0[gk] || a_mrg[gk]);
+      assign a_full_v[gk]  = miss0 && !a_infl0[gk] && !a_mrg[gk] && a_fl[gk];
+      assign a_sfull_v[gk] = miss0 && !a_infl0[gk] && !a_mrg[gk] && !a_fl[gk] && a_sf[gk];
     end
   endgenerate
 
@@ -363,17 +384,14 @@ module ascache #(
   end
 
   // How many of this cycle's accesses hit, missed, ...; how many requests were queued.
-  reg [CW-1:0] n_alloc;
   reg [CNT_BITS-1:0] n_hit, n_miss, n_merge, n_full, n_sfull;
   always @* begin
-    n_alloc = {CW{1'b0}};
     n_hit = {CNT_BITS{1'b0}};
     n_miss = {CNT_BITS{1'b0}};
     n_merge = {CNT_BITS{1'b0}};
     n_full = {CNT_BITS{1'b0}};
     n_sfull = {CNT_BITS{1'b0}};
     for (i = 0; i < PORTS; i = i + 1) begin
-      if (a_alloc_v[i]) n_alloc = n_alloc + 1'b1;
       if (a_hit_v[i])   n_hit   = n_hit + CNT_ONE;
       if (a_miss_v[i])  n_miss  = n_miss + CNT_ONE;
       if (a_merge_v[i]) n_merge = n_merge + CNT_ONE;
@@ -382,12 +400,28 @@ module ascache #(
     end
   end
 
+  reg [MW-1:0] a_free;  // an allocation's MSHR
+  reg [QW-1:0] a_slot;  // its request queue entry (before the wrap)
   always @* begin
-    mv_d    = mv_chain[PORTS*MSHRS +: MSHRS];
-    ml_d    = ml_chain[PORTS*MSHRS*LINE_W +: MSHRS*LINE_W];
-    ms_d    = ms_chain[PORTS*MSHRS*SW +: MSHRS*SW];
-    fifo_d  = fifo_chain[PORTS*MSHRS*MW +: MSHRS*MW];
-    tail_d  = tail_chain[PORTS*MW +: MW];
+    // Each allocation: its free MSHR takes the line, and its index the queue's entry tail + a_at.
+    a_free  = {MW{1'b0}};
+    mv_d    = mv_post;
+    ml_d    = ml_q;
+    ms_d    = ms_q;
+    fifo_d  = fifo_q;
+    for (i = 0; i < PORTS; i = i + 1)
+      if (a_alloc_v[i]) begin
+        a_free = fl[a_at[i*CW +: CW]*MW +: MW];
+        a_slot = {{(QW-MW){1'b0}}, tail_q} + {{(QW-CW){1'b0}}, a_at[i*CW +: CW]};
+        if (a_slot >= MSHRS_QW) a_slot = a_slot - MSHRS_QW;
+        mv_d[a_free] = 1'b1;
+        ml_d[a_free*LINE_W +: LINE_W] = a_line_v[i*LINE_W +: LINE_W];
+        ms_d[a_free*SW +: SW] = a_set_v[i*SW +: SW];
+        fifo_d[a_slot[MW-1:0]*MW +: MW] = a_free;
+      end
+    a_slot  = {{(QW-MW){1'b0}}, tail_q} + {{(QW-CW){1'b0}}, n_alloc};
+    if (a_slot >= MSHRS_QW) a_slot = a_slot - MSHRS_QW;
+    tail_d  = a_slot[MW-1:0];
     head_d  = req_pop ? (head_q == LAST_MSHR ? {MW{1'b0}} : head_q + 1'b1) : head_q;
     count_d = count_q + n_alloc - {{(CW-1){1'b0}}, req_pop};
 
