@@ -7,10 +7,11 @@
 // are inputs, written by the host once per frame; they must not change while a ray is in flight
 // (o goes to the output combinationally, d00, dx, dy are read by levels 1 and 2).
 //
-// Levels (every FP operator has STAGES pipeline registers; the operators of a level run side by
-// side and a per-level fp_pipe of the same depth carries the tag and the values needed later):
+// Levels (the operators of a level run side by side with the same number of pipeline registers,
+// S1 .. S8 below: the level's share of the 8 x STAGES by its logic; a per-level fp_pipe of the
+// same depth carries the tag and the values needed later):
 //   0  fx, fy = the pixel coordinates in the format (combinational, exact below 2^(M+1))
-//   1-2  p[c] = d00[c] + fx*dx[c] + fy*dy[c]   3 fp_sop (2 x STAGES: the products exact, one
+//   1-2  p[c] = d00[c] + fx*dx[c] + fy*dy[c]   3 fp_sop (S1 + S2: the products exact, one
 //                                               rounding; issue 27 part 4)
 //   3  p[c]*p[c]                                  3 fp_mul
 //   4  add3 of the squares                        1 fp_add3
@@ -81,6 +82,20 @@ module rgu_ray #(
   localparam [W-1:0] ONE   = {1'b0, BIAS[E-1:0], {M{1'b0}}};  // 1.0
   localparam integer T     = TAG_BITS;
   localparam integer RND   = RAYCORE != 0 ? 0 : RNE;  // raycore truncates (conversion, sqrt)
+  // Registers per level: the 8 x STAGES of the latency shared out by the logic each level holds
+  // (the registers each needs for 95 FO4, docs/timing.md's operators: the sop with the pixel's
+  // conversion 4 over levels 1-2, a mul 1, the add3 3, the square root and each divider 7; 30 in
+  // all). Level l takes (8 STAGES Q_l) / 30 - (8 STAGES Q_l-1) / 30, Q the cumulative weights: at
+  // STAGES 2, 1 1 0 2 4 3 1 4 (the sop 2).
+  localparam integer Q1 = 2, Q2 = 4, Q3 = 5, Q4 = 8, Q5 = 15, Q6 = 22, Q7 = 23;
+  localparam integer S1 = (8 * STAGES * Q1) / 30;
+  localparam integer S2 = (8 * STAGES * Q2) / 30 - (8 * STAGES * Q1) / 30;
+  localparam integer S3 = (8 * STAGES * Q3) / 30 - (8 * STAGES * Q2) / 30;
+  localparam integer S4 = (8 * STAGES * Q4) / 30 - (8 * STAGES * Q3) / 30;
+  localparam integer S5 = (8 * STAGES * Q5) / 30 - (8 * STAGES * Q4) / 30;
+  localparam integer S6 = (8 * STAGES * Q6) / 30 - (8 * STAGES * Q5) / 30;
+  localparam integer S7 = (8 * STAGES * Q7) / 30 - (8 * STAGES * Q6) / 30;
+  localparam integer S8 = 8 * STAGES - (8 * STAGES * Q7) / 30;
   wire unused_one = ^ONE;  // not read with RAYCORE = 1 (fp_rcp has its own 1)
 
   // Level handshakes: v[L] / r[L] = valid / ready at the output of level L (index 0 = the input).
@@ -106,8 +121,8 @@ module rgu_ray #(
     .res_o(fy));
 
   // ---- levels 1-2: p[c] = sop(d00[c], -0, fx, dx[c], fy, dy[c]), one rounding ------------------
-  // Three fp_sop of 2 x STAGES registers each (its four phases) span levels 1 and 2; the carry
-  // pipes of the two levels (STAGES each) hold the same valid bits as the sops' chains.
+  // Three fp_sop of S1 + S2 registers each (over its four phases) span levels 1 and 2; the carry
+  // pipes of the two levels (S1, S2) hold the same valid bits as the sops' chains.
   localparam [W-1:0] NEG = {1'b1, {(W-1){1'b0}}};  // -0: the absent second addend
   wire [3*W-1:0] l2_d00 = {cam_d00_z_i, cam_d00_y_i, cam_d00_x_i};
   wire [3*W-1:0] l2_dx  = {cam_dx_z_i, cam_dx_y_i, cam_dx_x_i};
@@ -115,16 +130,16 @@ module rgu_ray #(
   wire [3*W-1:0] l2_p;
   wire [2:0]     l2_unused_v, l2_unused_r;
   wire [T-1:0]   c1_tag, c2_tag;
-  fp_pipe #(.WIDTH(T), .STAGES(STAGES)) u_carry1 (
+  fp_pipe #(.WIDTH(T), .STAGES(S1)) u_carry1 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(r[1]), .in_data_i(in_tag_i),
     .out_valid_o(v[1]), .out_ready_i(r[2]), .out_data_o(c1_tag));
-  fp_pipe #(.WIDTH(T), .STAGES(STAGES)) u_carry2 (
+  fp_pipe #(.WIDTH(T), .STAGES(S2)) u_carry2 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(r[2]), .in_data_i(c1_tag),
     .out_valid_o(v[2]), .out_ready_i(r[3]), .out_data_o(c2_tag));
   genvar gj;
   generate
     for (gj = 0; gj < 3; gj = gj + 1) begin : g_l2_sop
-      fp_sop_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(2 * STAGES)) u_sop (
+      fp_sop_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1 + S2)) u_sop (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l2_unused_r[gj]),
         .in_a_i(l2_d00[gj*W +: W]), .in_b_i(NEG), .in_x1_i(fx), .in_y1_i(l2_dx[gj*W +: W]),
         .in_x2_i(fy), .in_y2_i(l2_dy[gj*W +: W]), .out_valid_o(l2_unused_v[gj]),
@@ -137,13 +152,13 @@ module rgu_ray #(
   wire [2:0]     l3_unused_v, l3_unused_r;
   wire [T-1:0]   c3_tag;
   wire [3*W-1:0] c3_p;
-  fp_pipe #(.WIDTH(T + 3*W), .STAGES(STAGES)) u_carry3 (
+  fp_pipe #(.WIDTH(T + 3*W), .STAGES(S3)) u_carry3 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(r[3]),
     .in_data_i({c2_tag, l2_p}), .out_valid_o(v[3]), .out_ready_i(r[4]),
     .out_data_o({c3_tag, c3_p}));
   generate
     for (gj = 0; gj < 3; gj = gj + 1) begin : g_l3_mul
-      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_mul (
+      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S3)) u_mul (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[gj]),
         .in_a_i(l2_p[gj*W +: W]), .in_b_i(l2_p[gj*W +: W]), .out_valid_o(l3_unused_v[gj]),
         .out_ready_i(r[4]), .out_res_o(l3_sq[gj*W +: W]));
@@ -155,11 +170,11 @@ module rgu_ray #(
   wire           l4_unused_v, l4_unused_r;
   wire [T-1:0]   c4_tag;
   wire [3*W-1:0] c4_p;
-  fp_pipe #(.WIDTH(T + 3*W), .STAGES(STAGES)) u_carry4 (
+  fp_pipe #(.WIDTH(T + 3*W), .STAGES(S4)) u_carry4 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(r[4]),
     .in_data_i({c3_tag, c3_p}), .out_valid_o(v[4]), .out_ready_i(r[5]),
     .out_data_o({c4_tag, c4_p}));
-  fp_add3_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_l4_add3 (
+  fp_add3_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S4)) u_l4_add3 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(l4_unused_r),
     .in_a_i(l3_sq[0 +: W]), .in_b_i(l3_sq[W +: W]), .in_c_i(l3_sq[2*W +: W]),
     .out_valid_o(l4_unused_v), .out_ready_i(r[5]), .out_res_o(l4_len2));
@@ -169,11 +184,11 @@ module rgu_ray #(
   wire           l5_unused_v, l5_unused_r, l5_unused_tag;
   wire [T-1:0]   c5_tag;
   wire [3*W-1:0] c5_p;
-  fp_pipe #(.WIDTH(T + 3*W), .STAGES(STAGES)) u_carry5 (
+  fp_pipe #(.WIDTH(T + 3*W), .STAGES(S5)) u_carry5 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(r[5]),
     .in_data_i({c4_tag, c4_p}), .out_valid_o(v[5]), .out_ready_i(r[6]),
     .out_data_o({c5_tag, c5_p}));
-  fp_sqrt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RND), .STAGES(STAGES)) u_l5_sqrt (
+  fp_sqrt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RND), .STAGES(S5)) u_l5_sqrt (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(l5_unused_r),
     .in_a_i(l4_len2), .in_tag_i(1'b0), .out_valid_o(l5_unused_v), .out_ready_i(r[6]),
     .out_res_o(l5_len), .out_tag_o(l5_unused_tag));
@@ -183,19 +198,19 @@ module rgu_ray #(
   wire           l6_unused_v, l6_unused_r;
   wire [T-1:0]   c6_tag;
   wire [3*W-1:0] c6_p;
-  fp_pipe #(.WIDTH(T + 3*W), .STAGES(STAGES)) u_carry6 (
+  fp_pipe #(.WIDTH(T + 3*W), .STAGES(S6)) u_carry6 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(r[6]),
     .in_data_i({c5_tag, c5_p}), .out_valid_o(v[6]), .out_ready_i(r[7]),
     .out_data_o({c6_tag, c6_p}));
   generate
     if (RAYCORE != 0) begin : g_l6_table  // raycore: the table reciprocal (hls::rcp<F, raycore>)
       wire unused_tag;
-      fp_rcp #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(STAGES)) u_l6_rcp (
+      fp_rcp #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(S6)) u_l6_rcp (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(l6_unused_r),
         .in_a_i(l5_len), .in_tag_i(1'b0), .out_valid_o(l6_unused_v), .out_ready_i(r[7]),
         .out_res_o(l6_rl), .out_tag_o(unused_tag));
     end else begin : g_l6_div  // rtz, rne: 1 / len, rounded once
-      fp_op2_nt #(.OP("div"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_l6_rcp (
+      fp_op2_nt #(.OP("div"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(S6)) u_l6_rcp (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(l6_unused_r),
         .in_a_i(ONE), .in_b_i(l5_len), .out_valid_o(l6_unused_v), .out_ready_i(r[7]),
         .out_res_o(l6_rl));
@@ -206,12 +221,12 @@ module rgu_ray #(
   wire [3*W-1:0] l7_d;
   wire [2:0]     l7_unused_v, l7_unused_r;
   wire [T-1:0]   c7_tag;
-  fp_pipe #(.WIDTH(T), .STAGES(STAGES)) u_carry7 (
+  fp_pipe #(.WIDTH(T), .STAGES(S7)) u_carry7 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(r[7]), .in_data_i(c6_tag),
     .out_valid_o(v[7]), .out_ready_i(r[8]), .out_data_o(c7_tag));
   generate
     for (gj = 0; gj < 3; gj = gj + 1) begin : g_l7_mul
-      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_mul (
+      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S7)) u_mul (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(l7_unused_r[gj]),
         .in_a_i(c6_p[gj*W +: W]), .in_b_i(l6_rl), .out_valid_o(l7_unused_v[gj]),
         .out_ready_i(r[8]), .out_res_o(l7_d[gj*W +: W]));
@@ -223,7 +238,7 @@ module rgu_ray #(
   wire [2:0]     l8_unused_v, l8_unused_r;
   wire [T-1:0]   c8_tag;
   wire [3*W-1:0] c8_d;
-  fp_pipe #(.WIDTH(T + 3*W), .STAGES(STAGES)) u_carry8 (
+  fp_pipe #(.WIDTH(T + 3*W), .STAGES(S8)) u_carry8 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(r[8]),
     .in_data_i({c7_tag, l7_d}), .out_valid_o(v[8]), .out_ready_i(r[9]),
     .out_data_o({c8_tag, c8_d}));
@@ -231,12 +246,12 @@ module rgu_ray #(
     for (gj = 0; gj < 3; gj = gj + 1) begin : g_l8_rcp
       if (RAYCORE != 0) begin : g_table
         wire unused_tag;
-        fp_rcp #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(STAGES)) u_rcp (
+        fp_rcp #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(S8)) u_rcp (
           .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(l8_unused_r[gj]),
           .in_a_i(l7_d[gj*W +: W]), .in_tag_i(1'b0), .out_valid_o(l8_unused_v[gj]),
           .out_ready_i(r[9]), .out_res_o(l8_inv[gj*W +: W]), .out_tag_o(unused_tag));
       end else begin : g_div
-        fp_op2_nt #(.OP("div"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(STAGES)) u_rcp (
+        fp_op2_nt #(.OP("div"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(S8)) u_rcp (
           .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(l8_unused_r[gj]),
           .in_a_i(ONE), .in_b_i(l7_d[gj*W +: W]), .out_valid_o(l8_unused_v[gj]),
           .out_ready_i(r[9]), .out_res_o(l8_inv[gj*W +: W]));
