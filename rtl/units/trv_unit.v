@@ -155,7 +155,17 @@ module trv_unit #(
   reg            err_q;
 
   assign head_valid_o = (cnt_q != {(SLOT_BITS+1){1'b0}});
-  assign head_ready_o = fq_ready[head_q];
+
+  // ---- the queue's head window -----------------------------------------------------------------
+  // The first PIPES entries (head_q + k) in registers, so that a pass starts from its entry
+  // without a read of the queue's array: refilled at every edge, each from the array (an entry
+  // behind the new head, its stack pointer as the split stage writes it back at that edge) or
+  // from this cycle's pushes (an entry that enters the window as it is pushed). Beyond cnt_q the
+  // window's entries are not read.
+  reg [SLOT_BITS-1:0] w_slot_q  [0:PIPES-1];
+  reg [31:0]          w_ready_q [0:PIPES-1];
+  reg [6:0]           w_sp_q    [0:PIPES-1];
+  assign head_ready_o = w_ready_q[0];
 
   // ---- slot reads for the ist and hit units (READS = 1) -----------------------------------------
   // A wire ray's {o xyz, d xyz} (its bits [5W +: 6W], o x highest) as {d zyx, o zyx} (o x lowest).
@@ -249,14 +259,13 @@ module trv_unit #(
   genvar p;
   generate
     for (p = 0; p < PIPES; p = p + 1) begin : g_pipe
-      wire [SLOT_BITS-1:0] qi = head_q + p[SLOT_BITS-1:0];
-      wire [SLOT_BITS-1:0] s = fq_slot[qi];
-      wire [31:0] dt = fq_ready[qi] - now_i;
+      wire [SLOT_BITS-1:0] s = w_slot_q[p];
+      wire [31:0] dt = w_ready_q[p] - now_i;
       wire go = go_chain[p] && (p < pipes_i) && (cnt_q > p) && (dt[31] || dt == 32'd0);
       assign go_chain[p+1] = go;
       assign go_o[p] = go;
       assign slot_o[p*SLOT_BITS +: SLOT_BITS] = s;
-      wire [6:0] sp = fq_sp[qi];
+      wire [6:0] sp = w_sp_q[p];
       wire [6:0] sp1 = sp - 7'd1;
       wire [6:0] sp2 = sp - 7'd2;
       wire [EW-1:0] e1 = stk_q[{s, sp1[DB-1:0]}];
@@ -400,6 +409,45 @@ module trv_unit #(
     if (in_valid_i) pushes = pushes + 1'b1;
   end
 
+  // The window after the edge: entry k is at head_q + pops + k.
+  reg [SLOT_BITS-1:0] wn_slot [0:PIPES-1];
+  reg [31:0]          wn_ready[0:PIPES-1];
+  reg [6:0]           wn_sp   [0:PIPES-1];
+  reg [SLOT_BITS-1:0] w_pos;
+  reg [SLOT_BITS:0]   w_rel;
+  integer k, x;
+  always @* begin
+    for (k = 0; k < PIPES; k = k + 1) begin
+      w_rel = pops + k[SLOT_BITS:0];
+      w_pos = head_q + w_rel[SLOT_BITS-1:0];
+      wn_slot[k] = fq_slot[w_pos];
+      wn_ready[k] = fq_ready[w_pos];
+      wn_sp[k] = fq_sp[w_pos];
+      if (w_rel < cnt_q) begin  // an entry already queued
+        for (x = 0; x < PIPES; x = x + 1)
+          if (s_push[x] && sat_q[x] == w_pos) wn_sp[k] = ssp_q[x] + 7'd1;
+      end else begin            // one pushed in this cycle (or none: not read)
+        for (x = 0; x < IST; x = x + 1)
+          if (res_done[x] && res_at[x*SLOT_BITS +: SLOT_BITS] == w_pos) begin
+            wn_slot[k] = res_slot_i[x*SLOT_BITS +: SLOT_BITS];
+            wn_ready[k] = now_i + 32'd1;
+            wn_sp[k] = sp_q[res_slot_i[x*SLOT_BITS +: SLOT_BITS]];
+          end
+        for (x = 0; x < PIPES; x = x + 1)
+          if (go_o[x] && p_qpush[x] && pipe_at[x*SLOT_BITS +: SLOT_BITS] == w_pos) begin
+            wn_slot[k] = slot_o[x*SLOT_BITS +: SLOT_BITS];
+            wn_ready[k] = p_qready[x*32 +: 32];
+            wn_sp[k] = p_sp[x*7 +: 7];
+          end
+        if (in_valid_i && rgu_at == w_pos) begin
+          wn_slot[k] = in_slot_i;
+          wn_ready[k] = now_i + 32'd1;
+          wn_sp[k] = 7'd0;
+        end
+      end
+    end
+  end
+
   // The slot arrays, the stacks and the queue's entries (no reset: written before they are read).
   integer b;
   always @(posedge clk_i) begin
@@ -465,6 +513,11 @@ module trv_unit #(
         stf_q[b]    <= p_s_tfar[b*W +: W];
         sray_q[b]   <= p_s_ray[b*3*W +: 3*W];
       end
+    end
+    for (b = 0; b < PIPES; b = b + 1) begin
+      w_slot_q[b]  <= wn_slot[b];
+      w_ready_q[b] <= wn_ready[b];
+      w_sp_q[b]    <= wn_sp[b];
     end
     // ist results, in port order (a later port of the same ray holds the reduction so far).
     for (b = 0; b < IST; b = b + 1) begin
