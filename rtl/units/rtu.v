@@ -276,13 +276,20 @@ module rtu #(
   wire unused_trv = ^{t_ist_tmax, t_best, t_head_valid, t_head_ready, t_pend};
 
   // ---- the node and list caches: the trv's accesses, in port order ------------------------------
-  wire [PIPES-1:0]         n_hit;  // the node cache: access A of each pipe (B reads the list)
-  wire [NA-1:0]            l_hit;
+  // One port per pipe in each: the node cache takes access A of a node pass (B always reads the
+  // list), the list cache access A of a list pass or access B of a node pass: a pass makes at most
+  // one list read (a list pass has no B, a node pass's A is the node), so port p holds pipe p's,
+  // in the same order as the accesses A0, B0, A1, B1, ... A port's response is the presence and
+  // bytes of its line whether or not it accesses, for the access the pass looks at.
+  wire [PIPES-1:0]         n_hit;
+  wire [PIPES-1:0]         l_hit;
   wire [PIPES*8*NODE_LB-1:0] n_data;
   wire [PIPES-1:0]         n_valid;
-  wire [NA*8*LIST_LB-1:0]  l_data;
+  wire [PIPES*8*LIST_LB-1:0] l_data;
   wire [PIPES*LINE_W-1:0]  n_line;
-  wire [NA*LINE_W-1:0]     l_line;
+  wire [NA*LINE_W-1:0]     l_line;  // the list line of each access (A of a list pass, B)
+  wire [PIPES*LINE_W-1:0]  lp_line;
+  wire [PIPES-1:0]         lp_valid;
   genvar ga;
   generate
     for (ga = 0; ga < NA; ga = ga + 1) begin : g_acc
@@ -300,6 +307,10 @@ module rtu #(
         assign n_valid[ga/2] = t_acc_valid[ga] & ~lst;
         assign nd = n_data[(ga/2)*8*NODE_LB +: 8*NODE_LB];
         assign nh = n_hit[ga/2];
+        // The pipe's list port: its A's line in a list pass, else its B's.
+        assign lp_line[(ga/2)*LINE_W +: LINE_W] =
+            lst ? l_line[ga*LINE_W +: LINE_W] : l_line[(ga+1)*LINE_W +: LINE_W];
+        assign lp_valid[ga/2] = lst ? t_acc_valid[ga] : t_acc_valid[ga+1];
       end else begin : g_list_only
         assign nd = {8*NODE_LB{1'b0}};
         assign nh = 1'b0;
@@ -309,10 +320,10 @@ module rtu #(
       wire [31:0] left  = ((lst ? LIST_LB : NODE_LB) - off) >> 2;
       wire [31:0] avail = (left < WORDS) ? left : WORDS;
       wire [32*WORDS+8*MAXLB-1:0] wide = lst
-          ? {{(32*WORDS+8*MAXLB-8*LIST_LB){1'b0}}, l_data[ga*8*LIST_LB +: 8*LIST_LB]}
+          ? {{(32*WORDS+8*MAXLB-8*LIST_LB){1'b0}}, l_data[(ga/2)*8*LIST_LB +: 8*LIST_LB]}
           : {{(32*WORDS+8*MAXLB-8*NODE_LB){1'b0}}, nd};
       wire [32*WORDS+8*MAXLB-1:0] shifted = wide >> {off, 3'b000};
-      assign t_rsp_hit[ga] = lst ? l_hit[ga] : nh;
+      assign t_rsp_hit[ga] = lst ? l_hit[ga/2] : nh;
       assign t_rsp_avail[ga*6 +: 6] = avail[5:0];
       assign t_rsp_data[ga*32*WORDS +: 32*WORDS] = shifted[0 +: 32*WORDS];
       wire unused_rsp = ^{avail[31:6], shifted[32*WORDS +: 8*MAXLB]};
@@ -325,9 +336,9 @@ module rtu #(
   wire [3*8*MAXLB-1:0] fill_data;
   wire [3*32-1:0]   c_hits, c_misses, c_merges, c_full, c_sfull, c_fills;
   wire [PIPES-1:0]  n_unused_v, n_unused_m, n_unused_f, n_unused_s, n_unused_t;
-  wire [NA-1:0]     l_unused_v, l_unused_m, l_unused_f, l_unused_s;
+  wire [PIPES-1:0]  l_unused_v, l_unused_m, l_unused_f, l_unused_s;
   wire [IST-1:0]    t_unused_v, t_unused_m, t_unused_f, t_unused_s;
-  wire [NA-1:0]     l_unused_t;
+  wire [PIPES-1:0]  l_unused_t;
   wire [IST-1:0]    t_unused_t;
   wire [3*($clog2(MSHRS+1))-1:0] mshr_busy;
 
@@ -347,9 +358,9 @@ module rtu #(
     .cnt_set_full_o(c_sfull[0 +: 32]), .cnt_fills_o(c_fills[0 +: 32]));
 
   ascache #(.SETS(LIST_SETS), .WAYS(WAYS), .LINE_BYTES(LIST_LB), .MSHRS(MSHRS), .HIT_LATENCY(0),
-            .PORTS(NA), .LINE_W(LINE_W), .TAG_BITS(1), .CNT_BITS(32)) u_list (
+            .PORTS(PIPES), .LINE_W(LINE_W), .TAG_BITS(1), .CNT_BITS(32)) u_list (
     .clk_i(clk_i), .rst_ni(rst_ni),
-    .acc_valid_i(t_acc_valid & t_acc_list), .acc_line_i(l_line), .acc_tag_i({NA{1'b0}}),
+    .acc_valid_i(lp_valid), .acc_line_i(lp_line), .acc_tag_i({PIPES{1'b0}}),
     .rsp_valid_o(l_unused_v), .rsp_hit_o(l_hit), .rsp_merge_o(l_unused_m),
     .rsp_full_o(l_unused_f), .rsp_set_full_o(l_unused_s), .rsp_tag_o(l_unused_t), .rsp_data_o(l_data),
     .req_valid_o(req_valid_o[1]), .req_ready_i(req_ready_i[1]),
