@@ -95,6 +95,10 @@ class TrvRtlT final : public TrvRtl {
       for (uint32_t i = 0; i < avail; ++i)
         set_bits(m_.rsp_data_i, (a * WORDS + i) * 32, 32,
                  uint32_t(hls::detail::get_le(line + off + 4 * i, 4)));
+      if (a % 2 == 0 && !get_bits(m_.acc_list_o, a, 1))  // access A's node word (rsp_node_i)
+        for (uint32_t i = 0; i < 2; ++i)
+          set_bits(m_.rsp_node_i, (a / 2 * 2 + i) * 32, 32,
+                   uint32_t(hls::detail::get_le(line + off + 4 * i, 4)));
       m_.eval();
     }
     probe_.res_valid = m_.res_valid_i;

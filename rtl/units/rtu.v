@@ -189,6 +189,7 @@ module rtu #(
   wire [NA*32-1:0]     t_acc_byte;
   wire [NA*6-1:0]      t_rsp_avail;
   wire [NA*32*WORDS-1:0] t_rsp_data;
+  wire [PIPES*64-1:0]  t_rsp_node;  // access A's node word from the node cache alone
   wire                 t_head_valid, t_pend;
   wire [31:0]          t_head_ready;
   wire [63:0]          c_trv_busy, c_node_miss, c_list_miss, c_ist_full, c_inner, c_leaf, c_pops,
@@ -248,6 +249,7 @@ module rtu #(
     .res_rec_i(i_res_rec), .room_i(i_room),
     .acc_valid_o(t_acc_valid), .acc_list_o(t_acc_list), .acc_byte_o(t_acc_byte),
     .rsp_hit_i(t_rsp_hit), .rsp_avail_i(t_rsp_avail), .rsp_data_i(t_rsp_data),
+    .rsp_node_i(t_rsp_node),
     .go_o(t_go), .slot_o(t_slot), .fin_o(t_fin), .best_o(t_best), .ist_n_o(t_ist_n),
     .ist_pos_o(t_ist_pos), .ist_ready_o(t_ist_ready), .ist_tmax_o(t_ist_tmax),
     .ist_words_o(t_ist_words),
@@ -311,6 +313,10 @@ module rtu #(
         assign lp_line[(ga/2)*LINE_W +: LINE_W] =
             lst ? l_line[ga*LINE_W +: LINE_W] : l_line[(ga+1)*LINE_W +: LINE_W];
         assign lp_valid[ga/2] = lst ? t_acc_valid[ga] : t_acc_valid[ga+1];
+        // The node word at the byte read, from the node cache's line (not through the list's).
+        wire [8*NODE_LB-1:0] nw = nd >> {byte_a[NLB-1:0], 3'b000};
+        assign t_rsp_node[(ga/2)*64 +: 64] = nw[63:0];
+        wire unused_nw = ^nw[8*NODE_LB-1:64];
       end else begin : g_list_only
         assign nd = {8*NODE_LB{1'b0}};
         assign nh = 1'b0;

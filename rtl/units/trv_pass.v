@@ -83,6 +83,10 @@ module trv_pass #(
   input  wire                          rsp_a_hit_i,
   input  wire [5:0]                    rsp_a_avail_i,
   input  wire [32*WORDS-1:0]           rsp_a_data_i,
+  input  wire [63:0]                   rsp_a_node_i, // access A's node word, from the node cache
+                                                     //   alone (the list words of a list pass come
+                                                     //   on rsp_a_data_i: so no path runs from a
+                                                     //   list read into this pass's access B)
   output reg                           acc_b_valid_o,
   output reg  [31:0]                   acc_b_byte_o,
   input  wire                          rsp_b_hit_i,
@@ -195,8 +199,8 @@ module trv_pass #(
   wire node_from_e1 = pop1_node && fuse_i;
 
   // The node read by access A, and an inner node's split inputs.
-  wire [31:0]  nd_lo = rsp_a_data_i[31:0];
-  wire [31:0]  nd_hi = rsp_a_data_i[63:32];
+  wire [31:0]  nd_lo = rsp_a_node_i[31:0];
+  wire [31:0]  nd_hi = rsp_a_node_i[63:32];
   wire [31:0]  nd_index = {8'd0, nd_hi[23:0]};
   wire [1:0]   nd_axis = nd_hi[25:24];
   wire [31:0]  this_node = node_from_e1 ? e1_node : node_i;

@@ -84,6 +84,8 @@ module trv_unit #(
   input  wire [2*PIPES-1:0]              rsp_hit_i,
   input  wire [2*PIPES*6-1:0]            rsp_avail_i,
   input  wire [2*PIPES*32*WORDS-1:0]     rsp_data_i,
+  input  wire [PIPES*64-1:0]             rsp_node_i,  // pipe p's access A as the node cache
+                                                      //   answers it: the node word
   // Per pipe: the slot it took, finish (with the best record) and the ist hand-off.
   output wire [PIPES-1:0]                go_o,
   output wire [PIPES*SLOT_BITS-1:0]      slot_o,
@@ -285,6 +287,7 @@ module trv_unit #(
         .acc_a_valid_o(acc_valid_o[2*p]), .acc_a_list_o(acc_list_o[2*p]),
         .acc_a_byte_o(acc_byte_o[2*p*32 +: 32]), .rsp_a_hit_i(rsp_hit_i[2*p]),
         .rsp_a_avail_i(rsp_avail_i[2*p*6 +: 6]), .rsp_a_data_i(rsp_data_i[2*p*32*WORDS +: 32*WORDS]),
+        .rsp_a_node_i(rsp_node_i[p*64 +: 64]),
         .acc_b_valid_o(acc_valid_o[2*p+1]), .acc_b_byte_o(acc_byte_o[(2*p+1)*32 +: 32]),
         .rsp_b_hit_i(rsp_hit_i[2*p+1]), .rsp_b_avail_i(rsp_avail_i[(2*p+1)*6 +: 6]),
         .rsp_b_data_i(rsp_data_i[(2*p+1)*32*WORDS +: 32*WORDS]),
