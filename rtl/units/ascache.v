@@ -383,7 +383,7 @@ module ascache #(
       end
   end
 
-  // How many of this cycle's accesses hit, missed, ...; how many requests were queued.
+  // How many of this cycle's accesses hit, missed, ... (the allocations: n_alloc above).
   reg [CNT_BITS-1:0] n_hit, n_miss, n_merge, n_full, n_sfull;
   always @* begin
     n_hit = {CNT_BITS{1'b0}};
