@@ -385,7 +385,7 @@ module trv_unit #(
   assign pend_o = |sv_q;
   assign err_o = err_q || |s_err;
 
-  // ---- 3. state update -------------------------------------------------------------------------
+  // ---- 5. state update (with the queue's head window) ----------------------------------------
   // Where each queue push goes: after the live entries, in the order results, pipes, rgu (the
   // popped entries leave from the head, so the tail does not move with them).
   wire [SLOT_BITS-1:0] tail = head_q + cnt_q[SLOT_BITS-1:0];
