@@ -1,6 +1,7 @@
 // systemc/trv.h - kd-tree traversal for many rays in flight. Each cycle the ray at the head of the
-// ready queue takes one step (box clip, one inner node, one list line, the leaf's end, one stack
-// pop) and loops back trv_latency cycles later. A ray whose node or list line misses in the
+// ready queue takes one step (box clip, one inner node, the leaf's end, one stack pop) and loops
+// back trv_latency cycles later; a step that reads a list line asks the list stage for it, which
+// reads it in the next cycle (see tick). A ray whose node or list line misses in the
 // ascache loops back the same way and tries again ("looping for the next chance"): the pipeline
 // never stalls on memory. A leaf's list entries go to the ist; the ray waits for all of its
 // results, then its leaf-end step mirrors the golden tracer's termination rules exactly.
@@ -8,7 +9,9 @@
 
 #include <systemc>
 
+#include <algorithm>
 #include <stdexcept>
+#include <vector>
 
 #include "hls/image.h"
 #include "hls/trv.h"
@@ -26,16 +29,24 @@ class Trv : public SlotUnit {
     if (pipes_ < 1 || pipes_ > 16) throw std::invalid_argument("trv pipes must be 1..16");
   }
 
-  // One cycle: each of the pipes takes the ray at the head of the ready queue (pipe 0 first; they
-  // share the node and list caches, which take one access per pipe and cycle: RayCore's L1s have
-  // two request ports for its two traversal units).
+  // One cycle. First the list stage: the list steps that the pipes' passes asked for in the cycle
+  // before, in pipe order, one list-cache access each (a pass asks for at most one: a list pass's
+  // own, or a node pass's fused one after a leaf). Then each of the pipes takes the ray at the
+  // head of the ready queue (pipe 0 first; they share the node cache, one access per pipe and
+  // cycle: RayCore's L1s have two request ports for its two traversal units). So no cache access
+  // of a cycle depends on another's answer: the list read follows the node read a cycle later.
   bool tick(Cycle now) {
-    bool any = false;
+    bool any = list_stage(now);
     for (uint32_t p = 0; p < pipes_ && step(now); ++p) any = true;
+    stage_.swap(asked_);
+    asked_.clear();
+    stage_at_ = now + 1;
     return any;
   }
 
-  Cycle next_event() const { return ch_.trv_q.head_ready(); }
+  Cycle next_event() const {
+    return stage_.empty() ? ch_.trv_q.head_ready() : std::min(ch_.trv_q.head_ready(), stage_at_);
+  }
 
  private:
   bool step(Cycle now) {
@@ -60,7 +71,7 @@ class Trv : public SlotUnit {
       case SlotState::node:
         return node_step(s, r, now, 0, false);
       case SlotState::list:
-        return list_step(s, r, now, 0, false);
+        return ask_list(s, now, 0, false);
       case SlotState::leaf_done: {
         ++st_.trv_busy;
         // Results of the leaf, reduced in list order: the closest, ties to the earliest entry.
@@ -142,16 +153,34 @@ class Trv : public SlotUnit {
     r.results = 0;
     r.leaf = Best{};
     r.state = SlotState::list;
-    if (fuse_) {  // the leaf's first list line in the same pass
+    if (fuse_) {  // the leaf's first list line fused into the pass (read by the list stage)
       ++st_.trv_fused;
-      return list_step(s, r, now, x, true);
+      return ask_list(s, now, x, true);
     }
     ch_.trv_q.push(s, next);
     return true;
   }
 
-  bool list_step(uint16_t s, Slot& r, Cycle now, uint32_t extra, bool fused) {
-    const Cycle again = now + extra + lat_;
+  // A list step asked for by the pass at cycle now, `extra` into it: the list stage makes it in
+  // the next cycle, its ready cycles counted from base = now + extra (at least the stage's cycle).
+  bool ask_list(uint16_t s, Cycle now, uint32_t extra, bool fused) {
+    asked_.push_back({s, std::max<Cycle>(now + extra, now + 1), fused});
+    return true;
+  }
+
+  // The list stage: the steps asked for in the cycle before, in pipe order, each with the ist
+  // queue's room as the steps before it left it (a step that misses takes none: so a ray whose
+  // line is pinned for it is never kept from reading it by a step that cannot go on).
+  bool list_stage(Cycle now) {
+    if (stage_.empty()) return false;
+    if (now != stage_at_) throw std::logic_error("trv: the list stage skipped its cycle");
+    for (const Asked& a : stage_) list_step(a.slot, ch_.slots[a.slot], a.base, a.fused);
+    stage_.clear();
+    return true;
+  }
+
+  bool list_step(uint16_t s, Slot& r, Cycle base, bool fused) {
+    const Cycle again = base + lat_;
     const uint32_t lb = ch_.list->line_bytes();
     const uint64_t byte = uint64_t(r.list_first + r.list_pos) * 4;
     const size_t room = ch_.ist_q.capacity() - ch_.ist_q.size();
@@ -170,7 +199,7 @@ class Trv : public SlotUnit {
     ++st_.list_steps;
     uint32_t n = std::min<uint32_t>(r.list_count - r.list_pos, uint32_t((lb - byte % lb) / 4));
     n = std::min<uint32_t>(n, uint32_t(room));
-    const Cycle ready = now + extra + 1 + hit_lat(*ch_.list);
+    const Cycle ready = base + 1 + hit_lat(*ch_.list);
     for (uint32_t i = 0; i < n; ++i) {
       const uint32_t tri = uint32_t(hls::detail::get_le(line + byte % lb + size_t(i) * 4, 4));
       if (fc_.mailbox != 0 && in_mailbox(r, tri)) {  // tested before: cannot win, counts as done
@@ -224,8 +253,15 @@ class Trv : public SlotUnit {
     return true;
   }
 
+  struct Asked {  // a list step for the list stage
+    uint16_t slot;
+    Cycle base;
+    bool fused;
+  };
   uint32_t pipes_;
   bool fuse_;
+  std::vector<Asked> stage_, asked_;  // this cycle's list steps; the ones asked for it
+  Cycle stage_at_ = 0;                // the cycle stage_ runs in
 };
 
 }  // namespace raycore::sc

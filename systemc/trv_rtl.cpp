@@ -78,54 +78,68 @@ class TrvRtlT final : public TrvRtl {
     const bool had_results = !results_.empty();
     results_.clear();
     m_.room_i = uint16_t(ch_.ist_q.capacity() - ch_.ist_q.size());
-    m_.rsp_hit_i = 0;
+    m_.nrsp_hit_i = 0;
+    m_.lrsp_hit_i = 0;
     m_.eval();
-    // The pipes' cache accesses in the model's order; a hit changes what follows (re-evaluate).
-    for (unsigned a = 0; a < 2 * PIPES; ++a) {
-      if (!get_bits(m_.acc_valid_o, a, 1)) continue;
-      const uint32_t byte = get_bits(m_.acc_byte_o, a * 32, 32);
-      Ascache& c = get_bits(m_.acc_list_o, a, 1) ? *ch_.list : *ch_.node;
-      const uint32_t lb = c.line_bytes();
-      const uint8_t* line = c.access(byte / lb);
+    // The cache accesses in the model's order: the list stage's (stage p's access valid depends on
+    // the answers to stages 0 .. p-1 through the ist queue's room: re-evaluate after a hit), then
+    // the pipes' node reads (no access depends on their answers: one evaluation after them).
+    uint32_t acc = 0, hit = 0;  // the probe's ports: 2p the pipe's node read, 2p + 1 its list read
+    for (unsigned p = 0; p < PIPES; ++p) {
+      if (!get_bits(m_.lacc_valid_o, p, 1)) continue;
+      acc |= 2u << (2 * p);
+      const uint32_t byte = get_bits(m_.lacc_byte_o, p * 32, 32);
+      const uint32_t lb = ch_.list->line_bytes();
+      const uint8_t* line = ch_.list->access(byte / lb);
       if (!line) continue;  // a miss: the response's default
+      hit |= 2u << (2 * p);
       const uint32_t off = byte % lb;
-      const uint32_t avail = std::min<uint32_t>((lb - off) / 4, WORDS);
-      set_bits(m_.rsp_hit_i, a, 1, 1);
-      set_bits(m_.rsp_avail_i, a * 6, 6, avail);
-      for (uint32_t i = 0; i < avail; ++i)
-        set_bits(m_.rsp_data_i, (a * WORDS + i) * 32, 32,
+      set_bits(m_.lrsp_hit_i, p, 1, 1);
+      for (uint32_t i = 0; i < (lb - off) / 4; ++i)
+        set_bits(m_.lrsp_data_i, (p * WORDS + i) * 32, 32,
                  uint32_t(hls::detail::get_le(line + off + 4 * i, 4)));
-      if (a % 2 == 0 && !get_bits(m_.acc_list_o, a, 1))  // access A's node word (rsp_node_i)
-        for (uint32_t i = 0; i < 2; ++i)
-          set_bits(m_.rsp_node_i, (a / 2 * 2 + i) * 32, 32,
-                   uint32_t(hls::detail::get_le(line + off + 4 * i, 4)));
       m_.eval();
     }
+    for (unsigned p = 0; p < PIPES; ++p) {
+      if (!get_bits(m_.nacc_valid_o, p, 1)) continue;
+      acc |= 1u << (2 * p);
+      const uint32_t byte = get_bits(m_.nacc_byte_o, p * 32, 32);
+      const uint32_t lb = ch_.node->line_bytes();
+      const uint8_t* line = ch_.node->access(byte / lb);
+      if (!line) continue;
+      hit |= 1u << (2 * p);
+      set_bits(m_.nrsp_hit_i, p, 1, 1);
+      for (uint32_t i = 0; i < 2; ++i)
+        set_bits(m_.nrsp_node_i, (p * 2 + i) * 32, 32,
+                 uint32_t(hls::detail::get_le(line + byte % lb + 4 * i, 4)));
+    }
+    if (hit & 0x55555555u) m_.eval();  // a node read hit
     probe_.res_valid = m_.res_valid_i;
     probe_.go = m_.go_o;
     probe_.fin = m_.fin_o;
-    probe_.acc_valid = m_.acc_valid_o;
-    probe_.rsp_hit = m_.rsp_hit_i;
-    for (unsigned p = 0; p < PIPES; ++p)
-      if (get_bits(m_.go_o, p, 1)) probe_.ist_entries += get_bits(m_.ist_n_o, p * 6, 6);
+    probe_.acc_valid = acc;
+    probe_.rsp_hit = hit;
+    for (unsigned p = 0; p < PIPES; ++p) probe_.ist_entries += get_bits(m_.ist_n_o, p * 6, 6);
     if (m_.err_o)
       throw std::runtime_error("trv: a ray needs more than the " + std::to_string(fc_.stack_depth) +
                                " stack entries of --stack-depth (at most 64, the deepest tree)");
-    // The pipes' hand-offs, in pipe order.
-    bool any = false;
+    // The list stage's hand-offs, then the pipes' finished rays, in pipe order.
+    bool any = m_.pend_o;
+    for (unsigned p = 0; p < PIPES; ++p) {
+      const uint32_t n = get_bits(m_.ist_n_o, p * 6, 6);
+      if (n == 0) continue;
+      const uint16_t s = uint16_t(get_bits(m_.ist_slot_o, p * SLOT_BITS, SLOT_BITS));
+      ch_.slots[s].tmax = get_bits(m_.ist_tmax_o, p * W, W);  // the leaf-entry tmax it tests with
+      const uint32_t pos = get_bits(m_.ist_pos_o, p * 32, 32);
+      const Cycle ready = at(now, get_bits(m_.ist_ready_o, p * 32, 32));
+      for (uint32_t i = 0; i < n; ++i)
+        ch_.ist_q.push({s, pos + i, get_bits(m_.ist_words_o, (p * WORDS + i) * 32, 32)}, ready);
+    }
     for (unsigned p = 0; p < PIPES; ++p) {
       if (!get_bits(m_.go_o, p, 1)) continue;
       any = true;
       const uint16_t s = uint16_t(get_bits(m_.slot_o, p * SLOT_BITS, SLOT_BITS));
       Slot& r = ch_.slots[s];
-      const uint32_t n = get_bits(m_.ist_n_o, p * 6, 6);
-      if (n != 0) {
-        r.tmax = get_bits(m_.ist_tmax_o, p * W, W);  // the leaf-entry tmax the ist tests with
-        const uint32_t pos = get_bits(m_.ist_pos_o, p * 32, 32);
-        const Cycle ready = at(now, get_bits(m_.ist_ready_o, p * 32, 32));
-        for (uint32_t i = 0; i < n; ++i)
-          ch_.ist_q.push({s, pos + i, get_bits(m_.ist_words_o, (p * WORDS + i) * 32, 32)}, ready);
-      }
       if (get_bits(m_.fin_o, p, 1)) {
         r.best = vl::get_best(m_.best_o, p * BW, W);
         r.state = SlotState::done;
@@ -157,7 +171,8 @@ class TrvRtlT final : public TrvRtl {
       m_.clk_i = 0;
       m_.now_i = uint32_t(now);
       m_.res_valid_i = 0;
-      m_.rsp_hit_i = 0;
+      m_.nrsp_hit_i = 0;
+      m_.lrsp_hit_i = 0;
       m_.room_i = uint16_t(ch_.ist_q.capacity() - ch_.ist_q.size());
       m_.eval();  // clk low seen, so that the next evaluation has a rising edge
     }
@@ -174,7 +189,7 @@ class TrvRtlT final : public TrvRtl {
   }
 
   Cycle next_event(Cycle now) const override {
-    if (m_.pend_o) return now + 1;  // the split stage writes back in the next cycle
+    if (m_.pend_o) return now + 1;  // the split or the list stage works in the next cycle
     if (!m_.head_valid_o) return kNever;
     return at(now, m_.head_ready_o);
   }
@@ -200,6 +215,7 @@ class TrvRtlT final : public TrvRtl {
     m_.lat_i = uint16_t(cfg_.trv_latency);
     m_.node_hl_i = uint16_t(ch_.node->hit_latency);
     m_.list_hl_i = uint16_t(ch_.list->hit_latency);
+    m_.lwords_i = uint8_t(ch_.list->line_bytes() / 4);
     m_.pipes_i = uint8_t(cfg_.trv_pipes);
     m_.fuse_i = cfg_.trv_fuse;
     m_.any_hit_i = fc_.spawn.any_hit;

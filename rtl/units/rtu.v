@@ -13,11 +13,12 @@
 // Per cycle, as Rtu::tick orders the units: the fills (vtu_unit); the hit unit's ray leaving
 // (hit_unit out_*: its slot freed, or the shadow ray kept in it and handed to the rgu in the same
 // cycle); the ist (ist_unit: queue heads, triangle-cache reads, results leaving) and its results
-// into the trv (trv_unit res_*); the trv's pipes (cache reads, hand-offs to the ist, finished rays
-// to the hit unit's queue at now + lat_i); the rgu's ray into the trv (a shadow ray from the hit
-// unit's out_ray_o, or the next primary ray in the free slot that rgu_unit picks). The trv's node
-// and list reads go to the node and list caches by acc_list_o, all 2 x PIPES of a cycle in port
-// order (ascache.v's PORTS chained); the trv takes up to WORDS 32-bit words from the byte read on.
+// into the trv (trv_unit res_*); the trv's list stage and pipes (cache reads, hand-offs to the ist,
+// finished rays to the hit unit's queue at now + lat_i); the rgu's ray into the trv (a shadow ray from the hit
+// unit's out_ray_o, or the next primary ray in the free slot that rgu_unit picks). The trv's
+// passes read the node cache (one port per pipe, the node word at the byte read), its list stage
+// the list cache (one port per pipe, up to WORDS 32-bit words from the byte read on); no access
+// of a cycle depends on another's answer.
 //
 // now: the RTU's cycle counter from reset, the units' ready cycles are compared with it.
 // Counters (cnt_sel_i -> cnt_o, systemc/config.h RtuStats): 0 now, 1 trv_busy, 2 trv_node_miss,
@@ -143,7 +144,6 @@ module rtu #(
   localparam integer W    = W_;
   localparam integer BW   = 67 + 5 * W;
   localparam integer RPL  = TLB / RB_;             // triangle records per line
-  localparam integer NA   = 2 * PIPES;                // trv cache accesses per cycle
   localparam integer NLB  = $clog2(NODE_LB);
   localparam integer LLB  = $clog2(LIST_LB);
   localparam integer MAXLB = (NODE_LB > LIST_LB) ? ((NODE_LB > TLB) ? NODE_LB : TLB)
@@ -179,17 +179,16 @@ module rtu #(
   wire [1+BW+6*W-1:0]  h_rd;
   // trv <-> ist, trv -> hit, trv <-> caches
   wire [PIPES-1:0]     t_go, t_fin;
-  wire [PIPES*SLOT_BITS-1:0] t_slot;
+  wire [PIPES*SLOT_BITS-1:0] t_slot, t_ist_slot;
   wire [PIPES*BW-1:0]  t_best;
   wire [PIPES*6-1:0]   t_ist_n;
   wire [PIPES*32-1:0]  t_ist_pos, t_ist_ready;
   wire [PIPES*W-1:0]   t_ist_tmax;
   wire [PIPES*32*WORDS-1:0] t_ist_words;
-  wire [NA-1:0]        t_acc_valid, t_acc_list, t_rsp_hit;
-  wire [NA*32-1:0]     t_acc_byte;
-  wire [NA*6-1:0]      t_rsp_avail;
-  wire [NA*32*WORDS-1:0] t_rsp_data;
-  wire [PIPES*64-1:0]  t_rsp_node;  // access A's node word from the node cache alone
+  wire [PIPES-1:0]     t_nacc_valid, t_lacc_valid, n_hit, l_hit;
+  wire [PIPES*32-1:0]  t_nacc_byte, t_lacc_byte;
+  wire [PIPES*64-1:0]  t_node_word;
+  wire [PIPES*32*WORDS-1:0] t_list_words;
   wire                 t_head_valid, t_pend;
   wire [31:0]          t_head_ready;
   wire [63:0]          c_trv_busy, c_node_miss, c_list_miss, c_ist_full, c_inner, c_leaf, c_pops,
@@ -240,18 +239,19 @@ module rtu #(
              .SLOT_BITS(SLOT_BITS), .DEPTH(DEPTH), .PIPES(PIPES), .IST(IST), .WORDS(WORDS),
              .READS(1)) u_trv (
     .clk_i(clk_i), .rst_ni(rst_ni), .now_i(now_q),
-    .lat_i(trv_lat_i), .node_hl_i(node_hl_i), .list_hl_i(list_hl_i), .pipes_i(pipes_i),
+    .lat_i(trv_lat_i), .node_hl_i(node_hl_i), .list_hl_i(list_hl_i),
+    .lwords_i(LIST_LB[8:2]), .pipes_i(pipes_i),
     .fuse_i(fuse_i), .any_hit_i(any_hit_i), .empty_i(empty_i), .depth_i(depth_i),
     .widen_i(widen_i), .box_i(box_i),
     .in_valid_i(r_valid), .in_slot_i(r_slot), .in_shadow_i(r_shadow),
     .in_ray_i(r_shadow ? h_ray : r_ray),
     .res_valid_i(i_res_valid), .res_slot_i(i_res_slot), .res_hit_i(i_res_hit),
     .res_rec_i(i_res_rec), .room_i(i_room),
-    .acc_valid_o(t_acc_valid), .acc_list_o(t_acc_list), .acc_byte_o(t_acc_byte),
-    .rsp_hit_i(t_rsp_hit), .rsp_avail_i(t_rsp_avail), .rsp_data_i(t_rsp_data),
-    .rsp_node_i(t_rsp_node),
+    .nacc_valid_o(t_nacc_valid), .nacc_byte_o(t_nacc_byte), .nrsp_hit_i(n_hit),
+    .nrsp_node_i(t_node_word), .lacc_valid_o(t_lacc_valid), .lacc_byte_o(t_lacc_byte),
+    .lrsp_hit_i(l_hit), .lrsp_data_i(t_list_words),
     .go_o(t_go), .slot_o(t_slot), .fin_o(t_fin), .best_o(t_best), .ist_n_o(t_ist_n),
-    .ist_pos_o(t_ist_pos), .ist_ready_o(t_ist_ready), .ist_tmax_o(t_ist_tmax),
+    .ist_slot_o(t_ist_slot), .ist_pos_o(t_ist_pos), .ist_ready_o(t_ist_ready), .ist_tmax_o(t_ist_tmax),
     .ist_words_o(t_ist_words),
     .rd_ist_slot_i(i_ray_slot), .rd_ist_o(i_ray_trv), .rd_hit_slot_i(h_rd_slot),
     .rd_hit_o(h_rd), .rd_px_slot_i(h_slot), .rd_px_best_o(px_best),
@@ -261,14 +261,13 @@ module rtu #(
     .cnt_list_steps_o(c_list_steps), .cnt_fused_o(c_fused), .stack_max_o(c_stack_max),
     .err_o(err_o));
 
-  // The pipes' hand-offs and finished rays count only for a pipe that took a ray.
-  wire [PIPES*6-1:0]  ist_n;
+  // The pipes' finished rays count only for a pipe that took a ray (the list stage's hand-offs
+  // are 0 entries without a step).
   wire [PIPES-1:0]    fin;
   wire [PIPES*32-1:0] fin_ready;
   genvar gp;
   generate
     for (gp = 0; gp < PIPES; gp = gp + 1) begin : g_pipe
-      assign ist_n[gp*6 +: 6] = t_go[gp] ? t_ist_n[gp*6 +: 6] : 6'd0;
       assign fin[gp] = t_go[gp] && t_fin[gp];
       assign fin_ready[gp*32 +: 32] = now_q + {16'd0, trv_lat_i};
     end
@@ -278,61 +277,31 @@ module rtu #(
   wire unused_trv = ^{t_ist_tmax, t_best, t_head_valid, t_head_ready, t_pend};
 
   // ---- the node and list caches: the trv's accesses, in port order ------------------------------
-  // One port per pipe in each: the node cache takes access A of a node pass (B always reads the
-  // list), the list cache access A of a list pass or access B of a node pass: a pass makes at most
-  // one list read (a list pass has no B, a node pass's A is the node), so port p holds pipe p's,
-  // in the same order as the accesses A0, B0, A1, B1, ... A port's response is the presence and
-  // bytes of its line whether or not it accesses, for the access the pass looks at.
-  wire [PIPES-1:0]         n_hit;
-  wire [PIPES-1:0]         l_hit;
+  // One port per pipe in each: the node cache takes pipe p's pass's node read, the list cache list
+  // stage p's list read. A port's response is the presence and bytes of its line whether or not
+  // it accesses, for the access the trv looks at.
   wire [PIPES*8*NODE_LB-1:0] n_data;
-  wire [PIPES-1:0]         n_valid;
   wire [PIPES*8*LIST_LB-1:0] l_data;
-  wire [PIPES*LINE_W-1:0]  n_line;
-  wire [NA*LINE_W-1:0]     l_line;  // the list line of each access (A of a list pass, B)
-  wire [PIPES*LINE_W-1:0]  lp_line;
-  wire [PIPES-1:0]         lp_valid;
+  wire [PIPES*LINE_W-1:0]  n_line, l_line;
   genvar ga;
   generate
-    for (ga = 0; ga < NA; ga = ga + 1) begin : g_acc
-      wire [31:0] byte_a = t_acc_byte[ga*32 +: 32];
-      wire        lst    = t_acc_list[ga];
-      wire [31:0] nl32   = byte_a >> NLB;
-      wire [31:0] ll32   = byte_a >> LLB;
+    for (ga = 0; ga < PIPES; ga = ga + 1) begin : g_acc
+      wire [31:0] nbyte = t_nacc_byte[ga*32 +: 32];
+      wire [31:0] lbyte = t_lacc_byte[ga*32 +: 32];
+      wire [31:0] nl32  = nbyte >> NLB;
+      wire [31:0] ll32  = lbyte >> LLB;
+      assign n_line[ga*LINE_W +: LINE_W] = nl32[LINE_W-1:0];
       assign l_line[ga*LINE_W +: LINE_W] = ll32[LINE_W-1:0];
-      wire unused_line = ^{nl32, ll32[31:LINE_W]};  // nl32's low bits: the node port's line
-      // Access A (even ga) goes to the node or the list cache, access B (odd) always to the list.
-      wire [8*NODE_LB-1:0] nd;
-      wire        nh;
-      if ((ga % 2) == 0) begin : g_node_port
-        assign n_line[(ga/2)*LINE_W +: LINE_W] = nl32[LINE_W-1:0];
-        assign n_valid[ga/2] = t_acc_valid[ga] & ~lst;
-        assign nd = n_data[(ga/2)*8*NODE_LB +: 8*NODE_LB];
-        assign nh = n_hit[ga/2];
-        // The pipe's list port: its A's line in a list pass, else its B's.
-        assign lp_line[(ga/2)*LINE_W +: LINE_W] =
-            lst ? l_line[ga*LINE_W +: LINE_W] : l_line[(ga+1)*LINE_W +: LINE_W];
-        assign lp_valid[ga/2] = lst ? t_acc_valid[ga] : t_acc_valid[ga+1];
-        // The node word at the byte read, from the node cache's line (not through the list's).
-        wire [8*NODE_LB-1:0] nw = nd >> {byte_a[NLB-1:0], 3'b000};
-        assign t_rsp_node[(ga/2)*64 +: 64] = nw[63:0];
-        wire unused_nw = ^nw[8*NODE_LB-1:64];
-      end else begin : g_list_only
-        assign nd = {8*NODE_LB{1'b0}};
-        assign nh = 1'b0;
-      end
-      // The words from the byte on: min((line bytes - offset) / 4, WORDS) of them.
-      wire [31:0] off   = lst ? (byte_a & (LIST_LB - 1)) : (byte_a & (NODE_LB - 1));
-      wire [31:0] left  = ((lst ? LIST_LB : NODE_LB) - off) >> 2;
-      wire [31:0] avail = (left < WORDS) ? left : WORDS;
-      wire [32*WORDS+8*MAXLB-1:0] wide = lst
-          ? {{(32*WORDS+8*MAXLB-8*LIST_LB){1'b0}}, l_data[(ga/2)*8*LIST_LB +: 8*LIST_LB]}
-          : {{(32*WORDS+8*MAXLB-8*NODE_LB){1'b0}}, nd};
-      wire [32*WORDS+8*MAXLB-1:0] shifted = wide >> {off, 3'b000};
-      assign t_rsp_hit[ga] = lst ? l_hit[ga/2] : nh;
-      assign t_rsp_avail[ga*6 +: 6] = avail[5:0];
-      assign t_rsp_data[ga*32*WORDS +: 32*WORDS] = shifted[0 +: 32*WORDS];
-      wire unused_rsp = ^{avail[31:6], shifted[32*WORDS +: 8*MAXLB]};
+      wire unused_line = ^{nl32[31:LINE_W], ll32[31:LINE_W]};
+      // The node word at the byte read (node reads are 8-byte aligned).
+      wire [8*NODE_LB-1:0] nw = n_data[ga*8*NODE_LB +: 8*NODE_LB] >> {nbyte[NLB-1:0], 3'b000};
+      assign t_node_word[ga*64 +: 64] = nw[63:0];
+      wire unused_nw = ^nw[8*NODE_LB-1:64];
+      // The list words from the byte on (to the line's end; WORDS >= the line's words).
+      wire [32*WORDS+8*LIST_LB-1:0] wide = {{(32*WORDS){1'b0}}, l_data[ga*8*LIST_LB +: 8*LIST_LB]};
+      wire [32*WORDS+8*LIST_LB-1:0] shifted = wide >> {lbyte[LLB-1:0], 3'b000};
+      assign t_list_words[ga*32*WORDS +: 32*WORDS] = shifted[0 +: 32*WORDS];
+      wire unused_rsp = ^shifted[32*WORDS +: 8*LIST_LB];
     end
   endgenerate
 
@@ -351,7 +320,7 @@ module rtu #(
   ascache #(.SETS(NODE_SETS), .WAYS(WAYS), .LINE_BYTES(NODE_LB), .MSHRS(MSHRS), .HIT_LATENCY(0),
             .PORTS(PIPES), .LINE_W(LINE_W), .TAG_BITS(1), .CNT_BITS(32)) u_node (
     .clk_i(clk_i), .rst_ni(rst_ni),
-    .acc_valid_i(n_valid), .acc_line_i(n_line), .acc_tag_i({PIPES{1'b0}}),
+    .acc_valid_i(t_nacc_valid), .acc_line_i(n_line), .acc_tag_i({PIPES{1'b0}}),
     .rsp_valid_o(n_unused_v), .rsp_hit_o(n_hit), .rsp_merge_o(n_unused_m),
     .rsp_full_o(n_unused_f), .rsp_set_full_o(n_unused_s), .rsp_tag_o(n_unused_t), .rsp_data_o(n_data),
     .req_valid_o(req_valid_o[0]), .req_ready_i(req_ready_i[0]),
@@ -366,7 +335,7 @@ module rtu #(
   ascache #(.SETS(LIST_SETS), .WAYS(WAYS), .LINE_BYTES(LIST_LB), .MSHRS(MSHRS), .HIT_LATENCY(0),
             .PORTS(PIPES), .LINE_W(LINE_W), .TAG_BITS(1), .CNT_BITS(32)) u_list (
     .clk_i(clk_i), .rst_ni(rst_ni),
-    .acc_valid_i(lp_valid), .acc_line_i(lp_line), .acc_tag_i({PIPES{1'b0}}),
+    .acc_valid_i(t_lacc_valid), .acc_line_i(l_line), .acc_tag_i({PIPES{1'b0}}),
     .rsp_valid_o(l_unused_v), .rsp_hit_o(l_hit), .rsp_merge_o(l_unused_m),
     .rsp_full_o(l_unused_f), .rsp_set_full_o(l_unused_s), .rsp_tag_o(l_unused_t), .rsp_data_o(l_data),
     .req_valid_o(req_valid_o[1]), .req_ready_i(req_ready_i[1]),
@@ -417,7 +386,7 @@ module rtu #(
              .QBITS(QBITS), .RPL(RPL), .HLBITS(HLBITS)) u_ist (
     .clk_i(clk_i), .rst_ni(rst_ni), .now_i(now_q),
     .eps_i(eps_i), .one_eps_i(one_eps_i), .qcap_i(qcap_i), .hl_i(tri_hl_i), .units_i(ist_units_i),
-    .hin_n_i(ist_n), .hin_slot_i(t_slot), .hin_pos_i(t_ist_pos), .hin_ready_i(t_ist_ready),
+    .hin_n_i(t_ist_n), .hin_slot_i(t_ist_slot), .hin_pos_i(t_ist_pos), .hin_ready_i(t_ist_ready),
     .hin_words_i(t_ist_words), .room_o(i_room),
     .ray_slot_o(i_ray_slot), .ray_i(i_ray),
     .acc_valid_o(i_acc_valid), .acc_line_o(i_acc_line), .rsp_hit_i(i_rsp_hit),

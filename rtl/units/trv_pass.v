@@ -1,9 +1,9 @@
 // trv_pass - one traversal pass of one ray: what one pipe of the traversal unit does with the ray
 // it takes from the ready queue in a cycle (trv_unit holds the slots, the stacks and the queue and
 // instantiates PIPES of these side by side). Combinational: the ray's record, its two top stack
-// entries and the cache responses in, the record's next value, the queue push, the ist hand-off,
-// the finish and an inner node's split inputs out. The rules are systemc/trv.h's (Trv::step and
-// its node_step / list_step / leaf_end / pop), step for step:
+// entries and the node cache's response in, the record's next value, the queue push, the finish,
+// a list step for trv_unit's list stage and an inner node's split inputs out. The rules are
+// systemc/trv.h's (Trv::step and its node_step / ask_list / leaf_end / pop), step for step:
 //
 //   start      the clip to the scene box was made when the ray entered (trv_unit: clip_i and the
 //              clipped interval in tnear_i / tfar_i); empty tree or no hit: finish; else node 0
@@ -14,12 +14,10 @@
 //              or both with the far child pushed on the stack) is trv_unit's, in the cycle after
 //              the pass, from the split_* outputs (nothing else in the pass depends on it, and the
 //              ray is not taken again before it is written back). Leaf: empty -> leaf_end; else
-//              the list fields, and
-//              with fuse its first list line in the same pass (access B), else back as an inner
-//              node's step
-//   list       list_step: with room in the ist queue read a list line (list cache, byte (first +
-//              pos) * 4): hand min(left, words to the line's end, room) entries to the ist at
-//              now + extra + 1 + list_hl; all handed out: wait for the ist (no queue push)
+//              the list fields, and with fuse its first list line (lreq_o: trv_unit's list stage
+//              reads it in the next cycle, from base now + max(node_hl, 1)), else back as an
+//              inner node's step
+//   list       lreq_o: the list stage makes the list step in the next cycle (base now + 1)
 //   leaf_done  the leaf's reduced result becomes the best hit (tmax = its t); leaf_end
 //   pop        pop
 //   leaf_end   finish if there is a hit and (an any-hit shadow ray, or the hit is not beyond this
@@ -30,28 +28,23 @@
 //
 // `extra` is how far into the pass a step starts (the node cache's hit latency after a node
 // read), `fused` that the pass already counted itself busy: every counter moves exactly as the
-// model's. A pass makes at most two cache accesses (A: the node, or a list line; B: the fused
-// list line after a node), at most two pops (leaf_end -> pop -> fused node step of an empty leaf
-// -> leaf_end -> pop), and four comparisons (fp_cmp_nt); no arithmetic of its own.
-// Cache responses come back in the same cycle (the cycle model's Ascache::access), access B's
-// request depends on access A's response: the caller evaluates A, answers it, then B.
-// The cache's read port returns the words from the addressed one to the end of its line
-// (rsp_*_avail_i of them, at most WORDS; a node read uses the first two: split_or_count, then
-// index | axis << 24, as hls::decode_node).
+// model's. A pass makes at most one cache access (A: the node; the node cache answers in the same
+// cycle, the cycle model's Ascache::access, with the 64-bit node word: split_or_count, then
+// index | axis << 24, as hls::decode_node), asks for at most one list step, makes at most two
+// pops (leaf_end -> pop -> fused node step of an empty leaf -> leaf_end -> pop), and four
+// comparisons (fp_cmp_nt); no arithmetic of its own.
 //
 // Ray states (trv_unit's st encoding): 0 start, 1 node, 2 list, 3 wait_ist, 4 leaf_done, 5 pop,
 // 6 done. Best record, packed {found, t, den, pos[31:0], id[31:0], k[1:0], nu, nv, nd}.
 module trv_pass #(
   parameter integer EXP_BITS = 7,
-  parameter integer MAN_BITS = 16,
-  parameter integer WORDS    = 4   // list words a cache read returns at most (line bytes / 4)
+  parameter integer MAN_BITS = 16
 ) (
   input  wire                          go_i,         // this pipe takes a ray this cycle
   // Configuration (static per frame) and the cycle.
   input  wire [31:0]                   now_i,
   input  wire [15:0]                   lat_i,        // trv_latency
   input  wire [15:0]                   node_hl_i,    // node cache hit latency
-  input  wire [15:0]                   list_hl_i,    // list cache hit latency
   input  wire                          fuse_i,
   input  wire                          any_hit_i,    // shadow rays end at their first leaf hit
   input  wire                          empty_i,      // the tree is empty
@@ -70,28 +63,13 @@ module trv_pass #(
   input  wire [31:0]                   first_i,      // leaf list: first index, count, position
   input  wire [31:0]                   count_i,
   input  wire [31:0]                   pos_i,
-  input  wire [31:0]                   results_i,    // ist results received for this leaf
   input  wire [32+2*(1+EXP_BITS+MAN_BITS)-1:0] e1_i, // stack[sp-1], {node, tnear, tfar} (tfar low)
   input  wire [32+2*(1+EXP_BITS+MAN_BITS)-1:0] e2_i, // stack[sp-2]
-  input  wire [15:0]                   room_i,       // free entries of the ist queue left for
-                                                     //   this pipe (trv_unit: after the earlier
-                                                     //   pipes' want_o)
-  // Cache accesses: A (node or list), B (list, after a node read), same-cycle responses.
+  // Access A: the node cache, same-cycle response (the line's presence and the node word).
   output wire                          acc_a_valid_o,
-  output wire                          acc_a_list_o,
   output wire [31:0]                   acc_a_byte_o,
   input  wire                          rsp_a_hit_i,
-  input  wire [5:0]                    rsp_a_avail_i,
-  input  wire [32*WORDS-1:0]           rsp_a_data_i,
-  input  wire [63:0]                   rsp_a_node_i, // access A's node word, from the node cache
-                                                     //   alone (the list words of a list pass come
-                                                     //   on rsp_a_data_i: so no path runs from a
-                                                     //   list read into this pass's access B)
-  output reg                           acc_b_valid_o,
-  output reg  [31:0]                   acc_b_byte_o,
-  input  wire                          rsp_b_hit_i,
-  input  wire [5:0]                    rsp_b_avail_i,
-  input  wire [32*WORDS-1:0]           rsp_b_data_i,
+  input  wire [63:0]                   rsp_a_node_i,
   // The record's next value (written when go_i), leaf / results cleared when wr_leaf_o.
   output reg  [2:0]                    st_o,
   output reg  [31:0]                   node_o,
@@ -116,28 +94,22 @@ module trv_pass #(
   output reg                           q_push_o,     // back to the ready queue at q_ready_o
   output reg  [31:0]                   q_ready_o,
   output reg                           fin_o,        // done: to the hit unit
-  output reg  [5:0]                    ist_n_o,      // list entries handed to the ist
-  output reg  [31:0]                   ist_pos_o,    // the first one's position in the list
-  output reg  [31:0]                   ist_ready_o,
-  output reg  [32*WORDS-1:0]           ist_words_o,  // triangle indices (the first ist_n_o)
-  output reg  [15:0]                   want_o,       // list entries a list step would hand the
-                                                     //   ist with room unlimited (0: none, a miss)
+  output reg                           lreq_o,       // a list step for the list stage (with the
+  output reg                           lfused_o,     //   record's first_o, count_o, pos_o): fused
+  output reg  [31:0]                   lbase_o,      //   into a node pass; its base cycle
   // Counter increments (systemc/config.h RtuStats names).
   output reg                           busy_o,
   output reg                           node_miss_o,
-  output reg                           list_miss_o,
-  output reg                           ist_full_o,
   output reg                           inner_o,
   output reg                           leaf_o,
   output reg  [1:0]                    pops_o,
-  output reg                           list_steps_o,
   output reg  [1:0]                    fused_o
 );
 
   localparam integer W  = 1 + EXP_BITS + MAN_BITS;
   localparam integer BW = 67 + 5 * W;
   localparam integer EW = 32 + 2 * W;
-  localparam [2:0] S_START = 3'd0, S_NODE = 3'd1, S_LIST = 3'd2, S_WAIT = 3'd3, S_LEAF_DONE = 3'd4,
+  localparam [2:0] S_START = 3'd0, S_NODE = 3'd1, S_LIST = 3'd2, S_LEAF_DONE = 3'd4,
                    S_POP = 3'd5, S_DONE = 3'd6;
 
   // Fields of the packed records.
@@ -214,40 +186,27 @@ module trv_pass #(
                          (nd_axis == 2'd1) ? {r_o_y, r_d_y, r_inv_y} : {r_o_x, r_d_x, r_inv_x};
   wire unused_ray = ^r_tmin;  // the clip at entry used it
 
-  // Access A, decided by the pass's inputs alone and never by a response (in rtu.v the caches
-  // answer within the cycle: a response feeding its own access would be a combinational loop):
-  // the node of a node pass or of a fused pop (node_step below), or the list of a list pass with
-  // room at the ist (list_step below; a list read fused after a node read is access B).
-  // Which cache and the address do not depend on room_i (only the valid does): with the caches'
-  // hit being the line's presence, the pipes' room prefix in trv_unit is no chain through them.
+  // Access A, decided by the pass's inputs alone and never by a response (in rtu.v the node
+  // cache answers within the cycle: a response feeding its own access would be a loop): the node
+  // of a node pass or of a fused pop (node_step below).
   wire        a_node = go_i && ((st_i == S_NODE) || node_from_e1);
-  wire        l_pass = go_i && (st_i == S_LIST);
-  wire        a_list = l_pass && (room_i != 16'd0);
-  wire [31:0] a_lbyte = {first_i[29:0], 2'd0} + {pos_i[29:0], 2'd0};
-  assign acc_a_valid_o = a_node || a_list;
-  assign acc_a_list_o  = l_pass;
-  assign acc_a_byte_o  = a_node ? {this_node[28:0], 3'd0} : a_lbyte;
+  assign acc_a_valid_o = a_node;
+  assign acc_a_byte_o  = {this_node[28:0], 3'd0};
 
   // The pass, in the model's order.
-  reg        do_node, node_fused, do_list, list_fused, list_b, le2, pop2, hit_w;
-  reg [31:0] extra, xe, again, nxt, lbyte;
-  reg [31:0] nn, avail, left;
+  reg        do_node, node_fused, le2, pop2;
+  reg [31:0] xe, again, nxt;
   reg [6:0]  sp;
-  reg [32*WORDS-1:0] words;
   always @* begin
     st_o = st_i;  node_o = node_i;  tnear_o = tnear_i;  tfar_o = tfar_i;  tmax_o = tmax_i;
     sp = sp_i;  best_o = best_i;  first_o = first_i;  count_o = count_i;  pos_o = pos_i;
     wr_leaf_o = 1'b0;  split_o = 1'b0;
     q_push_o = 1'b0;  q_ready_o = 32'd0;  fin_o = 1'b0;
-    ist_n_o = 6'd0;  ist_pos_o = pos_i;  ist_ready_o = 32'd0;  ist_words_o = {32*WORDS{1'b0}};
-    want_o = 16'd0;
-    busy_o = 1'b0;  node_miss_o = 1'b0;  list_miss_o = 1'b0;  ist_full_o = 1'b0;  inner_o = 1'b0;
-    leaf_o = 1'b0;  pops_o = 2'd0;  list_steps_o = 1'b0;  fused_o = 2'd0;
-    acc_b_valid_o = 1'b0;  acc_b_byte_o = 32'd0;
-    do_node = 1'b0;  node_fused = 1'b0;  do_list = 1'b0;  list_fused = 1'b0;  list_b = 1'b0;
-    le2 = 1'b0;  pop2 = 1'b0;
-    extra = 32'd0;  xe = 32'd0;  again = 32'd0;  nxt = 32'd0;  lbyte = 32'd0;
-    nn = 32'd0;  avail = 32'd0;  left = 32'd0;  words = {32*WORDS{1'b0}};  hit_w = 1'b0;
+    lreq_o = 1'b0;  lfused_o = 1'b0;  lbase_o = 32'd0;
+    busy_o = 1'b0;  node_miss_o = 1'b0;  inner_o = 1'b0;  leaf_o = 1'b0;  pops_o = 2'd0;
+    fused_o = 2'd0;
+    do_node = 1'b0;  node_fused = 1'b0;  le2 = 1'b0;  pop2 = 1'b0;
+    xe = 32'd0;  again = 32'd0;  nxt = 32'd0;
     if (go_i) begin
       case (st_i)
         S_START: begin
@@ -266,7 +225,10 @@ module trv_pass #(
           end
         end
         S_NODE: do_node = 1'b1;
-        S_LIST: do_list = 1'b1;
+        S_LIST: begin  // list_step: the list stage's, in the next cycle
+          lreq_o = 1'b1;
+          lbase_o = now_i + 32'd1;
+        end
         S_LEAF_DONE: begin
           busy_o = 1'b1;
           if (leaf_found) begin
@@ -311,14 +273,14 @@ module trv_pass #(
       end
       // node_step (extra 0): access A, the node.
       if (do_node) begin
-        again = now_i + extra + {16'd0, lat_i};
+        again = now_i + {16'd0, lat_i};
         if (!rsp_a_hit_i) begin  // access A (a_node) read node_o
           if (!node_fused) node_miss_o = 1'b1;
           q_push_o = 1'b1;
           q_ready_o = again;
         end else begin
           if (!node_fused) busy_o = 1'b1;
-          xe = extra + {16'd0, node_hl_i};
+          xe = {16'd0, node_hl_i};
           nxt = again + {16'd0, node_hl_i};
           if (nd_axis != 2'd3) begin  // inner node: the split follows in trv_unit
             inner_o = 1'b1;
@@ -335,12 +297,11 @@ module trv_pass #(
               pos_o = 32'd0;
               wr_leaf_o = 1'b1;
               st_o = S_LIST;
-              if (fuse_i) begin
+              if (fuse_i) begin  // the list stage reads the first line in the next cycle
                 fused_o = fused_o + 2'd1;
-                do_list = 1'b1;
-                list_fused = 1'b1;
-                list_b = 1'b1;
-                extra = xe;
+                lreq_o = 1'b1;
+                lfused_o = 1'b1;
+                lbase_o = now_i + ((node_hl_i == 16'd0) ? 32'd1 : xe);
               end else begin
                 q_push_o = 1'b1;
                 q_ready_o = nxt;
@@ -376,50 +337,6 @@ module trv_pass #(
           end
           q_push_o = 1'b1;
           q_ready_o = now_i + xe + {16'd0, lat_i};
-        end
-      end
-      // list_step: access A (a list pass) or B (fused after the node read).
-      if (do_list) begin
-        again = now_i + extra + {16'd0, lat_i};
-        lbyte = {first_o[29:0], 2'd0} + {pos_o[29:0], 2'd0};
-        // What the step would hand out with room unlimited, from the line's presence alone.
-        if (list_b) acc_b_byte_o = lbyte;
-        hit_w = list_b ? rsp_b_hit_i : rsp_a_hit_i;
-        avail = {26'd0, list_b ? rsp_b_avail_i : rsp_a_avail_i};
-        left = count_o - pos_o;
-        nn = (avail < left) ? avail : left;
-        if (hit_w) want_o = nn[15:0];
-        if (room_i == 16'd0) begin
-          if (!list_fused) ist_full_o = 1'b1;
-          q_push_o = 1'b1;
-          q_ready_o = again;
-        end else begin
-          acc_b_valid_o = list_b;
-          words = list_b ? rsp_b_data_i : rsp_a_data_i;
-          if (!hit_w) begin  // access A (a_list) or B read lbyte
-            if (!list_fused) list_miss_o = 1'b1;
-            q_push_o = 1'b1;
-            q_ready_o = again;
-          end else begin
-            if (!list_fused) busy_o = 1'b1;
-            list_steps_o = 1'b1;
-            if ({16'd0, room_i} < nn) nn = {16'd0, room_i};
-            ist_n_o = nn[5:0];
-            ist_pos_o = pos_o;
-            ist_ready_o = now_i + extra + 32'd1 + {16'd0, list_hl_i};
-            ist_words_o = words;
-            pos_o = pos_o + nn;
-            if (pos_o == count_o && (wr_leaf_o ? 32'd0 : results_i) == count_o) begin
-              st_o = S_LEAF_DONE;  // nothing left at the ist (with a mailbox; not reached here)
-              q_push_o = 1'b1;
-              q_ready_o = again + {16'd0, list_hl_i};
-            end else if (pos_o == count_o) begin
-              st_o = S_WAIT;  // the ist re-queues the ray with its last result
-            end else begin
-              q_push_o = 1'b1;
-              q_ready_o = again + {16'd0, list_hl_i};
-            end
-          end
         end
       end
       if (fin_o) begin  // finish: no queue push (a pass finishes at most once, last)

@@ -8,27 +8,31 @@
 //   1. up to IST ist results (res_*): each goes into its ray's leaf record (the closest, ties to
 //      the earliest list position; results of one ray in the same cycle reduce in port order);
 //      the leaf's last result puts the ray in state leaf_done and back into the queue at now + 1;
-//   2. pipe p (p < pipes_i) takes the queue's entry p if pipes 0 .. p-1 took theirs and its ready
-//      cycle has come; its pass (trv_pass) reads the caches through acc_* / rsp_* (same-cycle
-//      responses; pipe p's access valids depend on the responses to pipes 0 .. p-1 through the
-//      ist queue's room, and its access B on its own access A: the caller answers them in the
-//      order A0, B0, A1, B1, ...), hands list entries to the ist (ist_*) and finished rays to the
-//      hit unit (fin_*), and pushes the ray back with its ready cycle. An inner node's split
-//      (trv.v, op 0) is not in the pass: the pass registers its inputs, and the split runs in the
-//      next cycle and writes the ray's node, interval and stack push back (the split stage, 4.
-//      below). The ray is not taken again before that: its ready cycle is at least now + 2
-//      (trv_latency + the node cache's hit latency >= 2, which the bindings check), and nothing
-//      else reads its slot or stack in between. A response's hit may be
-//      the line's presence for an access not made (rtu.v's caches): a pass reads it only for
-//      the accesses it makes, and pipe p's room is a sum of the earlier pipes' own results (their
-//      want_o), so no path runs from one pipe's pass through the caches into the next pipe's;
-//   3. a ray from the rgu (in_*: a new primary ray or a shadow ray in its slot) enters the queue
+//   2. the list stage: the list steps that the pipes' passes asked for in the cycle before (Trv's
+//      list_stage), one per pipe, each reading its list line through lacc_* / lrsp_* (the list
+//      cache, one port per pipe), handing entries to the ist (ist_*) and pushing the ray back or
+//      leaving it to wait for the ist. The ist queue's room (room_i, after this cycle's pops) is
+//      taken in stage order: stage p's room is room_i less what stages 0 .. p-1 hand out (with
+//      its line present: the entries left, to the line's end; 0 on a miss), so stage p's access
+//      valid depends on the earlier stages' line presence (the caller answers them in order);
+//   3. pipe p (p < pipes_i) takes the queue's entry p if pipes 0 .. p-1 took theirs and its ready
+//      cycle has come; its pass (trv_pass) reads the node cache through nacc_* / nrsp_* (a
+//      same-cycle response, which nothing else's access waits for), asks the list stage for a
+//      list step (registered for the next cycle), hands finished rays to the hit unit (fin_*),
+//      and pushes the ray back with its ready cycle. An inner node's split (trv.v, op 0) is not
+//      in the pass: the pass registers its inputs, and the split runs in the next cycle and
+//      writes the ray's node, interval and stack push back (the split stage, 5. below). The ray
+//      is not taken again before that: its ready cycle is at least now + 2 (trv_latency + the
+//      node cache's hit latency >= 2, which the bindings check), and nothing else reads its slot
+//      or stack in between. A ray asking for a list step is in no queue until the stage's step;
+//   4. a ray from the rgu (in_*: a new primary ray or a shadow ray in its slot) enters the queue
 //      at now + 1, clipped to the scene box as it enters (trv.v, op 1: hls::trv_clip_box; the
 //      ray's start pass reads the result: the model clips in that pass, from the same inputs);
-//   4. the split stage: the splits of the inner nodes that the pipes read in the cycle before.
-// Queue pushes of a cycle are appended in that order (results, pipes 0.., rgu); the queue is a
-// FIFO whose head blocks the entries behind it until its ready cycle: the cycle model's
-// TimedFifo. Ready cycles are 32-bit cycle numbers compared with now_i as a signed difference.
+//   5. the split stage: the splits of the inner nodes that the pipes read in the cycle before.
+// Queue pushes of a cycle are appended in that order (results, list stage, pipes 0.., rgu); the
+// queue is a FIFO whose head blocks the entries behind it until its ready cycle: the cycle
+// model's TimedFifo. Ready cycles are 32-bit cycle numbers compared with now_i as a signed
+// difference.
 //
 // Storage (register arrays here; SRAMs in a chip): per slot the ray (11 words), the state and
 // interval, the best and the leaf record, the list fields; per slot DEPTH stack entries of
@@ -37,8 +41,8 @@
 // PIPES (pipes_i <= PIPES at run time), IST (ist results per cycle), WORDS (list words per cache
 // read), READS (1: the slot read ports rd_* for the ist and hit units, as rtu.v wires them; 0: none,
 // the outputs zero, as the frame's binding reads systemc's slots). Not here: the mailbox
-// (--mailbox, refused by the binding). pend_o: the split stage holds a split (a binding that skips
-// idle cycles must clock this one).
+// (--mailbox, refused by the binding). pend_o: the split or the list stage holds work (a binding
+// that skips idle cycles must clock this one).
 // lint: also READS=1 SLOT_BITS=7 DEPTH=64 PIPES=4 IST=2 WORDS=16
 module trv_unit #(
   parameter integer EXP_BITS  = 7,
@@ -59,6 +63,7 @@ module trv_unit #(
   input  wire [15:0]                     lat_i,
   input  wire [15:0]                     node_hl_i,
   input  wire [15:0]                     list_hl_i,
+  input  wire [6:0]                      lwords_i,    // list cache line: words (<= WORDS)
   input  wire [4:0]                      pipes_i,
   input  wire                            fuse_i,
   input  wire                            any_hit_i,
@@ -77,21 +82,26 @@ module trv_unit #(
   input  wire [IST-1:0]                  res_hit_i,
   input  wire [IST*(67+5*(1+EXP_BITS+MAN_BITS))-1:0] res_rec_i,  // {1, t, den, pos, id, k, nu, nv, nd}
   input  wire [15:0]                     room_i,
-  // Cache accesses: port 2p = pipe p's access A, 2p+1 its access B.
-  output wire [2*PIPES-1:0]              acc_valid_o,
-  output wire [2*PIPES-1:0]              acc_list_o,
-  output wire [2*PIPES*32-1:0]           acc_byte_o,
-  input  wire [2*PIPES-1:0]              rsp_hit_i,
-  input  wire [2*PIPES*6-1:0]            rsp_avail_i,
-  input  wire [2*PIPES*32*WORDS-1:0]     rsp_data_i,
-  input  wire [PIPES*64-1:0]             rsp_node_i,  // pipe p's access A as the node cache
-                                                      //   answers it: the node word
-  // Per pipe: the slot it took, finish (with the best record) and the ist hand-off.
+  // Node cache, port p = pipe p's pass (the byte of its node; the response: the line's presence
+  // and the 64-bit node word at the byte).
+  output wire [PIPES-1:0]                nacc_valid_o,
+  output wire [PIPES*32-1:0]             nacc_byte_o,
+  input  wire [PIPES-1:0]                nrsp_hit_i,
+  input  wire [PIPES*64-1:0]             nrsp_node_i,
+  // List cache, port p = list stage p (the byte of its list entry; the response: the line's
+  // presence and the words from that byte on, at least to the line's end).
+  output wire [PIPES-1:0]                lacc_valid_o,
+  output wire [PIPES*32-1:0]             lacc_byte_o,
+  input  wire [PIPES-1:0]                lrsp_hit_i,
+  input  wire [PIPES*32*WORDS-1:0]       lrsp_data_i,
+  // Per pipe: the slot it took, finish (with the best record).
   output wire [PIPES-1:0]                go_o,
   output wire [PIPES*SLOT_BITS-1:0]      slot_o,
   output wire [PIPES-1:0]                fin_o,
   output wire [PIPES*(67+5*(1+EXP_BITS+MAN_BITS))-1:0] best_o,
+  // Per list stage: the ist hand-off (ist_n_o entries, 0: none).
   output wire [PIPES*6-1:0]              ist_n_o,
+  output wire [PIPES*SLOT_BITS-1:0]      ist_slot_o,
   output wire [PIPES*32-1:0]             ist_pos_o,
   output wire [PIPES*32-1:0]             ist_ready_o,
   output wire [PIPES*(1+EXP_BITS+MAN_BITS)-1:0] ist_tmax_o,
@@ -128,7 +138,7 @@ module trv_unit #(
   localparam integer RW = 11 * W;
   localparam integer NS = 1 << SLOT_BITS;
   localparam integer DB = $clog2(DEPTH);  // DEPTH: a power of two
-  localparam [2:0] S_START = 3'd0, S_LEAF_DONE = 3'd4;
+  localparam [2:0] S_START = 3'd0, S_WAIT = 3'd3, S_LEAF_DONE = 3'd4;
 
   // ---- storage ---------------------------------------------------------------------------------
   reg [2:0]      st_q      [0:NS-1];
@@ -238,22 +248,15 @@ module trv_unit #(
   wire [IST*BW-1:0] nl_all = nl;
   wire [IST*32-1:0] nr_all = nr;
 
-  // ---- 2. the pipes ----------------------------------------------------------------------------
-  // The ist queue's room for pipe p: room_i less what pipes 0 .. p-1 would hand out with room
-  // unlimited (their want_o), at least 0. The same as the room after the earlier pipes' actual
-  // hand-outs (each took min(want, room left); a pipe that finds no room makes no access), but a
-  // sum of the pipes' own results, not a chain through each pass and its cache accesses.
+  // ---- 3. the pipes ----------------------------------------------------------------------------
   wire [PIPES:0]    go_chain /* verilator split_var */;
-  wire [16*(PIPES+1)-1:0] used /* verilator split_var */;
-  wire [PIPES*16-1:0] p_want;
   assign go_chain[0] = 1'b1;
-  assign used[15:0] = 16'd0;
-  wire [PIPES-1:0] p_qpush, p_wr_leaf, p_busy, p_node_miss, p_list_miss, p_ist_full,
-                   p_inner, p_leaf, p_list_steps, p_split;
+  wire [PIPES-1:0] p_qpush, p_wr_leaf, p_busy, p_node_miss, p_inner, p_leaf, p_split, p_lreq,
+                   p_lfused;
   wire [PIPES*2-1:0] p_pops, p_fused;
   wire [PIPES*3-1:0] p_st;
   wire [PIPES*7-1:0] p_sp;
-  wire [PIPES*32-1:0] p_node, p_first, p_count, p_pos, p_qready;
+  wire [PIPES*32-1:0] p_node, p_first, p_count, p_pos, p_qready, p_lbase;
   wire [PIPES*W-1:0] p_tnear, p_tfar, p_tmax;
   wire [PIPES*32-1:0] p_s_node, p_s_child;
   wire [PIPES*W-1:0] p_s_plane, p_s_tnear, p_s_tfar;
@@ -273,24 +276,15 @@ module trv_unit #(
       wire [EW-1:0] e1 = stk_q[{s, sp1[DB-1:0]}];
       wire [EW-1:0] e2 = stk_q[{s, sp2[DB-1:0]}];
       wire unused_sp = ^{sp1[6:DB], sp2[6:DB]};
-      wire [15:0] used_p = used[p*16 +: 16];
-      wire [15:0] room_p = (room_i > used_p) ? room_i - used_p : 16'd0;
-      assign used[(p+1)*16 +: 16] = used_p + p_want[p*16 +: 16];
-      trv_pass #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .WORDS(WORDS)) u_pass (
-        .go_i(go), .now_i(now_i), .lat_i(lat_i), .node_hl_i(node_hl_i), .list_hl_i(list_hl_i),
+      trv_pass #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS)) u_pass (
+        .go_i(go), .now_i(now_i), .lat_i(lat_i), .node_hl_i(node_hl_i),
         .fuse_i(fuse_i), .any_hit_i(any_hit_i), .empty_i(empty_i), .st_i(st_q[s]),
         .clip_i(clip_q[s]), .shadow_i(shadow_q[s]), .ray_i(ray_q[s]),
         .node_i(node_q[s]), .tnear_i(tnear_q[s]), .tfar_i(tfar_q[s]), .tmax_i(tmax_q[s]),
         .sp_i(sp), .best_i(best_q[s]), .leaf_i(leaf_q[s]), .first_i(first_q[s]),
-        .count_i(count_q[s]), .pos_i(pos_q[s]), .results_i(results_q[s]), .e1_i(e1), .e2_i(e2),
-        .room_i(room_p),
-        .acc_a_valid_o(acc_valid_o[2*p]), .acc_a_list_o(acc_list_o[2*p]),
-        .acc_a_byte_o(acc_byte_o[2*p*32 +: 32]), .rsp_a_hit_i(rsp_hit_i[2*p]),
-        .rsp_a_avail_i(rsp_avail_i[2*p*6 +: 6]), .rsp_a_data_i(rsp_data_i[2*p*32*WORDS +: 32*WORDS]),
-        .rsp_a_node_i(rsp_node_i[p*64 +: 64]),
-        .acc_b_valid_o(acc_valid_o[2*p+1]), .acc_b_byte_o(acc_byte_o[(2*p+1)*32 +: 32]),
-        .rsp_b_hit_i(rsp_hit_i[2*p+1]), .rsp_b_avail_i(rsp_avail_i[(2*p+1)*6 +: 6]),
-        .rsp_b_data_i(rsp_data_i[(2*p+1)*32*WORDS +: 32*WORDS]),
+        .count_i(count_q[s]), .pos_i(pos_q[s]), .e1_i(e1), .e2_i(e2),
+        .acc_a_valid_o(nacc_valid_o[p]), .acc_a_byte_o(nacc_byte_o[p*32 +: 32]),
+        .rsp_a_hit_i(nrsp_hit_i[p]), .rsp_a_node_i(nrsp_node_i[p*64 +: 64]),
         .st_o(p_st[p*3 +: 3]), .node_o(p_node[p*32 +: 32]), .tnear_o(p_tnear[p*W +: W]),
         .tfar_o(p_tfar[p*W +: W]), .tmax_o(p_tmax[p*W +: W]), .sp_o(p_sp[p*7 +: 7]),
         .best_o(best_o[p*BW +: BW]), .first_o(p_first[p*32 +: 32]),
@@ -299,21 +293,77 @@ module trv_unit #(
         .split_child_o(p_s_child[p*32 +: 32]),
         .split_plane_o(p_s_plane[p*W +: W]), .split_tnear_o(p_s_tnear[p*W +: W]),
         .split_tfar_o(p_s_tfar[p*W +: W]), .split_ray_o(p_s_ray[p*3*W +: 3*W]),
-        .q_push_o(p_qpush[p]),
-        .q_ready_o(p_qready[p*32 +: 32]), .fin_o(fin_o[p]), .ist_n_o(ist_n_o[p*6 +: 6]),
-        .ist_pos_o(ist_pos_o[p*32 +: 32]), .ist_ready_o(ist_ready_o[p*32 +: 32]),
-        .ist_words_o(ist_words_o[p*32*WORDS +: 32*WORDS]),
-        .want_o(p_want[p*16 +: 16]), .busy_o(p_busy[p]), .node_miss_o(p_node_miss[p]),
-        .list_miss_o(p_list_miss[p]), .ist_full_o(p_ist_full[p]), .inner_o(p_inner[p]),
-        .leaf_o(p_leaf[p]), .pops_o(p_pops[p*2 +: 2]), .list_steps_o(p_list_steps[p]),
-        .fused_o(p_fused[p*2 +: 2]));
-      assign ist_tmax_o[p*W +: W] = p_tmax[p*W +: W];
-      assign acc_list_o[2*p+1] = 1'b1;  // access B is always a list read
+        .q_push_o(p_qpush[p]), .q_ready_o(p_qready[p*32 +: 32]), .fin_o(fin_o[p]),
+        .lreq_o(p_lreq[p]), .lfused_o(p_lfused[p]), .lbase_o(p_lbase[p*32 +: 32]),
+        .busy_o(p_busy[p]), .node_miss_o(p_node_miss[p]), .inner_o(p_inner[p]),
+        .leaf_o(p_leaf[p]), .pops_o(p_pops[p*2 +: 2]), .fused_o(p_fused[p*2 +: 2]));
     end
   endgenerate
-  wire unused_room = ^{used[PIPES*16 +: 16], go_chain[PIPES]};
+  wire unused_chain = go_chain[PIPES];
 
-  // ---- 3. the clip of the entering ray (trv.v, op 1) -------------------------------------------
+  // ---- 2. the list stage: the list steps the pipes asked for in the cycle before ---------------
+  // Registered at the pass: the ray's slot, its list fields, the base cycle of its ready cycles,
+  // whether the step is fused into a node pass (it counts no busy, miss or full), the leaf-entry
+  // tmax the ist tests with and the stack pointer for its queue entry.
+  reg  [PIPES-1:0]     lv_q;
+  reg  [PIPES-1:0]     lfused_q;
+  reg  [SLOT_BITS-1:0] ls_q     [0:PIPES-1];
+  reg  [31:0]          lfirst_q [0:PIPES-1];
+  reg  [31:0]          lcount_q [0:PIPES-1];
+  reg  [31:0]          lpos_q   [0:PIPES-1];
+  reg  [31:0]          lbase_q  [0:PIPES-1];
+  reg  [W-1:0]         ltmax_q  [0:PIPES-1];
+  reg  [6:0]           lsp_q    [0:PIPES-1];
+  wire [16*(PIPES+1)-1:0] lres /* verilator split_var */;  // room taken by stages 0 .. p-1
+  wire [PIPES-1:0]     l_qpush, l_wait, l_busy, l_miss, l_full, l_step;
+  wire [PIPES*32-1:0]  l_pos, l_qready;
+  assign lres[15:0] = 16'd0;
+  genvar l;
+  generate
+    for (l = 0; l < PIPES; l = l + 1) begin : g_list
+      wire [31:0] first = lfirst_q[l];
+      wire [31:0] pos   = lpos_q[l];
+      wire [31:0] left  = lcount_q[l] - pos;
+      wire [31:0] idx   = first + pos;
+      // Words from the entry to the line's end (lwords_i a power of two), and what the step hands
+      // out with the room unlimited: the earlier stages' sum of these is what they took (each
+      // took min(want, room left), so the room left falls by want until it reaches 0; a stage
+      // that finds no room makes no access). The hit is the line's presence, access or not.
+      wire [31:0] to_end = {25'd0, lwords_i} - (idx & ({25'd0, lwords_i} - 32'd1));
+      wire        hit    = lrsp_hit_i[l];
+      wire [31:0] want   = (left < to_end) ? left : to_end;
+      wire [15:0] res_l  = lres[l*16 +: 16];
+      wire [15:0] room_l = (room_i > res_l) ? room_i - res_l : 16'd0;
+      assign lres[(l+1)*16 +: 16] = res_l + ((lv_q[l] && hit) ? want[15:0] : 16'd0);
+      wire        full   = room_l == 16'd0;
+      wire [31:0] n      = ({16'd0, room_l} < want) ? {16'd0, room_l} : want;
+      wire [31:0] npos   = pos + n;
+      wire [31:0] again  = lbase_q[l] + {16'd0, lat_i};
+      wire        took   = lv_q[l] && !full && hit;
+      assign lacc_valid_o[l] = lv_q[l] && !full;
+      assign lacc_byte_o[l*32 +: 32] = {idx[29:0], 2'd0};
+      assign l_busy[l] = took && !lfused_q[l];
+      assign l_miss[l] = lv_q[l] && !full && !hit && !lfused_q[l];
+      assign l_full[l] = lv_q[l] && full && !lfused_q[l];
+      assign l_step[l] = took;
+      // All handed out: the ray waits for the ist (no queue push; without a mailbox some entries
+      // are always at the ist). Else back at again (+ the list cache's hit latency after a read).
+      assign l_wait[l]  = took && (npos == lcount_q[l]);
+      assign l_qpush[l] = lv_q[l] && !l_wait[l];
+      assign l_qready[l*32 +: 32] = took ? again + {16'd0, list_hl_i} : again;
+      assign l_pos[l*32 +: 32] = took ? npos : pos;
+      assign ist_n_o[l*6 +: 6] = took ? n[5:0] : 6'd0;
+      assign ist_slot_o[l*SLOT_BITS +: SLOT_BITS] = ls_q[l];
+      assign ist_pos_o[l*32 +: 32] = pos;
+      assign ist_ready_o[l*32 +: 32] = lbase_q[l] + 32'd1 + {16'd0, list_hl_i};
+      assign ist_tmax_o[l*W +: W] = ltmax_q[l];
+      assign ist_words_o[l*32*WORDS +: 32*WORDS] = lrsp_data_i[l*32*WORDS +: 32*WORDS];
+      wire unused_l = ^{to_end[31:16], n[31:6], idx[31:30]};
+    end
+  endgenerate
+  wire unused_lres = ^lres[PIPES*16 +: 16];
+
+  // ---- 4. the clip of the entering ray (trv.v, op 1) -------------------------------------------
   // Packing of in_ray_i, lowest bits first: tmax, tmin, inv z, y, x, d z, y, x, o z, y, x.
   wire         c_rdy, c_vld, c_op, c_hit, c_below, c_tag;
   wire [1:0]   c_visit;
@@ -337,7 +387,7 @@ module trv_unit #(
   wire unused_clip = ^{c_rdy, c_vld, c_op, c_below, c_tag, c_visit, c_tsplit, c_node, c_far_node,
                        c_far_tfar};
 
-  // ---- 4. the split stage: last cycle's inner nodes (trv.v, op 0, on the node's axis) ----------
+  // ---- 5. the split stage: last cycle's inner nodes (trv.v, op 0, on the node's axis) ----------
   // Registered at the pass: the split's inputs, the ray's slot, its stack pointer after the pass
   // and where its queue entry went (its fq_sp follows the split's push).
   reg  [PIPES-1:0]         sv_q;
@@ -382,14 +432,15 @@ module trv_unit #(
       assign s_push_e[q*EW +: EW] = {d_far_node, d_tsplit, d_far_tfar};
     end
   endgenerate
-  assign pend_o = |sv_q;
+  assign pend_o = (|sv_q) || (|lv_q);
   assign err_o = err_q || |s_err;
 
-  // ---- 5. state update (with the queue's head window) ----------------------------------------
-  // Where each queue push goes: after the live entries, in the order results, pipes, rgu (the
-  // popped entries leave from the head, so the tail does not move with them).
+  // ---- 6. state update (with the queue's head window) ----------------------------------------
+  // Where each queue push goes: after the live entries, in the order results, list stage, pipes,
+  // rgu (the popped entries leave from the head, so the tail does not move with them).
   wire [SLOT_BITS-1:0] tail = head_q + cnt_q[SLOT_BITS-1:0];
   reg  [IST*SLOT_BITS-1:0]   res_at;
+  reg  [PIPES*SLOT_BITS-1:0] list_at;
   reg  [PIPES*SLOT_BITS-1:0] pipe_at;
   reg  [SLOT_BITS-1:0]       rgu_at;
   reg  [SLOT_BITS:0]         pushes, pops;
@@ -398,10 +449,15 @@ module trv_unit #(
     pushes = {(SLOT_BITS+1){1'b0}};
     pops = {(SLOT_BITS+1){1'b0}};
     res_at = {(IST*SLOT_BITS){1'b0}};
+    list_at = {(PIPES*SLOT_BITS){1'b0}};
     pipe_at = {(PIPES*SLOT_BITS){1'b0}};
     for (a = 0; a < IST; a = a + 1) begin
       res_at[a*SLOT_BITS +: SLOT_BITS] = tail + pushes[SLOT_BITS-1:0];
       if (res_done[a]) pushes = pushes + 1'b1;
+    end
+    for (a = 0; a < PIPES; a = a + 1) begin
+      list_at[a*SLOT_BITS +: SLOT_BITS] = tail + pushes[SLOT_BITS-1:0];
+      if (l_qpush[a]) pushes = pushes + 1'b1;
     end
     for (a = 0; a < PIPES; a = a + 1) begin
       pipe_at[a*SLOT_BITS +: SLOT_BITS] = tail + pushes[SLOT_BITS-1:0];
@@ -435,6 +491,12 @@ module trv_unit #(
             wn_slot[k] = res_slot_i[x*SLOT_BITS +: SLOT_BITS];
             wn_ready[k] = now_i + 32'd1;
             wn_sp[k] = sp_q[res_slot_i[x*SLOT_BITS +: SLOT_BITS]];
+          end
+        for (x = 0; x < PIPES; x = x + 1)
+          if (l_qpush[x] && list_at[x*SLOT_BITS +: SLOT_BITS] == w_pos) begin
+            wn_slot[k] = ls_q[x];
+            wn_ready[k] = l_qready[x*32 +: 32];
+            wn_sp[k] = lsp_q[x];
           end
         for (x = 0; x < PIPES; x = x + 1)
           if (go_o[x] && p_qpush[x] && pipe_at[x*SLOT_BITS +: SLOT_BITS] == w_pos) begin
@@ -488,6 +550,30 @@ module trv_unit #(
           fq_ready[pipe_at[b*SLOT_BITS +: SLOT_BITS]] <= p_qready[b*32 +: 32];
           fq_sp[pipe_at[b*SLOT_BITS +: SLOT_BITS]] <= p_sp[b*7 +: 7];
         end
+      end
+    end
+    // The list stage's rays (last cycle's: none of this cycle's pipes' or the rgu's).
+    for (b = 0; b < PIPES; b = b + 1) begin
+      if (lv_q[b]) begin
+        pos_q[ls_q[b]] <= l_pos[b*32 +: 32];
+        if (l_wait[b]) st_q[ls_q[b]] <= S_WAIT;
+        if (l_qpush[b]) begin
+          fq_slot[list_at[b*SLOT_BITS +: SLOT_BITS]] <= ls_q[b];
+          fq_ready[list_at[b*SLOT_BITS +: SLOT_BITS]] <= l_qready[b*32 +: 32];
+          fq_sp[list_at[b*SLOT_BITS +: SLOT_BITS]] <= lsp_q[b];
+        end
+      end
+    end
+    // This cycle's list steps, for the stage.
+    for (b = 0; b < PIPES; b = b + 1) begin
+      if (go_o[b] && p_lreq[b]) begin
+        ls_q[b]     <= slot_o[b*SLOT_BITS +: SLOT_BITS];
+        lfirst_q[b] <= p_first[b*32 +: 32];
+        lcount_q[b] <= p_count[b*32 +: 32];
+        lpos_q[b]   <= p_pos[b*32 +: 32];
+        lbase_q[b]  <= p_lbase[b*32 +: 32];
+        ltmax_q[b]  <= p_tmax[b*W +: W];
+        lsp_q[b]    <= p_sp[b*7 +: 7];
       end
     end
     // The split stage's write-back (last cycle's rays: none of this cycle's pipes' or the rgu's).
@@ -550,14 +636,15 @@ module trv_unit #(
       if (go_o[c]) begin
         d_busy = d_busy + {63'd0, p_busy[c]};
         d_node_miss = d_node_miss + {63'd0, p_node_miss[c]};
-        d_list_miss = d_list_miss + {63'd0, p_list_miss[c]};
-        d_ist_full = d_ist_full + {63'd0, p_ist_full[c]};
         d_inner = d_inner + {63'd0, p_inner[c]};
         d_leaf = d_leaf + {63'd0, p_leaf[c]};
         d_pops = d_pops + {62'd0, p_pops[c*2 +: 2]};
-        d_list_steps = d_list_steps + {63'd0, p_list_steps[c]};
         d_fused = d_fused + {62'd0, p_fused[c*2 +: 2]};
       end
+      d_busy = d_busy + {63'd0, l_busy[c]};
+      d_list_miss = d_list_miss + {63'd0, l_miss[c]};
+      d_ist_full = d_ist_full + {63'd0, l_full[c]};
+      d_list_steps = d_list_steps + {63'd0, l_step[c]};
       if (s_push[c] && (ssp_q[c] + 7'd1 > smax)) smax = ssp_q[c] + 7'd1;
     end
   end
@@ -566,6 +653,8 @@ module trv_unit #(
       head_q <= {SLOT_BITS{1'b0}};
       cnt_q <= {(SLOT_BITS+1){1'b0}};
       sv_q <= {PIPES{1'b0}};
+      lv_q <= {PIPES{1'b0}};
+      lfused_q <= {PIPES{1'b0}};
       err_q <= 1'b0;
       cnt_busy_o <= 64'd0;
       cnt_node_miss_o <= 64'd0;
@@ -581,6 +670,8 @@ module trv_unit #(
       head_q <= head_q + pops[SLOT_BITS-1:0];
       cnt_q <= cnt_q - pops + pushes;
       sv_q <= go_o & p_split;
+      lv_q <= go_o & p_lreq;
+      lfused_q <= p_lfused;
       err_q <= err_o;
       cnt_busy_o <= cnt_busy_o + d_busy;
       cnt_node_miss_o <= cnt_node_miss_o + d_node_miss;
