@@ -22,7 +22,7 @@ if(TARGET raycore_rtl_frame)
   foreach(mode rtz)
     raycore_rtl_format_flags(g FP24 ${mode})
     set(prefix "Vrtu_fp24_${mode}")
-    # The waivers: UNOPTFLAT of the trv's accesses chained through the caches' ports (see there).
+    # The lint waivers file (none today: see there).
     verilate(raycore_rtl_frame
       SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/lint/waivers.vlt ${_rtu_sources}
       TOP_MODULE rtu

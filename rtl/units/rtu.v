@@ -428,11 +428,11 @@ module rtu #(
   // The beat the fill path takes in this cycle. In the chip it comes from membus_if's response
   // register (chip.v, BEAT_REG = 0). A host that steps rtu.v alone (systemc/rtu_rtl.cpp) sets
   // BEAT_REG = 1 and drives the next cycle's beat, registered here: the same beat in the same
-  // cycle, from flip-flops as in the chip. Needed for Verilator 5.006: with the beat a top-level
-  // input, the fill reaches the trv's cache accesses chained through the caches' ports (the
-  // UNOPTFLAT of rtl/lint/waivers.vlt) in its input region, where the --cc model settled that
-  // chain differently from Icarus and from the same RTL Verilated with the beat from a register
-  // (a list-cache miss at cycle 6,303 of corridor 20x12, VTU off, that the others do not take).
+  // cycle, from flip-flops as in the chip. It was needed for Verilator 5.006 while the trv's cache
+  // accesses were chained through the caches' ports (an UNOPTFLAT loop, until the trv's list
+  // stage): with the beat a top-level input, the fill reached that chain in the input region,
+  // where the --cc model settled it differently from Icarus and from the same RTL Verilated with
+  // the beat from a register (a list-cache miss at cycle 6,303 of corridor 20x12, VTU off).
   wire [2:0]            b_valid;
   wire [MB_-1:0]        b_tag;
   wire [LEN_BITS-1:0]   b_idx;
