@@ -85,15 +85,18 @@ class TrvRtlT final : public TrvRtl {
     // the answers to stages 0 .. p-1 through the ist queue's room: re-evaluate after a hit), then
     // the pipes' node reads (no access depends on their answers: one evaluation after them).
     uint32_t acc = 0, hit = 0;  // the probe's ports: 2p the pipe's node read, 2p + 1 its list read
+    auto access = [&](Ascache& c, uint32_t byte, unsigned port) -> const uint8_t* {
+      acc |= 1u << port;
+      const uint8_t* line = c.access(byte / c.line_bytes());
+      if (line) hit |= 1u << port;
+      return line;  // null: a miss, the response's default
+    };
     for (unsigned p = 0; p < PIPES; ++p) {
       if (!get_bits(m_.lacc_valid_o, p, 1)) continue;
-      acc |= 2u << (2 * p);
       const uint32_t byte = get_bits(m_.lacc_byte_o, p * 32, 32);
-      const uint32_t lb = ch_.list->line_bytes();
-      const uint8_t* line = ch_.list->access(byte / lb);
-      if (!line) continue;  // a miss: the response's default
-      hit |= 2u << (2 * p);
-      const uint32_t off = byte % lb;
+      const uint8_t* line = access(*ch_.list, byte, 2 * p + 1);
+      if (!line) continue;
+      const uint32_t lb = ch_.list->line_bytes(), off = byte % lb;
       set_bits(m_.lrsp_hit_i, p, 1, 1);
       for (uint32_t i = 0; i < (lb - off) / 4; ++i)
         set_bits(m_.lrsp_data_i, (p * WORDS + i) * 32, 32,
@@ -102,16 +105,13 @@ class TrvRtlT final : public TrvRtl {
     }
     for (unsigned p = 0; p < PIPES; ++p) {
       if (!get_bits(m_.nacc_valid_o, p, 1)) continue;
-      acc |= 1u << (2 * p);
       const uint32_t byte = get_bits(m_.nacc_byte_o, p * 32, 32);
-      const uint32_t lb = ch_.node->line_bytes();
-      const uint8_t* line = ch_.node->access(byte / lb);
+      const uint8_t* line = access(*ch_.node, byte, 2 * p);
       if (!line) continue;
-      hit |= 1u << (2 * p);
       set_bits(m_.nrsp_hit_i, p, 1, 1);
       for (uint32_t i = 0; i < 2; ++i)
         set_bits(m_.nrsp_node_i, (p * 2 + i) * 32, 32,
-                 uint32_t(hls::detail::get_le(line + byte % lb + 4 * i, 4)));
+                 uint32_t(hls::detail::get_le(line + byte % ch_.node->line_bytes() + 4 * i, 4)));
     }
     if (hit & 0x55555555u) m_.eval();  // a node read hit
     probe_.res_valid = m_.res_valid_i;
