@@ -211,12 +211,13 @@ unused = []
 v = lambda i: f"v[{i}]"
 QT = sum(lv[0] for lv in LEVELS)
 q = 0
-w("  // Registers per sublevel: the 10 x STAGES of the latency shared out by the weights of")
+w("  // Registers per sublevel: the 10 x STAGES - IN_REGS of the latency shared out by the weights of")
 w(f"  // scripts/gen_hit.py (the registers each needs for 95 FO4; {QT} in all), cumulatively.")
+w("  localparam integer R = 10 * STAGES - IN_REGS;")
 for li, (wt, _, _) in enumerate(LEVELS, 1):
-    lo = f"(10 * STAGES * {q}) / {QT}"
+    lo = f"(R * {q}) / {QT}"
     q += wt
-    hi = f"(10 * STAGES * {q}) / {QT}"
+    hi = f"(R * {q}) / {QT}"
     w(f"  localparam integer S{li} = {hi} - {lo};  // weight {wt}")
 w("")
 for li, (_, groups, posts) in enumerate(LEVELS, 1):

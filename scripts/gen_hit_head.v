@@ -31,8 +31,9 @@
 //    7  d = (light - h) / len (segment: light - h); error-bound's bound B
 //    8  1 / d_i; n_u d_u, n_v d_v          9  dens = n . d (front, the side of the light)
 //   10  1 / max(|dens|, 1/16) and the slab's t_min; the origin moved (ulp-offset, error-bound)
-// Latency = 10 x STAGES cycles (STAGES = 0: combinational), one ray per cycle. The cycle model's
-// default hit_latency of 20 is STAGES = 2.
+// Latency = 10 x STAGES - IN_REGS cycles (STAGES = 0: combinational), one ray per cycle: IN_REGS
+// of the 10 x STAGES registers are the caller's, in front of the inputs (hit_unit's registered
+// slot read), the rest shared out here. The cycle model's default hit_latency of 20 is STAGES = 2.
 //
 // Handshake: valid/ready as every rtl/fp operator; the operators of a sublevel share in_valid and
 // out_ready and have the same depth, so the sublevel's carry fp_pipe stands for all of them (as
@@ -43,6 +44,7 @@ module hit #(
   parameter integer RNE      = 0,
   parameter integer RAYCORE  = 0,   // rounding mode raycore (hls Rounding::raycore; RNE ignored)
   parameter integer STAGES   = 2,
+  parameter integer IN_REGS  = 0,   // <= 10 x STAGES
   parameter integer TAG_BITS = 16
 ) (
   input  wire                       clk_i,

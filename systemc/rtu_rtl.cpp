@@ -239,9 +239,9 @@ class RtuRtlRunner {
              std::to_string(2 * b.stages) + ", --ist-latency " + std::to_string(10 * b.stages) +
              ", --hit-latency " + std::to_string(10 * b.stages) + ", --rgu-latency " +
              std::to_string(8 * b.stages) + ")");
-    need(uint64_t(cfg_.trv_latency) + cfg_.node_cache.hit_latency >= 2,
-         "--trv-latency + the node cache's hit latency >= 2 (an inner node's split is written back "
-         "the cycle after its pass)");
+    need(uint64_t(cfg_.trv_latency) + cfg_.node_cache.hit_latency >= 3,
+         "--trv-latency + the node cache's hit latency >= 3 (an inner node's split is written back "
+         "two cycles after its pass)");
     need(cfg_.mailbox == 0, "--mailbox 0");
     need(cfg_.l2.size_bytes == 0, "--l2-kb 0 (the L2 has no RTL)");
     need(cfg_.rtus >= 1 && cfg_.rtus <= 16, "--rtus <= 16");

@@ -37,10 +37,10 @@ class TrvRtlT final : public TrvRtl {
           " --trv-pipes, " + std::to_string(IST) + " --ist-units, " +
           std::to_string(1u << SLOT_BITS) + " --rays-in-flight and " + std::to_string(4 * WORDS) +
           "-byte list cache lines (rtl/units/trv_unit.cmake)");
-    if (uint64_t(cfg.trv_latency) + cfg.node_cache.hit_latency < 2)
-      throw ConfigError("--rtl trv: " + name_ + " writes an inner node's split back in the cycle "
+    if (uint64_t(cfg.trv_latency) + cfg.node_cache.hit_latency < 3)
+      throw ConfigError("--rtl trv: " + name_ + " writes an inner node's split back two cycles "
                         "after the pass: --trv-latency plus the node cache's hit latency must be "
-                        "at least 2");
+                        "at least 3");
     ch_.ist_results = &results_;
     vl::async_reset(m_);
   }

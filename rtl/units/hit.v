@@ -31,8 +31,9 @@
 //    7  d = (light - h) / len (segment: light - h); error-bound's bound B
 //    8  1 / d_i; n_u d_u, n_v d_v          9  dens = n . d (front, the side of the light)
 //   10  1 / max(|dens|, 1/16) and the slab's t_min; the origin moved (ulp-offset, error-bound)
-// Latency = 10 x STAGES cycles (STAGES = 0: combinational), one ray per cycle. The cycle model's
-// default hit_latency of 20 is STAGES = 2.
+// Latency = 10 x STAGES - IN_REGS cycles (STAGES = 0: combinational), one ray per cycle: IN_REGS
+// of the 10 x STAGES registers are the caller's, in front of the inputs (hit_unit's registered
+// slot read), the rest shared out here. The cycle model's default hit_latency of 20 is STAGES = 2.
 //
 // Handshake: valid/ready as every rtl/fp operator; the operators of a sublevel share in_valid and
 // out_ready and have the same depth, so the sublevel's carry fp_pipe stands for all of them (as
@@ -43,6 +44,7 @@ module hit #(
   parameter integer RNE      = 0,
   parameter integer RAYCORE  = 0,   // rounding mode raycore (hls Rounding::raycore; RNE ignored)
   parameter integer STAGES   = 2,
+  parameter integer IN_REGS  = 0,   // <= 10 x STAGES
   parameter integer TAG_BITS = 16
 ) (
   input  wire                       clk_i,
@@ -240,20 +242,21 @@ module hit #(
   wire [W-1:0] du_0 = pu(in_k_i, in_d_x_i, in_d_y_i, in_d_z_i);
   wire [W-1:0] dv_0 = pv(in_k_i, in_d_x_i, in_d_y_i, in_d_z_i);
 
-  // Registers per sublevel: the 10 x STAGES of the latency shared out by the weights of
+  // Registers per sublevel: the 10 x STAGES - IN_REGS of the latency shared out by the weights of
   // scripts/gen_hit.py (the registers each needs for 95 FO4; 46 in all), cumulatively.
-  localparam integer S1 = (10 * STAGES * 1) / 46 - (10 * STAGES * 0) / 46;  // weight 1
-  localparam integer S2 = (10 * STAGES * 4) / 46 - (10 * STAGES * 1) / 46;  // weight 3
-  localparam integer S3 = (10 * STAGES * 5) / 46 - (10 * STAGES * 4) / 46;  // weight 1
-  localparam integer S4 = (10 * STAGES * 8) / 46 - (10 * STAGES * 5) / 46;  // weight 3
-  localparam integer S5 = (10 * STAGES * 11) / 46 - (10 * STAGES * 8) / 46;  // weight 3
-  localparam integer S6 = (10 * STAGES * 18) / 46 - (10 * STAGES * 11) / 46;  // weight 7
-  localparam integer S7 = (10 * STAGES * 25) / 46 - (10 * STAGES * 18) / 46;  // weight 7
-  localparam integer S8 = (10 * STAGES * 28) / 46 - (10 * STAGES * 25) / 46;  // weight 3
-  localparam integer S9 = (10 * STAGES * 35) / 46 - (10 * STAGES * 28) / 46;  // weight 7
-  localparam integer S10 = (10 * STAGES * 38) / 46 - (10 * STAGES * 35) / 46;  // weight 3
-  localparam integer S11 = (10 * STAGES * 45) / 46 - (10 * STAGES * 38) / 46;  // weight 7
-  localparam integer S12 = (10 * STAGES * 46) / 46 - (10 * STAGES * 45) / 46;  // weight 1
+  localparam integer R = 10 * STAGES - IN_REGS;
+  localparam integer S1 = (R * 1) / 46 - (R * 0) / 46;  // weight 1
+  localparam integer S2 = (R * 4) / 46 - (R * 1) / 46;  // weight 3
+  localparam integer S3 = (R * 5) / 46 - (R * 4) / 46;  // weight 1
+  localparam integer S4 = (R * 8) / 46 - (R * 5) / 46;  // weight 3
+  localparam integer S5 = (R * 11) / 46 - (R * 8) / 46;  // weight 3
+  localparam integer S6 = (R * 18) / 46 - (R * 11) / 46;  // weight 7
+  localparam integer S7 = (R * 25) / 46 - (R * 18) / 46;  // weight 7
+  localparam integer S8 = (R * 28) / 46 - (R * 25) / 46;  // weight 3
+  localparam integer S9 = (R * 35) / 46 - (R * 28) / 46;  // weight 7
+  localparam integer S10 = (R * 38) / 46 - (R * 35) / 46;  // weight 3
+  localparam integer S11 = (R * 45) / 46 - (R * 38) / 46;  // weight 7
+  localparam integer S12 = (R * 46) / 46 - (R * 45) / 46;  // weight 1
 
   // ---- sublevel 1 ------------------------------------------------------------------------------
   localparam integer C1_W = TAG_BITS + 32 + 2 + W + W + W + W + W + W + W + W + W + W;

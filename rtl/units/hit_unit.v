@@ -10,8 +10,9 @@
 //   1. the ray hit.v puts out (hit_latency = 10 x STAGES cycles after it entered) leaves on out_*:
 //      out_free_o or out_spawn_o, with hit.v's results (the hit point, the light side, dens and
 //      the shadow ray);
-//   2. the queue's head enters hit.v if its ready cycle has come (one ray per cycle): the slot's
-//      ray, best record and kind are read (rd_slot_o / rd_i, same cycle) and carried;
+//   2. the queue's head enters the hit pipeline if its ready cycle has come (one ray per cycle):
+//      the slot's ray, best record and kind are read (rd_slot_o / rd_i, same cycle) into a
+//      register (STAGES > 0: the first of the latency's 10 x STAGES, hit.v's IN_REGS) and carried;
 //   3. the trv's finished rays of this cycle (fin_*, one per pipe, each with its ready cycle) are
 //      appended in pipe order.
 // The queue is a FIFO whose head blocks the entries behind it until its ready cycle (the cycle
@@ -75,6 +76,7 @@ module hit_unit #(
   localparam integer BW = 67 + 5 * W;
   localparam integer NS = 1 << SLOT_BITS;
   localparam integer TW = SLOT_BITS + 2;  // hit.v's tag: {slot, shadow, found}
+  localparam integer RDW = 1 + BW + 6 * W; // the slot read: {shadow, best, d zyx, o zyx}
   localparam [SLOT_BITS-1:0] ONE = 1;
 
   // ---- the queue --------------------------------------------------------------------------------
@@ -91,9 +93,36 @@ module hit_unit #(
   // ---- 2. the ray entering --------------------------------------------------------------------
   assign rd_valid_o = take;
   assign rd_slot_o  = q_slot[head_q];
-  wire [6*W-1:0] ray    = rd_i[6*W-1:0];
-  wire [BW-1:0]  best   = rd_i[6*W +: BW];
-  wire           shadow = rd_i[6*W + BW];
+  // The slot read and the ray's slot, registered (STAGES > 0): so no path runs from the hit
+  // queue through the slot arrays into hit.v's first level.
+  localparam integer IR = (STAGES > 0) ? 1 : 0;
+  wire               in_valid;
+  wire [RDW-1:0]     rd;
+  wire [SLOT_BITS-1:0] in_slot;
+  generate
+    if (IR != 0) begin : g_in_reg
+      reg               v_q;
+      reg [RDW-1:0]     rd_q;
+      reg [SLOT_BITS-1:0] s_q;
+      always @(posedge clk_i or negedge rst_ni)
+        if (!rst_ni) v_q <= 1'b0;
+        else v_q <= take;
+      always @(posedge clk_i) begin
+        rd_q <= rd_i;
+        s_q <= q_slot[head_q];
+      end
+      assign in_valid = v_q;
+      assign rd = rd_q;
+      assign in_slot = s_q;
+    end else begin : g_in_wire
+      assign in_valid = take;
+      assign rd = rd_i;
+      assign in_slot = q_slot[head_q];
+    end
+  endgenerate
+  wire [6*W-1:0] ray    = rd[6*W-1:0];
+  wire [BW-1:0]  best   = rd[6*W +: BW];
+  wire           shadow = rd[6*W + BW];
   // best: {found, t, den, pos, id, k, nu, nv, nd}, nd lowest
   wire [W-1:0]   b_nd = best[0 +: W], b_nv = best[W +: W], b_nu = best[2*W +: W];
   wire [1:0]     b_k  = best[3*W +: 2];
@@ -108,16 +137,16 @@ module hit_unit #(
   wire [W-1:0]  o_tmin, o_tmax;
   wire          o_front, o_spawn;
   hit #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
-        .TAG_BITS(TW)) u_hit (
+        .IN_REGS(IR), .TAG_BITS(TW)) u_hit (
     .clk_i(clk_i), .rst_ni(rst_ni),
     .light_x_i(light_x_i), .light_y_i(light_y_i), .light_z_i(light_z_i), .tmin_i(tmin_i),
     .strategy_i(strategy_i), .segment_i(segment_i), .all_i(all_i), .back_i(back_i),
     .scale_i(scale_i), .fixed_i(fixed_i), .slab_scale_i(slab_scale_i),
-    .in_valid_i(take), .in_ready_o(o_ready_unused),
+    .in_valid_i(in_valid), .in_ready_o(o_ready_unused),
     .in_o_x_i(ray[0 +: W]), .in_o_y_i(ray[W +: W]), .in_o_z_i(ray[2*W +: W]),
     .in_d_x_i(ray[3*W +: W]), .in_d_y_i(ray[4*W +: W]), .in_d_z_i(ray[5*W +: W]),
     .in_t_i(b_t), .in_k_i(b_k), .in_nu_i(b_nu), .in_nv_i(b_nv), .in_nd_i(b_nd), .in_den_i(b_den),
-    .in_id_i(b_id), .in_tag_i({q_slot[head_q], shadow, b_found}),
+    .in_id_i(b_id), .in_tag_i({in_slot, shadow, b_found}),
     .out_valid_o(o_valid), .out_ready_i(1'b1),
     .out_h_x_o(o_hx), .out_h_y_o(o_hy), .out_h_z_o(o_hz), .out_front_o(o_front),
     .out_spawn_o(o_spawn), .out_dens_o(o_dens), .out_o_x_o(o_ox), .out_o_y_o(o_oy),

@@ -22,8 +22,8 @@
 //      and pushes the ray back with its ready cycle. An inner node's split (trv.v, op 0) is not
 //      in the pass: the pass registers its inputs, and the split runs in the next cycle and
 //      writes the ray's node, interval and stack push back (the split stage, 5. below). The ray
-//      is not taken again before that: its ready cycle is at least now + 2 (trv_latency + the
-//      node cache's hit latency >= 2, which the bindings check), and nothing else reads its slot
+//      is not taken again before that: its ready cycle is at least now + 3 (trv_latency + the
+//      node cache's hit latency >= 3, which the bindings check), and nothing else reads its slot
 //      or stack in between. A ray asking for a list step is in no queue until the stage's step;
 //   4. a ray from the rgu (in_*: a new primary ray or a shadow ray in its slot) enters the queue
 //      at now + 1, clipped to the scene box as it enters (trv.v, op 1: hls::trv_clip_box; the
@@ -119,15 +119,15 @@ module trv_unit #(
   output wire [31:0]                     head_ready_o,
   output wire                            pend_o,
   // Counters (systemc/config.h RtuStats) and the stack-overflow error.
-  output reg  [63:0]                     cnt_busy_o,
-  output reg  [63:0]                     cnt_node_miss_o,
-  output reg  [63:0]                     cnt_list_miss_o,
-  output reg  [63:0]                     cnt_ist_full_o,
-  output reg  [63:0]                     cnt_inner_o,
-  output reg  [63:0]                     cnt_leaf_o,
-  output reg  [63:0]                     cnt_pops_o,
-  output reg  [63:0]                     cnt_list_steps_o,
-  output reg  [63:0]                     cnt_fused_o,
+  output wire [63:0]                     cnt_busy_o,
+  output wire [63:0]                     cnt_node_miss_o,
+  output wire [63:0]                     cnt_list_miss_o,
+  output wire [63:0]                     cnt_ist_full_o,
+  output wire [63:0]                     cnt_inner_o,
+  output wire [63:0]                     cnt_leaf_o,
+  output wire [63:0]                     cnt_pops_o,
+  output wire [63:0]                     cnt_list_steps_o,
+  output wire [63:0]                     cnt_fused_o,
   output reg  [6:0]                      stack_max_o,
   output wire                            err_o
 );
@@ -389,7 +389,10 @@ module trv_unit #(
 
   // ---- 5. the split stage: last cycle's inner nodes (trv.v, op 0, on the node's axis) ----------
   // Registered at the pass: the split's inputs, the ray's slot, its stack pointer after the pass
-  // and where its queue entry went (its fq_sp follows the split's push).
+  // and where its queue entry went (its fq_sp follows the split's push). The split runs in the
+  // cycle after the pass; its results are registered (s_*, w*_q) and written back at the end of
+  // the cycle after that, so the ray is taken at the pass's cycle + 3 at the earliest (trv_latency
+  // + the node cache's hit latency >= 3, which the bindings check).
   reg  [PIPES-1:0]         sv_q;
   reg  [SLOT_BITS-1:0]     ss_q    [0:PIPES-1];
   reg  [6:0]               ssp_q   [0:PIPES-1];
@@ -400,10 +403,20 @@ module trv_unit #(
   reg  [W-1:0]             stn_q   [0:PIPES-1];
   reg  [W-1:0]             stf_q   [0:PIPES-1];
   reg  [3*W-1:0]           sray_q  [0:PIPES-1];
-  wire [PIPES-1:0]         s_push, s_err;
-  wire [PIPES*32-1:0]      s_node;
-  wire [PIPES*W-1:0]       s_tnear, s_tfar;
-  wire [PIPES*EW-1:0]      s_push_e;
+  wire [PIPES-1:0]         d_push, s_err;
+  wire [PIPES*32-1:0]      d_node;
+  wire [PIPES*W-1:0]       d_tnear, d_tfar;
+  wire [PIPES*EW-1:0]      d_push_e;
+  // The split's results, registered for the write-back: valid, push, slot, stack pointer, queue
+  // position, the next node and interval, the pushed entry.
+  reg  [PIPES-1:0]         wv_q, s_push;
+  reg  [SLOT_BITS-1:0]     ws_q    [0:PIPES-1];
+  reg  [6:0]               wsp_q   [0:PIPES-1];
+  reg  [SLOT_BITS-1:0]     wat_q   [0:PIPES-1];
+  reg  [PIPES*32-1:0]      s_node;
+  reg  [PIPES*W-1:0]       s_tnear, s_tfar;
+  reg  [PIPES*EW-1:0]      s_push_e;
+  integer int_q;
   genvar q;
   generate
     for (q = 0; q < PIPES; q = q + 1) begin : g_split
@@ -423,16 +436,27 @@ module trv_unit #(
         .in_lo_y_i({W{1'b0}}), .in_lo_z_i({W{1'b0}}), .in_hi_x_i({W{1'b0}}),
         .in_hi_y_i({W{1'b0}}), .in_hi_z_i({W{1'b0}}), .in_tag_i(1'b0), .out_valid_o(d_vld),
         .out_ready_i(1'b1), .out_op_o(d_op), .out_hit_o(d_hit), .out_visit_o(d_visit),
-        .out_below_o(d_below), .out_tsplit_o(d_tsplit), .out_tnear_o(s_tnear[q*W +: W]),
-        .out_tfar_o(s_tfar[q*W +: W]), .out_node_o(s_node[q*32 +: 32]),
+        .out_below_o(d_below), .out_tsplit_o(d_tsplit), .out_tnear_o(d_tnear[q*W +: W]),
+        .out_tfar_o(d_tfar[q*W +: W]), .out_node_o(d_node[q*32 +: 32]),
         .out_far_node_o(d_far_node), .out_far_tfar_o(d_far_tfar), .out_tag_o(d_tag));
       wire unused_dp = ^{d_rdy, d_vld, d_op, d_hit, d_below, d_tag};
-      assign s_push[q] = sv_q[q] && (d_visit == 2'd2);
-      assign s_err[q] = s_push[q] && (ssp_q[q] >= depth_i);
-      assign s_push_e[q*EW +: EW] = {d_far_node, d_tsplit, d_far_tfar};
+      assign d_push[q] = sv_q[q] && (d_visit == 2'd2);
+      assign d_push_e[q*EW +: EW] = {d_far_node, d_tsplit, d_far_tfar};
+      assign s_err[q] = s_push[q] && (wsp_q[q] >= depth_i);
     end
   endgenerate
-  assign pend_o = (|sv_q) || (|lv_q);
+  always @(posedge clk_i) begin
+    s_node <= d_node;
+    s_tnear <= d_tnear;
+    s_tfar <= d_tfar;
+    s_push_e <= d_push_e;
+    for (int_q = 0; int_q < PIPES; int_q = int_q + 1) begin
+      ws_q[int_q] <= ss_q[int_q];
+      wsp_q[int_q] <= ssp_q[int_q];
+      wat_q[int_q] <= sat_q[int_q];
+    end
+  end
+  assign pend_o = (|sv_q) || (|wv_q) || (|lv_q);
   assign err_o = err_q || |s_err;
 
   // ---- 6. state update (with the queue's head window) ----------------------------------------
@@ -484,7 +508,7 @@ module trv_unit #(
       wn_sp[k] = fq_sp[w_pos];
       if (w_rel < cnt_q) begin  // an entry already queued
         for (x = 0; x < PIPES; x = x + 1)
-          if (s_push[x] && sat_q[x] == w_pos) wn_sp[k] = ssp_q[x] + 7'd1;
+          if (s_push[x] && wat_q[x] == w_pos) wn_sp[k] = wsp_q[x] + 7'd1;
       end else begin            // one pushed in this cycle (or none: not read)
         for (x = 0; x < IST; x = x + 1)
           if (res_done[x] && res_at[x*SLOT_BITS +: SLOT_BITS] == w_pos) begin
@@ -576,16 +600,17 @@ module trv_unit #(
         lsp_q[b]    <= p_sp[b*7 +: 7];
       end
     end
-    // The split stage's write-back (last cycle's rays: none of this cycle's pipes' or the rgu's).
+    // The split stage's write-back (the rays of the pass two cycles ago: none of this cycle's
+    // pipes', the list stage's or the rgu's).
     for (b = 0; b < PIPES; b = b + 1) begin
-      if (sv_q[b]) begin
-        node_q[ss_q[b]]  <= s_node[b*32 +: 32];
-        tnear_q[ss_q[b]] <= s_tnear[b*W +: W];
-        tfar_q[ss_q[b]]  <= s_tfar[b*W +: W];
+      if (wv_q[b]) begin
+        node_q[ws_q[b]]  <= s_node[b*32 +: 32];
+        tnear_q[ws_q[b]] <= s_tnear[b*W +: W];
+        tfar_q[ws_q[b]]  <= s_tfar[b*W +: W];
         if (s_push[b]) begin
-          stk_q[{ss_q[b], ssp_q[b][DB-1:0]}] <= s_push_e[b*EW +: EW];
-          sp_q[ss_q[b]] <= ssp_q[b] + 7'd1;
-          fq_sp[sat_q[b]] <= ssp_q[b] + 7'd1;
+          stk_q[{ws_q[b], wsp_q[b][DB-1:0]}] <= s_push_e[b*EW +: EW];
+          sp_q[ws_q[b]] <= wsp_q[b] + 7'd1;
+          fq_sp[wat_q[b]] <= wsp_q[b] + 7'd1;
         end
       end
     end
@@ -623,65 +648,71 @@ module trv_unit #(
     end
   end
 
-  // The queue's head and count, the counters and the error.
+  // The queue's head and count, the counters and the error. A cycle's counter increments (at
+  // most 2 x PIPES <= 32 each) are registered and added into the 64-bit sums in the next cycle; a
+  // counter's output is its sum plus the increments still registered, exact in every cycle.
   reg [6:0] smax;
-  reg [63:0] d_busy, d_node_miss, d_list_miss, d_ist_full, d_inner, d_leaf, d_pops, d_list_steps,
-             d_fused;
+  reg [7:0] d_busy, d_node_miss, d_list_miss, d_ist_full, d_inner, d_leaf, d_pops, d_list_steps,
+            d_fused;
   integer c;
   always @* begin
     smax = stack_max_o;
-    d_busy = 64'd0; d_node_miss = 64'd0; d_list_miss = 64'd0; d_ist_full = 64'd0; d_inner = 64'd0;
-    d_leaf = 64'd0; d_pops = 64'd0; d_list_steps = 64'd0; d_fused = 64'd0;
+    d_busy = 8'd0; d_node_miss = 8'd0; d_list_miss = 8'd0; d_ist_full = 8'd0; d_inner = 8'd0;
+    d_leaf = 8'd0; d_pops = 8'd0; d_list_steps = 8'd0; d_fused = 8'd0;
     for (c = 0; c < PIPES; c = c + 1) begin
       if (go_o[c]) begin
-        d_busy = d_busy + {63'd0, p_busy[c]};
-        d_node_miss = d_node_miss + {63'd0, p_node_miss[c]};
-        d_inner = d_inner + {63'd0, p_inner[c]};
-        d_leaf = d_leaf + {63'd0, p_leaf[c]};
-        d_pops = d_pops + {62'd0, p_pops[c*2 +: 2]};
-        d_fused = d_fused + {62'd0, p_fused[c*2 +: 2]};
+        d_busy = d_busy + {7'd0, p_busy[c]};
+        d_node_miss = d_node_miss + {7'd0, p_node_miss[c]};
+        d_inner = d_inner + {7'd0, p_inner[c]};
+        d_leaf = d_leaf + {7'd0, p_leaf[c]};
+        d_pops = d_pops + {6'd0, p_pops[c*2 +: 2]};
+        d_fused = d_fused + {6'd0, p_fused[c*2 +: 2]};
       end
-      d_busy = d_busy + {63'd0, l_busy[c]};
-      d_list_miss = d_list_miss + {63'd0, l_miss[c]};
-      d_ist_full = d_ist_full + {63'd0, l_full[c]};
-      d_list_steps = d_list_steps + {63'd0, l_step[c]};
-      if (s_push[c] && (ssp_q[c] + 7'd1 > smax)) smax = ssp_q[c] + 7'd1;
+      d_busy = d_busy + {7'd0, l_busy[c]};
+      d_list_miss = d_list_miss + {7'd0, l_miss[c]};
+      d_ist_full = d_ist_full + {7'd0, l_full[c]};
+      d_list_steps = d_list_steps + {7'd0, l_step[c]};
+      if (s_push[c] && (wsp_q[c] + 7'd1 > smax)) smax = wsp_q[c] + 7'd1;
     end
   end
+  localparam integer NC = 9;
+  wire [NC*8-1:0]  inc = {d_fused, d_list_steps, d_pops, d_leaf, d_inner, d_ist_full, d_list_miss,
+                          d_node_miss, d_busy};
+  reg  [NC*8-1:0]  inc_q;
+  reg  [NC*64-1:0] sum_q;
+  wire [NC*64-1:0] cnt_all;
+  genvar gc;
+  generate
+    for (gc = 0; gc < NC; gc = gc + 1) begin : g_cnt
+      assign cnt_all[gc*64 +: 64] = sum_q[gc*64 +: 64] + {56'd0, inc_q[gc*8 +: 8]};
+    end
+  endgenerate
+  assign {cnt_fused_o, cnt_list_steps_o, cnt_pops_o, cnt_leaf_o, cnt_inner_o, cnt_ist_full_o,
+          cnt_list_miss_o, cnt_node_miss_o, cnt_busy_o} = cnt_all;
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       head_q <= {SLOT_BITS{1'b0}};
       cnt_q <= {(SLOT_BITS+1){1'b0}};
       sv_q <= {PIPES{1'b0}};
+      wv_q <= {PIPES{1'b0}};
+      s_push <= {PIPES{1'b0}};
       lv_q <= {PIPES{1'b0}};
       lfused_q <= {PIPES{1'b0}};
       err_q <= 1'b0;
-      cnt_busy_o <= 64'd0;
-      cnt_node_miss_o <= 64'd0;
-      cnt_list_miss_o <= 64'd0;
-      cnt_ist_full_o <= 64'd0;
-      cnt_inner_o <= 64'd0;
-      cnt_leaf_o <= 64'd0;
-      cnt_pops_o <= 64'd0;
-      cnt_list_steps_o <= 64'd0;
-      cnt_fused_o <= 64'd0;
+      inc_q <= {(NC*8){1'b0}};
+      sum_q <= {(NC*64){1'b0}};
       stack_max_o <= 7'd0;
     end else begin
       head_q <= head_q + pops[SLOT_BITS-1:0];
       cnt_q <= cnt_q - pops + pushes;
       sv_q <= go_o & p_split;
+      wv_q <= sv_q;
+      s_push <= d_push;
       lv_q <= go_o & p_lreq;
       lfused_q <= p_lfused;
       err_q <= err_o;
-      cnt_busy_o <= cnt_busy_o + d_busy;
-      cnt_node_miss_o <= cnt_node_miss_o + d_node_miss;
-      cnt_list_miss_o <= cnt_list_miss_o + d_list_miss;
-      cnt_ist_full_o <= cnt_ist_full_o + d_ist_full;
-      cnt_inner_o <= cnt_inner_o + d_inner;
-      cnt_leaf_o <= cnt_leaf_o + d_leaf;
-      cnt_pops_o <= cnt_pops_o + d_pops;
-      cnt_list_steps_o <= cnt_list_steps_o + d_list_steps;
-      cnt_fused_o <= cnt_fused_o + d_fused;
+      inc_q <= inc;
+      sum_q <= cnt_all;
       stack_max_o <= smax;
     end
   end
