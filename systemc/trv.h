@@ -33,8 +33,9 @@ class Trv : public SlotUnit {
   // before, in pipe order, one list-cache access each (a pass asks for at most one: a list pass's
   // own, or a node pass's fused one after a leaf). Then each of the pipes takes the ray at the
   // head of the ready queue (pipe 0 first; they share the node cache, one access per pipe and
-  // cycle: RayCore's L1s have two request ports for its two traversal units). So no cache access
-  // of a cycle depends on another's answer: the list read follows the node read a cycle later.
+  // cycle: RayCore's L1s have two request ports for its two traversal units). So no access's
+  // address depends on a cache's answer (the list read follows the node read a cycle later), and
+  // only a list step's room depends on the earlier steps' answers.
   bool tick(Cycle now) {
     bool any = list_stage(now);
     for (uint32_t p = 0; p < pipes_ && step(now); ++p) any = true;

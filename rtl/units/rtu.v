@@ -17,8 +17,8 @@
 // finished rays to the hit unit's queue at now + lat_i); the rgu's ray into the trv (a shadow ray from the hit
 // unit's out_ray_o, or the next primary ray in the free slot that rgu_unit picks). The trv's
 // passes read the node cache (one port per pipe, the node word at the byte read), its list stage
-// the list cache (one port per pipe, up to WORDS 32-bit words from the byte read on); no access
-// of a cycle depends on another's answer.
+// the list cache (one port per pipe, up to WORDS 32-bit words from the byte read on); no access's
+// address depends on a cache's answer (a list stage's valid on the earlier stages' line presence).
 //
 // now: the RTU's cycle counter from reset, the units' ready cycles are compared with it.
 // Counters (cnt_sel_i -> cnt_o, systemc/config.h RtuStats): 0 now, 1 trv_busy, 2 trv_node_miss,
