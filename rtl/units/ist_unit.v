@@ -122,7 +122,6 @@ module ist_unit #(
   wire [IST-1:0]      rdy;       // entry u present, ready and unit u in use
   wire [IST-1:0]      g_out_v;   // unit u's ist.v result of this cycle
   wire [IST*RESW-1:0] g_out_r;
-  wire [IST*SLOT_BITS-1:0] u_slot;   // unit u's entry (head + u): a miss copies it to the tail
   wire [IST*32-1:0]   u_pos, u_tri;
   genvar u;
   generate
@@ -136,8 +135,7 @@ module ist_unit #(
       assign hit[u]   = take[u] && rsp_hit_i[u];
       assign miss[u]  = take[u] && !rsp_hit_i[u];
       assign acc_valid_o[u] = take[u];
-      assign ray_slot_o[u*SLOT_BITS +: SLOT_BITS] = q_slot[e];
-      assign u_slot[u*SLOT_BITS +: SLOT_BITS] = q_slot[e];
+      assign ray_slot_o[u*SLOT_BITS +: SLOT_BITS] = q_slot[e];  // a miss copies it to the tail
       assign u_pos[u*32 +: 32] = q_pos[e];
       // The record: line q_tri / RPL, record q_tri % RPL of it.
       wire [31:0] tidx = q_tri[e];
@@ -338,7 +336,7 @@ module ist_unit #(
         for (mb = 0; mb < IST; mb = mb + 1) begin
           sel = miss[mb] && (mpos[mb*QBITS +: QBITS] == E);
           we = we | sel;
-          w_slot  = w_slot | ({SLOT_BITS{sel}} & u_slot[mb*SLOT_BITS +: SLOT_BITS]);
+          w_slot  = w_slot | ({SLOT_BITS{sel}} & ray_slot_o[mb*SLOT_BITS +: SLOT_BITS]);
           w_pos   = w_pos | ({32{sel}} & u_pos[mb*32 +: 32]);
           w_tri   = w_tri | ({32{sel}} & u_tri[mb*32 +: 32]);
           w_ready = w_ready | ({32{sel}} & (now_i + 32'd1));
