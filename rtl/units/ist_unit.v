@@ -298,7 +298,8 @@ module ist_unit #(
       wire [J*64-1:0] run;   // element i: word i
       for (gi = 0; gi < J; gi = gi + 1) begin : g_in
         if (gi < WORDS) begin : g_w
-          assign run[gi*64 +: 64] = {hin_pos_i[gp*32 +: 32] + gi, hin_words_i[(gp*WORDS + gi)*32 +: 32]};
+          localparam [31:0] GI = gi;  // sized: a genvar has no width in a concatenation (Icarus)
+          assign run[gi*64 +: 64] = {hin_pos_i[gp*32 +: 32] + GI, hin_words_i[(gp*WORDS + gi)*32 +: 32]};
         end else begin : g_z
           assign run[gi*64 +: 64] = 64'd0;
         end

@@ -146,6 +146,7 @@ module rtu #(
   localparam integer RPL  = TLB / RB_;             // triangle records per line
   localparam integer NLB  = $clog2(NODE_LB);
   localparam integer LLB  = $clog2(LIST_LB);
+  localparam [31:0]  LIST_WORDS = LIST_LB / 4;     // the list stage's words per line
   localparam integer MAXLB = (NODE_LB > LIST_LB) ? ((NODE_LB > TLB) ? NODE_LB : TLB)
                                                  : ((LIST_LB > TLB) ? LIST_LB : TLB);
 
@@ -240,7 +241,7 @@ module rtu #(
              .READS(1)) u_trv (
     .clk_i(clk_i), .rst_ni(rst_ni), .now_i(now_q),
     .lat_i(trv_lat_i), .node_hl_i(node_hl_i), .list_hl_i(list_hl_i),
-    .lwords_i(LIST_LB[8:2]), .pipes_i(pipes_i),
+    .lwords_i(LIST_WORDS[6:0]), .pipes_i(pipes_i),
     .fuse_i(fuse_i), .any_hit_i(any_hit_i), .empty_i(empty_i), .depth_i(depth_i),
     .widen_i(widen_i), .box_i(box_i),
     .in_valid_i(r_valid), .in_slot_i(r_slot), .in_shadow_i(r_shadow),
