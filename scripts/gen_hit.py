@@ -13,9 +13,10 @@ import sys
 W = "W"
 # Sublevels: (weight, [groups], [post wires]). The weight is the number of registers the
 # sublevel's logic needs for 95 FO4 (docs/timing.md's operators: an add or mul 1, an add3 3, a
-# divider or square root 7, the sublevel's slowest operator); the hit unit's 10 x STAGES registers
-# are shared out in proportion (cumulative, so that they add up: sublevel l takes
-# 10 STAGES Q_l / QT - 10 STAGES Q_l-1 / QT, Q the running sum of the weights, QT their total). A group is (op, [(out, a, b, c, sub)]); op: mul,
+# divider or square root 7, the sublevel's slowest operator); the hit unit's LPS x STAGES registers
+# (LPS below: 24) are shared out in proportion (cumulative, so that they add up: sublevel l takes
+# R Q_l / QT - R Q_l-1 / QT, R = LPS STAGES - IN_REGS, Q the running sum of the weights, QT their
+# total). A group is (op, [(out, a, b, c, sub)]); op: mul,
 # add (sub = 1'b1 subtracts), add3, rcp (1 / b), sqrt (of a). Expressions name values in braces:
 # {x} is x as available at the input of the sublevel (or at its output, for post wires and the
 # outputs). Post wires: (name, width, expr), combinational after the sublevel's registers.
@@ -206,14 +207,19 @@ def carried(lvl):
 out = []
 w = out.append
 import os
-w(open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "gen_hit_head.v")).read().rstrip("\n") + "\n")
+QT = sum(lv[0] for lv in LEVELS)
+# Registers per STAGES: at STAGES 2 the weights plus hit_unit's registered slot read (QT + 1),
+# rounded up to a whole number per STAGES, so every sublevel gets at least its weight.
+LPS = (QT + 1 + 1) // 2
+head = open(os.path.join(os.path.dirname(os.path.abspath(__file__)), "gen_hit_head.v")).read()
+head = head.replace("@LPS@", str(LPS)).replace("@QT@", str(QT)).replace("@LAT2@", str(2 * LPS))
+w(head.rstrip("\n") + "\n")
 unused = []
 v = lambda i: f"v[{i}]"
-QT = sum(lv[0] for lv in LEVELS)
 q = 0
-w("  // Registers per sublevel: the 10 x STAGES - IN_REGS of the latency shared out by the weights of")
+w(f"  // Registers per sublevel: the {LPS} x STAGES - IN_REGS of the latency shared out by the weights of")
 w(f"  // scripts/gen_hit.py (the registers each needs for 95 FO4; {QT} in all), cumulatively.")
-w("  localparam integer R = 10 * STAGES - IN_REGS;")
+w(f"  localparam integer R = {LPS} * STAGES - IN_REGS;")
 for li, (wt, _, _) in enumerate(LEVELS, 1):
     lo = f"(R * {q}) / {QT}"
     q += wt

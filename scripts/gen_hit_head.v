@@ -20,7 +20,7 @@
 // k = 3 is treated as k = 0.
 //
 // Ten operator levels; levels 1 and 10 are two operators deep (sublevels 1-2 and 11-12), the
-// others one. The 10 x STAGES registers of the latency are shared out over the twelve sublevels
+// others one. The @LPS@ x STAGES registers of the latency are shared out over the twelve sublevels
 // by the logic each holds (S1 .. S12 below: a divider or square root takes 7 shares, an add3 3,
 // an add or mul 1; a sublevel with none left is combinational into the next):
 //    1  t d_i, h_i = o_i + t d_i (t backed off by back_i ulps with skip-back); error-bound's
@@ -31,9 +31,12 @@
 //    7  d = (light - h) / len (segment: light - h); error-bound's bound B
 //    8  1 / d_i; n_u d_u, n_v d_v          9  dens = n . d (front, the side of the light)
 //   10  1 / max(|dens|, 1/16) and the slab's t_min; the origin moved (ulp-offset, error-bound)
-// Latency = 10 x STAGES - IN_REGS cycles (STAGES = 0: combinational), one ray per cycle: IN_REGS
-// of the 10 x STAGES registers are the caller's, in front of the inputs (hit_unit's registered
-// slot read), the rest shared out here. The cycle model's default hit_latency of 20 is STAGES = 2.
+// Latency = @LPS@ x STAGES - IN_REGS cycles (STAGES = 0: combinational), one ray per cycle: IN_REGS
+// of the @LPS@ x STAGES registers are the caller's, in front of the inputs (hit_unit's registered
+// slot read), the rest shared out here. @LPS@ per STAGES: at STAGES 2 every sublevel gets at least
+// its weight (the weights total @QT@, the slot read takes one), so each needs 95 FO4 or less by the
+// weights' measure; systemc/config.h kHitLevels is the same number. The cycle model's default
+// hit_latency of @LAT2@ is STAGES = 2.
 //
 // Handshake: valid/ready as every rtl/fp operator; the operators of a sublevel share in_valid and
 // out_ready and have the same depth, so the sublevel's carry fp_pipe stands for all of them (as
@@ -44,7 +47,7 @@ module hit #(
   parameter integer RNE      = 0,
   parameter integer RAYCORE  = 0,   // rounding mode raycore (hls Rounding::raycore; RNE ignored)
   parameter integer STAGES   = 2,
-  parameter integer IN_REGS  = 0,   // <= 10 x STAGES
+  parameter integer IN_REGS  = 0,   // <= @LPS@ x STAGES
   parameter integer TAG_BITS = 16
 ) (
   input  wire                       clk_i,

@@ -8,6 +8,12 @@
 
 namespace raycore::sc {
 
+// Registers per STAGES of each pipelined datapath (rtl/units/*.v): at pin level and in RTL a unit's
+// latency is levels x STAGES. The vtu's fp_sop phases, ist.v's and rgu.v's operator levels; hit.v
+// shares its registers out by the logic of its sublevels (scripts/gen_hit.py: weights totalling
+// 46 registers for 95 FO4, plus the hit unit's registered slot read: 47, so 24 per STAGES).
+inline constexpr uint32_t kVtuLevels = 2, kIstLevels = 10, kHitLevels = 24, kRguLevels = 8;
+
 struct CacheConfig {
   uint32_t size_bytes = 16 * 1024;
   uint32_t ways = 4;
@@ -92,7 +98,7 @@ struct SimConfig {
   // twin: the transaction model is its twin; systemc/trv_rtl.h).
   UnitView trv_view = UnitView::model;
   uint32_t ist_queue = 32;       // ist input queue (triangle tests waiting)
-  uint32_t hit_latency = 20;     // rtl/units/hit.v: 10 operator levels x STAGES 2 (hit point,
+  uint32_t hit_latency = 48;     // rtl/units/hit.v: kHitLevels (24) x STAGES 2 (hit point,
                                  //   shadow ray, spawn; sqrt, rcp)
   UnitView hit_view = UnitView::model;
   uint32_t tile = 8;             // rgu: square tiles of tile x tile pixels, round-robin over RTUs

@@ -58,7 +58,7 @@ class HitRtl {
   virtual HitProbe probe(Cycle now) const = 0;
 };
 
-// The Verilated hit_unit of that format, rounding and STAGES (hit_latency = 10 x STAGES) bound to
+// The Verilated hit_unit of that format, rounding and STAGES (hit_latency = 24 x STAGES) bound to
 // an RTU's channels. Throws ConfigError for more slots or trv pipes than its parameters; nullptr
 // when no model of that format, rounding and STAGES is built.
 std::unique_ptr<HitRtl> make_rtl_hit_unit(hls::FormatId f, hls::Rounding r, unsigned stages,

@@ -87,7 +87,7 @@ class Rtu : public sc_core::sc_module {
                           " in this build; built: " + rtl_trv_built());
     }
     if (cfg.vtu_view != UnitView::model) {
-      const unsigned stages = pin_stages("vtu", cfg.vtu_depth, 2, "--vtu-depth");
+      const unsigned stages = pin_stages("vtu", cfg.vtu_depth, kVtuLevels, "--vtu-depth");
       if (cfg.vtu_view == UnitView::twin)
         vtu_port_ = std::make_unique<pins::VtuPortT<pins::VtuTwin<F, R>>>(
             "vtu_pins", "SystemC twin", clock->clk, clock->rst_n, stages);
@@ -98,7 +98,7 @@ class Rtu : public sc_core::sc_module {
       vtu_unit.bind(vtu_port_.get());
     }
     if (cfg.ist_view == UnitView::rtl) {  // the whole unit: rtl/units/ist_unit.v
-      const unsigned stages = pin_stages("ist", cfg.ist_latency, 10, "--ist-latency");
+      const unsigned stages = pin_stages("ist", cfg.ist_latency, kIstLevels, "--ist-latency");
       ist_rtl_ = make_rtl_ist_unit(hls::format_id<F>(), R, stages, fc, ch_, cfg);
       if (!ist_rtl_)
         throw ConfigError(std::string("no Verilated ist_unit for ") +
@@ -108,7 +108,7 @@ class Rtu : public sc_core::sc_module {
       ist.bind_rtl(ist_rtl_.get());
     }
     if (cfg.ist_view == UnitView::twin) {  // one SystemC twin of rtl/units/ist.v per ist unit
-      const unsigned stages = pin_stages("ist", cfg.ist_latency, 10, "--ist-latency");
+      const unsigned stages = pin_stages("ist", cfg.ist_latency, kIstLevels, "--ist-latency");
       std::vector<pins::IstPort*> ports;
       for (uint32_t u = 0; u < cfg.ist_units; ++u) {
         const std::string n = u == 0 ? std::string("ist") : "ist" + std::to_string(u);
@@ -119,7 +119,7 @@ class Rtu : public sc_core::sc_module {
       ist.bind(ports);
     }
     if (cfg.hit_view == UnitView::rtl) {  // the whole unit: rtl/units/hit_unit.v
-      const unsigned stages = pin_stages("hit", cfg.hit_latency, 10, "--hit-latency");
+      const unsigned stages = pin_stages("hit", cfg.hit_latency, kHitLevels, "--hit-latency");
       hit_rtl_ = make_rtl_hit_unit(hls::format_id<F>(), R, stages, ch_, cfg);
       if (!hit_rtl_)
         throw ConfigError(std::string("no Verilated hit_unit for ") +
@@ -129,13 +129,13 @@ class Rtu : public sc_core::sc_module {
       hit.bind_rtl(hit_rtl_.get());
     }
     if (cfg.hit_view == UnitView::twin) {  // the SystemC twin of rtl/units/hit.v
-      const unsigned stages = pin_stages("hit", cfg.hit_latency, 10, "--hit-latency");
+      const unsigned stages = pin_stages("hit", cfg.hit_latency, kHitLevels, "--hit-latency");
       hit_port_ = std::make_unique<pins::HitPortT<pins::HitTwin<A>>>(
           "hit_pins", "SystemC twin", clock->clk, clock->rst_n, stages);
       hit.bind(hit_port_.get());
     }
     if (cfg.rgu_view != UnitView::model) {
-      const unsigned stages = pin_stages("rgu", cfg.rgu_latency, 8, "--rgu-latency");
+      const unsigned stages = pin_stages("rgu", cfg.rgu_latency, kRguLevels, "--rgu-latency");
       const uint32_t tile = cfg.tile;
       if (tile < 2 || tile > 256 || (tile & (tile - 1)) != 0)
         throw ConfigError("rgu at pin level walks tiles of 2^TILE_BITS pixels a side: tile must "

@@ -233,12 +233,13 @@ class RtuRtlRunner {
                std::to_string(b.mshrs) + " MSHRs per cache");
     need(fc_.tri_line_records * (W <= 24 ? 32u : 48u) == b.line,
          std::to_string(b.line) + "-byte triangle lines");
-    need(cfg_.vtu_depth == 2 * b.stages && cfg_.ist_latency == 10 * b.stages &&
-             cfg_.hit_latency == 10 * b.stages && cfg_.rgu_latency == 8 * b.stages,
+    need(cfg_.vtu_depth == kVtuLevels * b.stages && cfg_.ist_latency == kIstLevels * b.stages &&
+             cfg_.hit_latency == kHitLevels * b.stages && cfg_.rgu_latency == kRguLevels * b.stages,
          "pipeline depths of STAGES " + std::to_string(b.stages) + " (--vtu-depth " +
-             std::to_string(2 * b.stages) + ", --ist-latency " + std::to_string(10 * b.stages) +
-             ", --hit-latency " + std::to_string(10 * b.stages) + ", --rgu-latency " +
-             std::to_string(8 * b.stages) + ")");
+             std::to_string(kVtuLevels * b.stages) + ", --ist-latency " +
+             std::to_string(kIstLevels * b.stages) + ", --hit-latency " +
+             std::to_string(kHitLevels * b.stages) + ", --rgu-latency " +
+             std::to_string(kRguLevels * b.stages) + ")");
     need(uint64_t(cfg_.trv_latency) + cfg_.node_cache.hit_latency >= 3,
          "--trv-latency + the node cache's hit latency >= 3 (an inner node's split is written back "
          "two cycles after its pass)");

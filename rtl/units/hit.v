@@ -20,7 +20,7 @@
 // k = 3 is treated as k = 0.
 //
 // Ten operator levels; levels 1 and 10 are two operators deep (sublevels 1-2 and 11-12), the
-// others one. The 10 x STAGES registers of the latency are shared out over the twelve sublevels
+// others one. The 24 x STAGES registers of the latency are shared out over the twelve sublevels
 // by the logic each holds (S1 .. S12 below: a divider or square root takes 7 shares, an add3 3,
 // an add or mul 1; a sublevel with none left is combinational into the next):
 //    1  t d_i, h_i = o_i + t d_i (t backed off by back_i ulps with skip-back); error-bound's
@@ -31,9 +31,12 @@
 //    7  d = (light - h) / len (segment: light - h); error-bound's bound B
 //    8  1 / d_i; n_u d_u, n_v d_v          9  dens = n . d (front, the side of the light)
 //   10  1 / max(|dens|, 1/16) and the slab's t_min; the origin moved (ulp-offset, error-bound)
-// Latency = 10 x STAGES - IN_REGS cycles (STAGES = 0: combinational), one ray per cycle: IN_REGS
-// of the 10 x STAGES registers are the caller's, in front of the inputs (hit_unit's registered
-// slot read), the rest shared out here. The cycle model's default hit_latency of 20 is STAGES = 2.
+// Latency = 24 x STAGES - IN_REGS cycles (STAGES = 0: combinational), one ray per cycle: IN_REGS
+// of the 24 x STAGES registers are the caller's, in front of the inputs (hit_unit's registered
+// slot read), the rest shared out here. 24 per STAGES: at STAGES 2 every sublevel gets at least
+// its weight (the weights total 46, the slot read takes one), so each needs 95 FO4 or less by the
+// weights' measure; systemc/config.h kHitLevels is the same number. The cycle model's default
+// hit_latency of 48 is STAGES = 2.
 //
 // Handshake: valid/ready as every rtl/fp operator; the operators of a sublevel share in_valid and
 // out_ready and have the same depth, so the sublevel's carry fp_pipe stands for all of them (as
@@ -44,7 +47,7 @@ module hit #(
   parameter integer RNE      = 0,
   parameter integer RAYCORE  = 0,   // rounding mode raycore (hls Rounding::raycore; RNE ignored)
   parameter integer STAGES   = 2,
-  parameter integer IN_REGS  = 0,   // <= 10 x STAGES
+  parameter integer IN_REGS  = 0,   // <= 24 x STAGES
   parameter integer TAG_BITS = 16
 ) (
   input  wire                       clk_i,
@@ -242,9 +245,9 @@ module hit #(
   wire [W-1:0] du_0 = pu(in_k_i, in_d_x_i, in_d_y_i, in_d_z_i);
   wire [W-1:0] dv_0 = pv(in_k_i, in_d_x_i, in_d_y_i, in_d_z_i);
 
-  // Registers per sublevel: the 10 x STAGES - IN_REGS of the latency shared out by the weights of
+  // Registers per sublevel: the 24 x STAGES - IN_REGS of the latency shared out by the weights of
   // scripts/gen_hit.py (the registers each needs for 95 FO4; 46 in all), cumulatively.
-  localparam integer R = 10 * STAGES - IN_REGS;
+  localparam integer R = 24 * STAGES - IN_REGS;
   localparam integer S1 = (R * 1) / 46 - (R * 0) / 46;  // weight 1
   localparam integer S2 = (R * 4) / 46 - (R * 1) / 46;  // weight 3
   localparam integer S3 = (R * 5) / 46 - (R * 4) / 46;  // weight 1

@@ -1,7 +1,7 @@
 # rtl/units/hit_unit.v: the whole hit unit (the hit queue, the slot read, hit.v, the decision to
 # free the slot or keep the shadow ray). Included by rtl/CMakeLists.txt. Verilated with --cc into
 # the frame's library (raycore_rtl_frame) for `raycore simulate --rtl hit` (systemc/hit_rtl.cpp
-# steps it from C++); FP24 rtz, rne and raycore and FP32 rne, at STAGES 2 (--hit-latency 20, the
+# steps it from C++); FP24 rtz, rne and raycore and FP32 rne, at STAGES 2 (--hit-latency 48, the
 # default), 128 slots and 4 trv pipes' finished rays per cycle.
 # rtl_hit_unit_variants.h: RAYCORE_RTL_HITU_VARIANT(prefix, fmt, mode, stages, width, slot_bits,
 # pipes), one line per model.

@@ -7,12 +7,12 @@
 // pixel's hit, light side and shade) stays the host's: it reads out_* when a ray leaves.
 //
 // Per cycle, in the model's order (systemc/hit.h, Hit::tick):
-//   1. the ray hit.v puts out (hit_latency = 10 x STAGES cycles after it entered) leaves on out_*:
+//   1. the ray hit.v puts out (hit_latency = 24 x STAGES cycles after it entered) leaves on out_*:
 //      out_free_o or out_spawn_o, with hit.v's results (the hit point, the light side, dens and
 //      the shadow ray);
 //   2. the queue's head enters the hit pipeline if its ready cycle has come (one ray per cycle):
 //      the slot's ray, best record and kind are read (rd_slot_o / rd_i, same cycle) into a
-//      register (STAGES > 0: the first of the latency's 10 x STAGES, hit.v's IN_REGS) and carried;
+//      register (STAGES > 0: the first of the latency's 24 x STAGES, hit.v's IN_REGS) and carried;
 //   3. the trv's finished rays of this cycle (fin_*, one per pipe, each with its ready cycle) are
 //      appended in pipe order.
 // The queue is a FIFO whose head blocks the entries behind it until its ready cycle (the cycle

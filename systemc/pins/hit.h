@@ -5,7 +5,7 @@
 //
 // The twin computes each hit at the input through hls::hit_shadow_regs (the one definition of the
 // unit) with the register values on its pins, and carries the result through a ReadyChain of
-// 10 * STAGES registers: the RTL's latency and handshake, cycle for cycle.
+// kHitLevels (systemc/config.h) x STAGES registers: the RTL's latency and handshake, cycle for cycle.
 #pragma once
 
 #include <systemc>
@@ -13,6 +13,7 @@
 #include <cstdint>
 
 #include "hls/hit.h"
+#include "systemc/config.h"
 #include "systemc/pins/port.h"
 
 namespace raycore::sc::pins {
@@ -76,7 +77,8 @@ using HitPortT = BoundPort<HitPort, M>;
 template <class A>
 class HitTwin : public PinTwin<HitPins> {
  public:
-  HitTwin(sc_core::sc_module_name name, unsigned stages) : PinTwin<HitPins>(name, 10 * stages) {}
+  HitTwin(sc_core::sc_module_name name, unsigned stages)
+      : PinTwin<HitPins>(name, kHitLevels * stages) {}
 
   // One hit as the RTL computes it (k = 3 is treated as k = 0, strategy 7 as none).
   static HitOutRec compute(const HitIn& in, const HitConfig& c) {

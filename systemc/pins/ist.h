@@ -14,6 +14,7 @@
 
 #include "hls/ist.h"
 #include "hls/margins.h"
+#include "systemc/config.h"
 #include "systemc/pins/port.h"
 
 namespace raycore::sc::pins {
@@ -53,7 +54,8 @@ using IstPortT = BoundPort<IstPort, M>;
 template <class A>
 class IstTwin : public PinTwin<IstPins> {
  public:
-  IstTwin(sc_core::sc_module_name name, unsigned stages) : PinTwin<IstPins>(name, 10 * stages) {}
+  IstTwin(sc_core::sc_module_name name, unsigned stages)
+      : PinTwin<IstPins>(name, kIstLevels * stages) {}
 
   // One test as the RTL computes it (k = 3 is treated as k = 0) with the margin registers m.
   static IstOutRec compute(const IstIn& in, const hls::Margins& m) {

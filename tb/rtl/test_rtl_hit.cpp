@@ -2,7 +2,8 @@
 // from C++) against hls::hit_shadow_regs (hls/hit.h), bit for bit, in order.
 //
 // RtlHit.<variant> (RAYCORE_RTL_HIT_VARIANTS, rtl/units/hit.cmake):
-//   1. fullrate: 4096 hits with no stalls (one per cycle, latency exactly 10*STAGES), error-bound
+//   1. fullrate: 4096 hits with no stalls (one per cycle, latency exactly 24*STAGES:
+//      systemc/config.h kHitLevels), error-bound
 //      with unit shadow rays (the longest data flow),
 //   2. random: RAYCORE_RTL_HIT_N (default 10^5) hits in 70 runs with random input gaps and output
 //      back-pressure; each run has its own per-frame registers (the pipeline is empty between
@@ -34,6 +35,7 @@
 #include "hls/hit.h"
 #include "hls/ist.h"
 #include "hls/margins.h"
+#include "systemc/config.h"
 #include "tb/fp/fp_check.h"
 #include "tb/rtl/rtl_cosim.h"
 #include "tb/rtl/stimulus.h"
@@ -256,8 +258,8 @@ class HitCosim {
     };
     V& m = *dut_;
     drive_regs(m, r);
-    const uint64_t latency = 10u * uint64_t(stages_);
-    const StreamSpec spec{name_, count, full, latency, "10*STAGES", 1000u + 64u * latency};
+    const uint64_t latency = uint64_t(sc::kHitLevels) * stages_;
+    const StreamSpec spec{name_, count, full, latency, "24*STAGES", 1000u + 64u * latency};
     const StreamStats st = stream(
         dut_, spec, rng_, rng_,
         [&](uint64_t) {

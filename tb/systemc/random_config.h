@@ -204,15 +204,15 @@ inline Drawn draw_views(uint64_t seed, uint64_t index) {
     d.tc.spawn.ulps = sim::default_spawn_ulps(d.tc.format, d.tc.spawn.spawn);
   }
   // Pipeline depths: the model's defaults (STAGES 2) for the RTL; a twin takes any multiple of its
-  // operator levels (vtu 2, ist 10, hit 10, rgu 8 per STAGES).
+  // operator levels (systemc/config.h kVtuLevels .. kRguLevels per STAGES).
   auto depth = [&](UnitView v, uint32_t& latency, uint32_t levels, uint32_t dflt) {
     if (v == UnitView::model || !snap()) return;
     latency = is_rtl(v) ? dflt : levels * uint32_t(pick(1, 3));
   };
-  depth(rtu ? UnitView::rtl : c.vtu_view, c.vtu_depth, 2, def.vtu_depth);
-  depth(rtu ? UnitView::rtl : c.ist_view, c.ist_latency, 10, def.ist_latency);
-  depth(rtu ? UnitView::rtl : c.hit_view, c.hit_latency, 10, def.hit_latency);
-  depth(rtu ? UnitView::rtl : c.rgu_view, c.rgu_latency, 8, def.rgu_latency);
+  depth(rtu ? UnitView::rtl : c.vtu_view, c.vtu_depth, sc::kVtuLevels, def.vtu_depth);
+  depth(rtu ? UnitView::rtl : c.ist_view, c.ist_latency, sc::kIstLevels, def.ist_latency);
+  depth(rtu ? UnitView::rtl : c.hit_view, c.hit_latency, sc::kHitLevels, def.hit_latency);
+  depth(rtu ? UnitView::rtl : c.rgu_view, c.rgu_latency, sc::kRguLevels, def.rgu_latency);
   if ((c.rgu_view != UnitView::model || rtu) && snap())
     c.tile = is_rtl(c.rgu_view) ? def.tile : uint32_t(1) << pick(1, 4);  // the rgu walks 2^k tiles
   // The trv and ist in RTL: no mailbox, at most the built pipes, ist units and ray slots.

@@ -168,8 +168,8 @@ TEST(PinsFrame, HitLatencyNotAMultipleOfTheLevelsIsRefused) {
   const auto tc = config(FormatId::fp24, Rounding::rtz, true, 8, 8);
   sc::SimConfig cfg;
   cfg.hit_view = UnitView::twin;
-  cfg.hit_latency = 24;
-  expect_refused(tiny_scene(), tc, cfg, "--hit-latency must be 10 x STAGES");
+  cfg.hit_latency = 20;
+  expect_refused(tiny_scene(), tc, cfg, "--hit-latency must be 24 x STAGES");
 }
 
 TEST(PinsFrame, TwinsWithMargins) {
