@@ -47,8 +47,9 @@ class IstRtlT final : public IstRtl {
     if (ch.tri->line_bytes() != LB)
       refuse(std::to_string(LB) + "-byte triangle cache lines (" + std::to_string(RPL) +
              " records), not " + std::to_string(ch.tri->line_bytes()));
-    if (ch.tri->hit_latency >= (1u << HLBITS))
-      refuse("a triangle-cache hit latency below " + std::to_string(1u << HLBITS));
+    if (ch.tri->hit_latency >= (1u << HLBITS) || ch.tri->hit_latency < 1)
+      refuse("a triangle-cache hit latency of 1 .. " + std::to_string((1u << HLBITS) - 1) +
+             " (ist_unit.v registers the cache's answer before ist.v)");
     vl::async_reset(m_);
   }
   ~IstRtlT() override { m_.final(); }

@@ -220,8 +220,9 @@ class RtuRtlRunner {
     need(cfg_.ist_units >= 1 && cfg_.ist_units <= b.ist,
          "--ist-units <= " + std::to_string(b.ist));
     need(cfg_.ist_queue <= (1u << b.qbits), "--ist-queue <= " + std::to_string(1u << b.qbits));
-    need(cfg_.tri_cache.hit_latency < (1u << b.hlbits),
-         "a triangle-cache hit latency < " + std::to_string(1u << b.hlbits));
+    need(cfg_.tri_cache.hit_latency >= 1 && cfg_.tri_cache.hit_latency < (1u << b.hlbits),
+         "a triangle-cache hit latency of 1 .. " + std::to_string((1u << b.hlbits) - 1) +
+             " (ist_unit.v registers the cache's answer before ist.v)");
     need(cfg_.tile == b.tile, "--tile " + std::to_string(b.tile));
     need(kb(cfg_.node_cache) == b.node_kb && kb(cfg_.list_cache) == b.list_kb &&
              kb(cfg_.tri_cache) == b.tri_kb,

@@ -5,14 +5,16 @@
 // --rtl ist), cycle for cycle and bit for bit the transaction model's.
 //
 // Per cycle, in the model's order (systemc/ist.h, Ist::tick):
-//   1. the results the ist.v pipelines put out at the last edge enter the delay ring, due hl_i
-//      cycles later (hl_i = 0: this cycle); the results due now leave on res_* (lane u = unit u's
-//      result of cycle now - hl_i), in the model's order: the trv reduces them (trv_unit's res_*);
+//   1. the results the ist.v pipelines put out at the last edge enter the delay ring, due
+//      hl_i - ENTRY_REG cycles later (0: this cycle); the results due now leave on res_* (lane
+//      u = unit u's result of the access at cycle now - hl_i), in the model's order: the trv
+//      reduces them (trv_unit's res_*);
 //   2. unit u (u < units_i) takes the queue's entry u if units 0 .. u-1 took theirs and its ready
 //      cycle has come: it reads the triangle cache (acc_* / rsp_*, same-cycle response) and the
 //      ray of the entry's slot (ray_slot_o / ray_i, same cycle); on a hit the test enters its
-//      ist.v (a record whose id is the ray's skip id too: its result reads as no hit), on a miss
-//      the entry goes to the back of the queue, ready at now + 1;
+//      ist.v (a record whose id is the ray's skip id too: its result reads as no hit; with
+//      ENTRY_REG, from a register in the next cycle), on a miss the entry goes to the back of the
+//      queue, ready at now + 1;
 //   3. the trv's hand-offs of this cycle (hin_*, one run of consecutive list positions of one
 //      slot per trv pipe, with its ready cycle) are appended behind the misses, in pipe order.
 // room_o is the queue's room after 1-2, for the trv's hand-offs of the same cycle. The queue is a
@@ -33,7 +35,7 @@
 // WORDS (the hand-off: trv_unit's), RPL (triangle records per cache line, a power of two).
 // lint: also SLOT_BITS=7 IST=4 PIPES=4 WORDS=16 QBITS=6 RPL=2 HLBITS=4 STAGES=2
 // lint: also EXP_BITS=8 MAN_BITS=23 RNE=1 SLOT_BITS=7 IST=4 PIPES=4 WORDS=16 QBITS=6 RPL=1 HLBITS=4 STAGES=2
-// lint: also IST=1 PIPES=1 WORDS=1 RPL=1 HLBITS=1 STAGES=0
+// lint: also IST=1 PIPES=1 WORDS=1 RPL=1 HLBITS=1 STAGES=0 ENTRY_REG=0
 module ist_unit #(
   parameter integer EXP_BITS  = 7,
   parameter integer MAN_BITS  = 16,
@@ -47,6 +49,10 @@ module ist_unit #(
   parameter integer QBITS     = 3,
   parameter integer RPL       = 2,
   parameter integer HLBITS    = 2,
+  // 1: a test enters ist.v from a register, a cycle after its triangle-cache access (the record
+  // and the ray registered), and its result waits hl_i - 1 cycles in the ring instead of hl_i:
+  // the same cycles, hl_i >= 1. 0: it enters in the access's cycle (hl_i >= 0).
+  parameter integer ENTRY_REG = 1,
   // Derived (not to be overridden): the record layout of hls/wald.h and the widths.
   parameter integer W_        = 1 + EXP_BITS + MAN_BITS,
   parameter integer CB_       = (W_ <= 24) ? 3 : 4,               // bytes per constant
@@ -103,6 +109,7 @@ module ist_unit #(
   localparam integer TW  = SLOT_BITS + 1 + 32 + 32 + 2 + 3 * W;  // ist.v's tag: the side data
   localparam integer RESW = 1 + SLOT_BITS + BW;                  // a result: {hit, slot, rec}
   localparam integer RPLB = (RPL > 1) ? $clog2(RPL) : 1;
+  localparam integer EW  = 2 + 9 * W + 8 * W + TW;               // a test entering ist.v
 
   // ---- the queue --------------------------------------------------------------------------------
   // Entry e's registers (g_q[e], below), read through these.
@@ -162,7 +169,31 @@ module ist_unit #(
       wire [RW-1:0] ray = ray_i[u*RW +: RW];
       wire          skip = (id == ray[8*W +: 32]);
       assign test[u] = hit[u] && !skip;
-      // The datapath; the side data rides as its tag.
+      // The test entering ist.v: {k, c8 .. c0, ray, tag}; the side data rides as ist.v's tag.
+      wire [EW-1:0] ein = {k, c8, c7, c6, c5, c4, c3, c2, c1, c0, ray[0 +: 8*W],
+                           q_slot[e], skip, q_pos[e], id, k, c0, c1, c2};
+      wire          ev;
+      wire [EW-1:0] ed;
+      if (ENTRY_REG != 0) begin : g_ereg  // registered: ist.v's level 1 starts from a register
+        reg           v_q;
+        reg [EW-1:0]  d_q;
+        always @(posedge clk_i or negedge rst_ni)
+          if (!rst_ni) v_q <= 1'b0;
+          else v_q <= hit[u];
+        always @(posedge clk_i) d_q <= ein;
+        assign ev = v_q;
+        assign ed = d_q;
+      end else begin : g_ewire
+        assign ev = hit[u];
+        assign ed = ein;
+      end
+      wire [8*W-1:0] eray = ed[TW +: 8*W];  // the ray without its skip id
+      wire [W-1:0]  ec [0:8];
+      genvar gc;
+      for (gc = 0; gc < 9; gc = gc + 1) begin : g_ec
+        assign ec[gc] = ed[TW + 8*W + gc*W +: W];
+      end
+      // The datapath.
       wire          o_valid, o_ready_unused;
       wire [2:0]    o_exit;
       wire [W-1:0]  o_t, o_den;
@@ -170,13 +201,13 @@ module ist_unit #(
       ist #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
             .TAG_BITS(TW)) u_ist (
         .clk_i(clk_i), .rst_ni(rst_ni), .eps_i(eps_i), .one_eps_i(one_eps_i),
-        .in_valid_i(hit[u]), .in_ready_o(o_ready_unused), .in_k_i(k),
-        .in_c0_i(c0), .in_c1_i(c1), .in_c2_i(c2), .in_c3_i(c3), .in_c4_i(c4), .in_c5_i(c5),
-        .in_c6_i(c6), .in_c7_i(c7), .in_c8_i(c8),
-        .in_o_x_i(ray[0 +: W]), .in_o_y_i(ray[W +: W]), .in_o_z_i(ray[2*W +: W]),
-        .in_d_x_i(ray[3*W +: W]), .in_d_y_i(ray[4*W +: W]), .in_d_z_i(ray[5*W +: W]),
-        .in_tmin_i(ray[6*W +: W]), .in_tmax_i(ray[7*W +: W]),
-        .in_tag_i({q_slot[e], skip, q_pos[e], id, k, c0, c1, c2}),
+        .in_valid_i(ev), .in_ready_o(o_ready_unused), .in_k_i(ed[EW-1 -: 2]),
+        .in_c0_i(ec[0]), .in_c1_i(ec[1]), .in_c2_i(ec[2]), .in_c3_i(ec[3]), .in_c4_i(ec[4]),
+        .in_c5_i(ec[5]), .in_c6_i(ec[6]), .in_c7_i(ec[7]), .in_c8_i(ec[8]),
+        .in_o_x_i(eray[0 +: W]), .in_o_y_i(eray[W +: W]), .in_o_z_i(eray[2*W +: W]),
+        .in_d_x_i(eray[3*W +: W]), .in_d_y_i(eray[4*W +: W]), .in_d_z_i(eray[5*W +: W]),
+        .in_tmin_i(eray[6*W +: W]), .in_tmax_i(eray[7*W +: W]),
+        .in_tag_i(ed[0 +: TW]),
         .out_valid_o(o_valid), .out_ready_i(1'b1), .out_exit_o(o_exit), .out_t_o(o_t),
         .out_den_o(o_den), .out_tag_o(o_tag));
       // The result as the trv takes it: {hit, slot, {1, t, den, pos, id, k, nu, nv, nd}}.
@@ -234,12 +265,16 @@ module ist_unit #(
   wire [15:0] cnt_next = left + pushes;
   wire        unused_cnt = ^cnt_next[15:QBITS+1];             // < 2^QBITS entries
 
-  // ---- 1. the delay ring: results due hl_i cycles after they leave ist.v ------------------------
+  // ---- 1. the delay ring: results due hl_i cycles after their access (hl_i - ENTRY_REG after
+  // they leave ist.v) -----------------------------------------------------------------------------
+  localparam [31:0]   ER32 = ENTRY_REG;
+  wire [7:0]          hd = hl_i - ER32[7:0];  // hl_i >= ENTRY_REG (the binding checks)
   reg  [IST-1:0]      ring_v [0:HN-1];
   reg  [IST*RESW-1:0] ring_r [0:HN-1];
   wire [HLBITS-1:0]   rd = now_i[HLBITS-1:0];
-  wire [HLBITS-1:0]   wr = now_i[HLBITS-1:0] + hl_i[HLBITS-1:0];
-  wire                bypass = (hl_i == 8'd0);
+  wire [HLBITS-1:0]   wr = now_i[HLBITS-1:0] + hd[HLBITS-1:0];
+  wire                bypass = (hd == 8'd0);
+  wire                unused_hd = ^hd;
   wire [IST-1:0]      out_v = bypass ? g_out_v : ring_v[rd];
   wire [IST*RESW-1:0] out_r = bypass ? g_out_r : ring_r[rd];
   generate

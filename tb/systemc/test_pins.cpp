@@ -381,14 +381,17 @@ TEST(IstRtlFrame, SmallCachesQueueOfThreeRandomLatency) {
 }
 // The result delay: a triangle-cache hit latency of 0 (results leave with the ist.v's output) and
 // of 5 (through the delay ring), skip-origin shadow rays (the skip id read with the ray).
-TEST(IstRtlFrame, TriangleHitLatencyZeroAndFiveSkipOrigin) {
+// ist_unit.v registers the triangle cache's answer: hit latency 1 (the default) bypasses its delay
+// ring, 5 waits 4 cycles in it; 0 is refused.
+TEST(IstRtlFrame, TriangleHitLatencyFiveSkipOriginZeroRefused) {
   auto tc = config(FormatId::fp24, Rounding::rne, true, 32, 20);
   tc.spawn = spawn(hls::Spawn::skip_origin, true);
-  for (const uint32_t hl : {0u, 5u}) {
-    sc::SimConfig cfg;
-    cfg.tri_cache.hit_latency = hl;
-    expect_ist_rtl(corridor(), tc, cfg, "triangle hit latency " + std::to_string(hl));
-  }
+  sc::SimConfig cfg;
+  cfg.tri_cache.hit_latency = 5;
+  expect_ist_rtl(corridor(), tc, cfg, "triangle hit latency 5");
+  cfg.ist_view = UnitView::rtl;
+  cfg.tri_cache.hit_latency = 0;
+  expect_refused(tiny_scene(), tc, cfg, "a triangle-cache hit latency of 1 .. 15");
 }
 TEST(IstRtlFrame, Fp32RneAndFp24RaycoreOneUnit) {
   sc::SimConfig cfg;
@@ -414,7 +417,7 @@ TEST(IstRtlFrame, RefusesWhatItCannotRun) {
   expect_refused(tiny_scene(), tc, cfg, "64-byte triangle cache lines");
   cfg.tri_cache.line_bytes = 64;
   cfg.tri_cache.hit_latency = 16;
-  expect_refused(tiny_scene(), tc, cfg, "a triangle-cache hit latency below 16");
+  expect_refused(tiny_scene(), tc, cfg, "a triangle-cache hit latency of 1 .. 15");
   cfg.tri_cache.hit_latency = 1;
   cfg.mailbox = 2;
   expect_refused(tiny_scene(), tc, cfg, "no mailbox");
@@ -1008,6 +1011,9 @@ TEST(RtuRtlFrame, RefusesWhatItCannotRun) {
   expect_refused(tiny_scene(), tc, cfg, "--trv-latency + the node cache's hit latency >= 3");
   cfg.trv_latency = 4;
   cfg.node_cache.hit_latency = 1;
+  cfg.tri_cache.hit_latency = 0;
+  expect_refused(tiny_scene(), tc, cfg, "a triangle-cache hit latency of 1 .. 15");
+  cfg.tri_cache.hit_latency = 1;
   cfg.ist_view = UnitView::rtl;
   expect_refused(tiny_scene(), tc, cfg, "give no other unit to --rtl or --pins");
   cfg.ist_view = UnitView::model;
