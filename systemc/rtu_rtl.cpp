@@ -241,9 +241,10 @@ class RtuRtlRunner {
              std::to_string(kIstLevels * b.stages) + ", --hit-latency " +
              std::to_string(kHitLevels * b.stages) + ", --rgu-latency " +
              std::to_string(kRguLevels * b.stages) + ")");
-    need(uint64_t(cfg_.trv_latency) + cfg_.node_cache.hit_latency >= 3,
-         "--trv-latency + the node cache's hit latency >= 3 (an inner node's split is written back "
-         "two cycles after its pass)");
+    need(uint64_t(cfg_.trv_latency) + cfg_.node_cache.hit_latency >= kTrvRtlMinLoop,
+         "--trv-latency + the node cache's hit latency >= " + std::to_string(kTrvRtlMinLoop) +
+             " (an inner node's split is written back " + std::to_string(kTrvRtlMinLoop - 1) +
+             " cycles after its pass)");
     need(cfg_.mailbox == 0, "--mailbox 0");
     need(cfg_.l2.size_bytes == 0, "--l2-kb 0 (the L2 has no RTL)");
     need(cfg_.rtus >= 1 && cfg_.rtus <= 16, "--rtus <= 16");

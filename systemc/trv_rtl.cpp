@@ -37,10 +37,11 @@ class TrvRtlT final : public TrvRtl {
           " --trv-pipes, " + std::to_string(IST) + " --ist-units, " +
           std::to_string(1u << SLOT_BITS) + " --rays-in-flight and " + std::to_string(4 * WORDS) +
           "-byte list cache lines (rtl/units/trv_unit.cmake)");
-    if (uint64_t(cfg.trv_latency) + cfg.node_cache.hit_latency < 3)
-      throw ConfigError("--rtl trv: " + name_ + " writes an inner node's split back two cycles "
-                        "after the pass: --trv-latency plus the node cache's hit latency must be "
-                        "at least 3");
+    if (uint64_t(cfg.trv_latency) + cfg.node_cache.hit_latency < kTrvRtlMinLoop)
+      throw ConfigError("--rtl trv: " + name_ + " writes an inner node's split back " +
+                        std::to_string(kTrvRtlMinLoop - 1) +
+                        " cycles after the pass: --trv-latency plus the node cache's hit latency "
+                        "must be at least " + std::to_string(kTrvRtlMinLoop));
     ch_.ist_results = &results_;
     vl::async_reset(m_);
   }

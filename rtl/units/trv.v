@@ -31,7 +31,8 @@
 //      tl2), tfar = min(tmax, th0, th1, th2) as a tree (max/min return the first of equal values,
 //      so the tree equals hls' left-to-right chain bit for bit), hit = !(tfar < tnear); the
 //      outputs are assembled before the last registers.
-// Latency = 4 * STAGES cycles (STAGES = 0: combinational), one step per cycle.
+// Latency = 4 * STAGES cycles (STAGES = 0: combinational; S1 + S2 + S3 + S4 where the levels'
+// registers are given apart), one step per cycle.
 //
 // Handshake: valid/ready as every rtl/fp operator. The operators of a level receive the same
 // in_valid and out_ready and have the same depth, so their registers hold the same valid bits
@@ -43,7 +44,13 @@ module trv #(
   parameter integer RNE      = 0,
   parameter integer RAYCORE  = 0,   // rounding mode raycore (hls Rounding::raycore; RNE ignored)
   parameter integer STAGES   = 2,
-  parameter integer TAG_BITS = 16
+  parameter integer TAG_BITS = 16,
+  // Registers after each level (default STAGES each): a caller that needs fewer cycles than
+  // 4 x STAGES places its own (trv_unit's split stage: one, after level 1).
+  parameter integer S1       = STAGES,
+  parameter integer S2       = STAGES,
+  parameter integer S3       = STAGES,
+  parameter integer S4       = STAGES
 ) (
   input  wire                       clk_i,
   input  wire                       rst_ni,
@@ -140,7 +147,7 @@ module trv #(
   wire [1:0]   c1_axis;
   wire [W-1:0] c1_tnear, c1_tfar, c1_invx, c1_invy, c1_invz;
   wire [31:0]  c1_node_p1, c1_child;
-  fp_pipe #(.WIDTH(C1_W), .STAGES(STAGES)) u_carry1 (
+  fp_pipe #(.WIDTH(C1_W), .STAGES(S1)) u_carry1 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(r[1]),
     .in_data_i({in_tag_i, in_op_i, in_axis_i, in_tnear_i, in_tfar_i, in_inv_x_i, in_inv_y_i,
                 in_inv_z_i, node_p1, in_child_i, d_low}),
@@ -155,13 +162,13 @@ module trv #(
   genvar gj;
   generate
     for (gj = 0; gj < 6; gj = gj + 1) begin : g_l1_sub
-      fp_op2_nt #(.OP("sub"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_sub (
+      fp_op2_nt #(.OP("sub"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1)) u_sub (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[gj]),
         .in_a_i(l1_a[gj*W +: W]), .in_b_i(l1_b[gj*W +: W]), .out_valid_o(l1_unused_v[gj]),
         .out_ready_i(r[2]), .out_res_o(l1_diff[gj*W +: W]));
     end
   endgenerate
-  fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(STAGES)) u_l1_side (
+  fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(S1)) u_l1_side (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[6]),
     .in_a_i(o_ax), .in_b_i(in_split_i), .out_valid_o(l1_unused_v[6]), .out_ready_i(r[2]),
     .out_lt_o(l1_lt), .out_eq_o(l1_eq), .out_min_o(l1_unused_min), .out_max_o(l1_unused_max));
@@ -176,7 +183,7 @@ module trv #(
   wire [1:0]   c2_axis;
   wire [W-1:0] c2_tnear, c2_tfar;
   wire [31:0]  c2_node_p1, c2_child;
-  fp_pipe #(.WIDTH(C2_W), .STAGES(STAGES)) u_carry2 (
+  fp_pipe #(.WIDTH(C2_W), .STAGES(S2)) u_carry2 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(r[2]),
     .in_data_i({c1_tag, c1_op, c1_axis, c1_tnear, c1_tfar, c1_node_p1, c1_child, l1_below}),
     .out_valid_o(v[2]), .out_ready_i(r[3]),
@@ -188,7 +195,7 @@ module trv #(
   assign {l2_thz, l2_thy, l2_thx, l2_tlz, l2_tly, l2_tlx} = l2_prod;
   generate
     for (gj = 0; gj < 6; gj = gj + 1) begin : g_l2_mul
-      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES)) u_mul (
+      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S2)) u_mul (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[gj]),
         .in_a_i(l1_diff[gj*W +: W]), .in_b_i(l2_b[gj*W +: W]), .out_valid_o(l2_unused_v[gj]),
         .out_ready_i(r[3]), .out_res_o(l2_prod[gj*W +: W]));
@@ -214,7 +221,7 @@ module trv #(
   wire         c3_op, c3_below;
   wire [W-1:0] c3_tnear, c3_tfar, c3_ts, c3_tlx, c3_tly, c3_tlz, c3_thx, c3_thy, c3_thz;
   wire [31:0]  c3_node_p1, c3_child;
-  fp_pipe #(.WIDTH(C3_W), .STAGES(STAGES)) u_carry3 (
+  fp_pipe #(.WIDTH(C3_W), .STAGES(S3)) u_carry3 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(r[3]),
     .in_data_i({c2_tag, c2_op, c2_below, c2_tnear, c2_tfar, l2_ts, l2_tlx, l2_tly, l2_tlz,
                 l2_thx, l2_thy, l2_thz, c2_node_p1, c2_child}),
@@ -224,7 +231,7 @@ module trv #(
   );
   generate
     for (gj = 0; gj < 3; gj = gj + 1) begin : g_l3_cmp
-      fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(STAGES)) u_cmp (
+      fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(S3)) u_cmp (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[gj]),
         .in_a_i(k_a[gj*W +: W]), .in_b_i(k_b[gj*W +: W]), .out_valid_o(l3_unused_v[gj]),
         .out_ready_i(r[4]), .out_lt_o(l3_lt[gj]), .out_eq_o(l3_unused_eq[gj]),
@@ -294,7 +301,7 @@ module trv #(
   wire [W-1:0] o_tnear    = c3_op ? t0 : c3_tnear;
   wire [W-1:0] o_tfar     = c3_op ? t1 : (l3_visit == 2'd2) ? c3_ts : c3_tfar;
   localparam integer C4_W = TAG_BITS + 5 + 4 * W + 64;
-  fp_pipe #(.WIDTH(C4_W), .STAGES(STAGES)) u_carry4 (
+  fp_pipe #(.WIDTH(C4_W), .STAGES(S4)) u_carry4 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(r[4]),
     .in_data_i({c3_tag, c3_op, o_hit, l3_visit, c3_below, c3_ts, o_tnear, o_tfar, c3_tfar,
                 o_node, o_second}),

@@ -20,10 +20,10 @@
 //      same-cycle response, which nothing else's access waits for), asks the list stage for a
 //      list step (registered for the next cycle), hands finished rays to the hit unit (fin_*),
 //      and pushes the ray back with its ready cycle. An inner node's split (trv.v, op 0) is not
-//      in the pass: the pass registers its inputs, and the split runs in the next cycle and
+//      in the pass: the pass registers its inputs, and the split runs in the next two cycles and
 //      writes the ray's node, interval and stack push back (the split stage, 5. below). The ray
-//      is not taken again before that: its ready cycle is at least now + 3 (trv_latency + the
-//      node cache's hit latency >= 3, which the bindings check), and nothing else reads its slot
+//      is not taken again before that: its ready cycle is at least now + 4 (trv_latency + the
+//      node cache's hit latency >= 4, which the bindings check), and nothing else reads its slot
 //      or stack in between. A ray asking for a list step is in no queue until the stage's step;
 //   4. a ray from the rgu (in_*: a new primary ray or a shadow ray in its slot) enters the queue
 //      at now + 1, clipped to the scene box as it enters (trv.v, op 1: hls::trv_clip_box; the
@@ -390,9 +390,10 @@ module trv_unit #(
   // ---- 5. the split stage: last cycle's inner nodes (trv.v, op 0, on the node's axis) ----------
   // Registered at the pass: the split's inputs, the ray's slot, its stack pointer after the pass
   // and where its queue entry went (its fq_sp follows the split's push). The split runs in the
-  // cycle after the pass; its results are registered (s_*, w*_q) and written back at the end of
-  // the cycle after that, so the ray is taken at the pass's cycle + 3 at the earliest (trv_latency
-  // + the node cache's hit latency >= 3, which the bindings check).
+  // two cycles after the pass (trv.v with one register, after its subtraction; the slot, stack
+  // pointer and queue position ride as its tag); its results are registered (s_*, w*_q) and
+  // written back at the end of the cycle after that, so the ray is taken at the pass's cycle + 4
+  // at the earliest (trv_latency + the node cache's hit latency >= 4, which the bindings check).
   reg  [PIPES-1:0]         sv_q;
   reg  [SLOT_BITS-1:0]     ss_q    [0:PIPES-1];
   reg  [6:0]               ssp_q   [0:PIPES-1];
@@ -403,7 +404,9 @@ module trv_unit #(
   reg  [W-1:0]             stn_q   [0:PIPES-1];
   reg  [W-1:0]             stf_q   [0:PIPES-1];
   reg  [3*W-1:0]           sray_q  [0:PIPES-1];
-  wire [PIPES-1:0]         d_push, s_err;
+  localparam integer      STW = 2 * SLOT_BITS + 7;  // the split's tag: {slot, sp, queue position}
+  wire [PIPES-1:0]         d_vld, d_push, s_err;
+  wire [PIPES*STW-1:0]     d_tag;
   wire [PIPES*32-1:0]      d_node;
   wire [PIPES*W-1:0]       d_tnear, d_tfar;
   wire [PIPES*EW-1:0]      d_push_e;
@@ -420,27 +423,29 @@ module trv_unit #(
   genvar q;
   generate
     for (q = 0; q < PIPES; q = q + 1) begin : g_split
-      wire         d_rdy, d_vld, d_op, d_hit, d_below, d_tag;
+      wire         d_rdy, d_op, d_hit, d_below;
       wire [1:0]   d_visit;
       wire [W-1:0] d_tsplit, d_far_tfar;
       wire [31:0]  d_far_node;
       wire [3*W-1:0] sr = sray_q[q];  // {o, d, inv} on the node's axis, fed as lane x
       trv #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(0),
-            .TAG_BITS(1)) u_dp (
-        .clk_i(1'b0), .rst_ni(1'b1), .widen_i(widen_i), .in_valid_i(1'b1), .in_ready_o(d_rdy),
+            .S1(1), .TAG_BITS(STW)) u_dp (
+        .clk_i(clk_i), .rst_ni(rst_ni), .widen_i(widen_i), .in_valid_i(sv_q[q]),
+        .in_ready_o(d_rdy),
         .in_op_i(1'b0), .in_axis_i(2'd0), .in_split_i(splane_q[q]), .in_node_i(snode_q[q]),
         .in_child_i(schild_q[q]), .in_o_x_i(sr[2*W +: W]), .in_o_y_i({W{1'b0}}),
         .in_o_z_i({W{1'b0}}), .in_d_x_i(sr[W +: W]), .in_d_y_i({W{1'b0}}), .in_d_z_i({W{1'b0}}),
         .in_inv_x_i(sr[0 +: W]), .in_inv_y_i({W{1'b0}}), .in_inv_z_i({W{1'b0}}),
         .in_tnear_i(stn_q[q]), .in_tfar_i(stf_q[q]), .in_lo_x_i({W{1'b0}}),
         .in_lo_y_i({W{1'b0}}), .in_lo_z_i({W{1'b0}}), .in_hi_x_i({W{1'b0}}),
-        .in_hi_y_i({W{1'b0}}), .in_hi_z_i({W{1'b0}}), .in_tag_i(1'b0), .out_valid_o(d_vld),
+        .in_hi_y_i({W{1'b0}}), .in_hi_z_i({W{1'b0}}), .in_tag_i({ss_q[q], ssp_q[q], sat_q[q]}),
+        .out_valid_o(d_vld[q]),
         .out_ready_i(1'b1), .out_op_o(d_op), .out_hit_o(d_hit), .out_visit_o(d_visit),
         .out_below_o(d_below), .out_tsplit_o(d_tsplit), .out_tnear_o(d_tnear[q*W +: W]),
         .out_tfar_o(d_tfar[q*W +: W]), .out_node_o(d_node[q*32 +: 32]),
-        .out_far_node_o(d_far_node), .out_far_tfar_o(d_far_tfar), .out_tag_o(d_tag));
-      wire unused_dp = ^{d_rdy, d_vld, d_op, d_hit, d_below, d_tag};
-      assign d_push[q] = sv_q[q] && (d_visit == 2'd2);
+        .out_far_node_o(d_far_node), .out_far_tfar_o(d_far_tfar), .out_tag_o(d_tag[q*STW +: STW]));
+      wire unused_dp = ^{d_rdy, d_op, d_hit, d_below};
+      assign d_push[q] = d_vld[q] && (d_visit == 2'd2);
       assign d_push_e[q*EW +: EW] = {d_far_node, d_tsplit, d_far_tfar};
       assign s_err[q] = s_push[q] && (wsp_q[q] >= depth_i);
     end
@@ -450,13 +455,10 @@ module trv_unit #(
     s_tnear <= d_tnear;
     s_tfar <= d_tfar;
     s_push_e <= d_push_e;
-    for (int_q = 0; int_q < PIPES; int_q = int_q + 1) begin
-      ws_q[int_q] <= ss_q[int_q];
-      wsp_q[int_q] <= ssp_q[int_q];
-      wat_q[int_q] <= sat_q[int_q];
-    end
+    for (int_q = 0; int_q < PIPES; int_q = int_q + 1)
+      {ws_q[int_q], wsp_q[int_q], wat_q[int_q]} <= d_tag[int_q*STW +: STW];
   end
-  assign pend_o = (|sv_q) || (|wv_q) || (|lv_q);
+  assign pend_o = (|sv_q) || (|d_vld) || (|wv_q) || (|lv_q);
   assign err_o = err_q || |s_err;
 
   // ---- 6. state update (with the queue's head window) ----------------------------------------
@@ -600,7 +602,7 @@ module trv_unit #(
         lsp_q[b]    <= p_sp[b*7 +: 7];
       end
     end
-    // The split stage's write-back (the rays of the pass two cycles ago: none of this cycle's
+    // The split stage's write-back (the rays of the pass three cycles ago: none of this cycle's
     // pipes', the list stage's or the rgu's).
     for (b = 0; b < PIPES; b = b + 1) begin
       if (wv_q[b]) begin
@@ -706,7 +708,7 @@ module trv_unit #(
       head_q <= head_q + pops[SLOT_BITS-1:0];
       cnt_q <= cnt_q - pops + pushes;
       sv_q <= go_o & p_split;
-      wv_q <= sv_q;
+      wv_q <= d_vld;
       s_push <= d_push;
       lv_q <= go_o & p_lreq;
       lfused_q <= p_lfused;
