@@ -146,6 +146,9 @@ class Ist : public sc_core::sc_module {
       return true;
     }
     ch_.ist_q.pop();
+    if (ch_.ist_taken_at != now) ch_.ist_taken = 0;
+    ch_.ist_taken_at = now;
+    ++ch_.ist_taken;
     ++st_.ist_busy;
     const hls::WaldTri<F> w = hls::decode_tri<F>(line + byte % lb);
     const Slot& r = ch_.slots[q.slot];

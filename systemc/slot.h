@@ -96,6 +96,14 @@ struct RtuChannels {
   TimedFifo<uint16_t> trv_q;     // rays ready for a traversal step (rgu, loop, ist -> trv)
   TimedFifo<IstReq> ist_q;       // trv -> ist
   TimedFifo<IstRes> ist_pipe;    // ist's pipeline (results leave after ist_latency)
+  // The entries the ist took out of ist_q for good in cycle ist_taken_at (its hits; a miss goes
+  // back): the trv's hand-offs of that cycle do not get their room (ist_room), so that the room
+  // is the queue's at the cycle's start, a register in rtl/units/ist_unit.v.
+  Cycle ist_taken_at = kNever;
+  uint32_t ist_taken = 0;
+  size_t ist_room(Cycle now) const {
+    return ist_q.capacity() - ist_q.size() - (ist_taken_at == now ? ist_taken : 0);
+  }
   TimedFifo<uint16_t> hit_q;     // trv -> hit (finished rays)
   TimedFifo<uint16_t> shadow_q;  // hit -> rgu (shadow rays handed over)
   Ascache *node = nullptr, *list = nullptr, *tri = nullptr;

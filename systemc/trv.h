@@ -175,16 +175,16 @@ class Trv : public SlotUnit {
   bool list_stage(Cycle now) {
     if (stage_.empty()) return false;
     if (now != stage_at_) throw std::logic_error("trv: the list stage skipped its cycle");
-    for (const Asked& a : stage_) list_step(a.slot, ch_.slots[a.slot], a.base, a.fused);
+    for (const Asked& a : stage_) list_step(a.slot, ch_.slots[a.slot], a.base, a.fused, now);
     stage_.clear();
     return true;
   }
 
-  bool list_step(uint16_t s, Slot& r, Cycle base, bool fused) {
+  bool list_step(uint16_t s, Slot& r, Cycle base, bool fused, Cycle now) {
     const Cycle again = base + lat_;
     const uint32_t lb = ch_.list->line_bytes();
     const uint64_t byte = uint64_t(r.list_first + r.list_pos) * 4;
-    const size_t room = ch_.ist_q.capacity() - ch_.ist_q.size();
+    const size_t room = ch_.ist_room(now);
     if (room == 0) {
       if (!fused) ++st_.trv_ist_full;
       ch_.trv_q.push(s, again);

@@ -78,7 +78,7 @@ class TrvRtlT final : public TrvRtl {
     }
     const bool had_results = !results_.empty();
     results_.clear();
-    m_.room_i = uint16_t(ch_.ist_q.capacity() - ch_.ist_q.size());
+    m_.room_i = uint16_t(ch_.ist_room(now));
     m_.nrsp_hit_i = 0;
     m_.lrsp_hit_i = 0;
     m_.eval();
@@ -174,7 +174,7 @@ class TrvRtlT final : public TrvRtl {
       m_.res_valid_i = 0;
       m_.nrsp_hit_i = 0;
       m_.lrsp_hit_i = 0;
-      m_.room_i = uint16_t(ch_.ist_q.capacity() - ch_.ist_q.size());
+      m_.room_i = uint16_t(ch_.ist_room(now));
       m_.eval();  // clk low seen, so that the next evaluation has a rising edge
     }
     m_.clk_i = 1;  // the inputs and the rising edge in one evaluation (Verilator settles the

@@ -17,7 +17,8 @@
 //      queue, ready at now + 1;
 //   3. the trv's hand-offs of this cycle (hin_*, one run of consecutive list positions of one
 //      slot per trv pipe, with its ready cycle) are appended behind the misses, in pipe order.
-// room_o is the queue's room after 1-2, for the trv's hand-offs of the same cycle. The queue is a
+// room_o is the queue's room at the cycle's start (qcap_i - entries), for the trv's hand-offs of
+// the same cycle: the queue holds them, since the misses that go back were in it. The queue is a
 // FIFO whose head blocks the entries behind it until its ready cycle (the cycle model's
 // TimedFifo); ready cycles are 32-bit cycle numbers compared with now_i as a signed difference.
 // Since a miss goes behind every entry present, unit u's access depends only on the queue's
@@ -236,7 +237,10 @@ module ist_unit #(
   end
   wire [15:0] npop16 = {10'd0, npop};
   wire [15:0] left = {{(15-QBITS){1'b0}}, cnt_q} - npop16 + {10'd0, nmiss};
-  assign room_o = qcap_i - left;
+  // The room for the trv's hand-offs of this cycle: the queue's at the cycle's start (this
+  // cycle's pops do not make room before the next; a miss goes back to the tail): a register's
+  // value, so no path runs from the triangle cache's answer into the trv.
+  assign room_o = qcap_i - {{(15-QBITS){1'b0}}, cnt_q};
 
   // ---- 3. pushes: the misses in unit order, then each pipe's run --------------------------------
   wire [QBITS-1:0] tail = head_q + cnt_q[QBITS-1:0];
