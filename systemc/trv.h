@@ -171,7 +171,9 @@ class Trv : public SlotUnit {
 
   // The list stage: the steps asked for in the cycle before, in pipe order, each with the ist
   // queue's room as the steps before it left it (a step that misses takes none: so a ray whose
-  // line is pinned for it is never kept from reading it by a step that cannot go on).
+  // line is pinned for it is never kept from reading it by a step that cannot go on). The room is
+  // the queue's at the cycle's start (RtuChannels::ist_room: the ist's pops of this cycle make
+  // room from the next cycle on).
   bool list_stage(Cycle now) {
     if (stage_.empty()) return false;
     if (now != stage_at_) throw std::logic_error("trv: the list stage skipped its cycle");

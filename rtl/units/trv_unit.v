@@ -11,7 +11,7 @@
 //   2. the list stage: the list steps that the pipes' passes asked for in the cycle before (Trv's
 //      list_stage), one per pipe, each reading its list line through lacc_* / lrsp_* (the list
 //      cache, one port per pipe), handing entries to the ist (ist_*) and pushing the ray back or
-//      leaving it to wait for the ist. The ist queue's room (room_i, after this cycle's pops) is
+//      leaving it to wait for the ist. The ist queue's room (room_i, at the cycle's start) is
 //      taken in stage order: stage p's room is room_i less what stages 0 .. p-1 hand out (with
 //      its line present: the entries left, to the line's end; 0 on a miss), so stage p's access
 //      valid depends on the earlier stages' line presence (the caller answers them in order);
