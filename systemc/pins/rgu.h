@@ -22,6 +22,7 @@
 
 #include "hls/ray.h"
 #include "hls/rgu.h"
+#include "systemc/config.h"
 #include "systemc/pins/port.h"
 
 namespace raycore::sc::pins {
@@ -108,7 +109,7 @@ class RguTwin : public sc_core::sc_module, public RguPins::Ports {
  public:
   SC_HAS_PROCESS(RguTwin);
   RguTwin(sc_core::sc_module_name name, unsigned stages, int tile)
-      : sc_core::sc_module(name), tile_(tile), chain_(8 * stages) {
+      : sc_core::sc_module(name), tile_(tile), chain_(kRguLevels * stages) {
     SC_METHOD(seq);
     sensitive << clk_i.pos() << rst_ni.neg();
     dont_initialize();

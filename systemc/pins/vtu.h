@@ -17,6 +17,7 @@
 #include "hls/image.h"
 #include "hls/vtu.h"
 #include "hls/wald.h"
+#include "systemc/config.h"
 #include "systemc/pins/port.h"
 
 namespace raycore::sc::pins {
@@ -47,7 +48,8 @@ RAYCORE_PINS_UNIT(VtuPins, RAYCORE_VTU_PINS, VtuRec, VtuRec);
 template <class F, hls::Rounding R>
 class VtuTwin : public PinTwin<VtuPins> {
  public:
-  VtuTwin(sc_core::sc_module_name name, unsigned stages) : PinTwin<VtuPins>(name, 2 * stages) {}
+  VtuTwin(sc_core::sc_module_name name, unsigned stages)
+      : PinTwin<VtuPins>(name, kVtuLevels * stages) {}
 
   // The transform of one record, as the RTL computes it (k = 3 is treated as k = 0; node lanes
   // outside nmask pass unchanged).

@@ -31,6 +31,7 @@
 #include "hls/ist.h"
 #include "hls/margins.h"
 #include "hls/wald.h"
+#include "systemc/config.h"
 #include "tb/fp/fp_check.h"
 #include "tb/rtl/rtl_cosim.h"
 #include "tb/rtl/stimulus.h"
@@ -107,7 +108,7 @@ class IstCosim {
       IstIn x;
       IstRes expected;
     };
-    const StreamSpec spec{name_, count, full, 10u * uint64_t(stages_), "10*STAGES",
+    const StreamSpec spec{name_, count, full, uint64_t(sc::kIstLevels) * stages_, "10*STAGES",
                           2000u + 64u * uint64_t(stages_), 1};
     std::array<uint64_t, 5> by_exit{};
     uint64_t mismatches = 0;
