@@ -110,7 +110,8 @@ module ist_unit #(
   localparam integer TW  = SLOT_BITS + 1 + 32 + 32 + 2 + 3 * W;  // ist.v's tag: the side data
   localparam integer RESW = 1 + SLOT_BITS + BW;                  // a result: {hit, slot, rec}
   localparam integer RPLB = (RPL > 1) ? $clog2(RPL) : 1;
-  localparam integer EW  = 2 + 9 * W + 8 * W + TW;               // a test entering ist.v
+  localparam integer SW  = SLOT_BITS + 1 + 32 + 32;              // {slot, skip, pos, id}
+  localparam integer EW  = 2 + 9 * W + 8 * W + SW;               // a test entering ist.v
 
   // ---- the queue --------------------------------------------------------------------------------
   // Entry e's registers (g_q[e], below), read through these.
@@ -170,9 +171,10 @@ module ist_unit #(
       wire [RW-1:0] ray = ray_i[u*RW +: RW];
       wire          skip = (id == ray[8*W +: 32]);
       assign test[u] = hit[u] && !skip;
-      // The test entering ist.v: {k, c8 .. c0, ray, tag}; the side data rides as ist.v's tag.
+      // The test entering ist.v: {k, c8 .. c0, the ray, slot, skip, list position, id}; the side
+      // data rides as ist.v's tag (with k and the plane c0 .. c2, taken from the record here).
       wire [EW-1:0] ein = {k, c8, c7, c6, c5, c4, c3, c2, c1, c0, ray[0 +: 8*W],
-                           q_slot[e], skip, q_pos[e], id, k, c0, c1, c2};
+                           q_slot[e], skip, q_pos[e], id};
       wire          ev;
       wire [EW-1:0] ed;
       if (ENTRY_REG != 0) begin : g_ereg  // registered: ist.v's level 1 starts from a register
@@ -188,11 +190,11 @@ module ist_unit #(
         assign ev = hit[u];
         assign ed = ein;
       end
-      wire [8*W-1:0] eray = ed[TW +: 8*W];  // the ray without its skip id
+      wire [8*W-1:0] eray = ed[SW +: 8*W];  // the ray without its skip id
       wire [W-1:0]  ec [0:8];
       genvar gc;
       for (gc = 0; gc < 9; gc = gc + 1) begin : g_ec
-        assign ec[gc] = ed[TW + 8*W + gc*W +: W];
+        assign ec[gc] = ed[SW + 8*W + gc*W +: W];
       end
       // The datapath.
       wire          o_valid, o_ready_unused;
@@ -208,7 +210,7 @@ module ist_unit #(
         .in_o_x_i(eray[0 +: W]), .in_o_y_i(eray[W +: W]), .in_o_z_i(eray[2*W +: W]),
         .in_d_x_i(eray[3*W +: W]), .in_d_y_i(eray[4*W +: W]), .in_d_z_i(eray[5*W +: W]),
         .in_tmin_i(eray[6*W +: W]), .in_tmax_i(eray[7*W +: W]),
-        .in_tag_i(ed[0 +: TW]),
+        .in_tag_i({ed[0 +: SW], ed[EW-1 -: 2], ec[0], ec[1], ec[2]}),
         .out_valid_o(o_valid), .out_ready_i(1'b1), .out_exit_o(o_exit), .out_t_o(o_t),
         .out_den_o(o_den), .out_tag_o(o_tag));
       // The result as the trv takes it: {hit, slot, {1, t, den, pos, id, k, nu, nv, nd}}.
