@@ -1,10 +1,12 @@
 // systemc/trv.h - kd-tree traversal for many rays in flight. Each cycle the ray at the head of the
 // ready queue takes one step (box clip, one inner node, the leaf's end, one stack pop) and loops
-// back trv_latency cycles later; a step that reads a list line asks the list stage for it, which
-// reads it in the next cycle (see tick). A ray whose node or list line misses in the
-// ascache loops back the same way and tries again ("looping for the next chance"): the pipeline
-// never stalls on memory. A leaf's list entries go to the ist; the ray waits for all of its
-// results, then its leaf-end step mirrors the golden tracer's termination rules exactly.
+// back trv_latency cycles later. A pass reads the node cache and its outcome follows in the next
+// cycle from the word (a registered read: the outcome stage, see tick); a step that reads a list
+// line asks the list stage for it, which reads it in the outcome's cycle. A ray whose node or list
+// line misses in the ascache loops back the same way and tries again ("looping for the next
+// chance"): the pipeline never stalls on memory. A leaf's list entries go to the ist; the ray
+// waits for all of its results, then its leaf-end step mirrors the golden tracer's termination
+// rules exactly.
 #pragma once
 
 #include <systemc>
@@ -27,32 +29,56 @@ class Trv : public SlotUnit {
       uint32_t pipes, bool fuse)
       : SlotUnit(name, fc, ch, st, latency), pipes_(pipes), fuse_(fuse) {
     if (pipes_ < 1 || pipes_ > 16) throw std::invalid_argument("trv pipes must be 1..16");
+    outs_.reserve(pipes_);
+    stage_.reserve(pipes_);
   }
 
-  // One cycle. First the list stage: the list steps that the pipes' passes asked for in the cycle
-  // before, in pipe order, one list-cache access each (a pass asks for at most one: a list pass's
-  // own, or a node pass's fused one after a leaf). Then each of the pipes takes the ray at the
-  // head of the ready queue (pipe 0 first; they share the node cache, one access per pipe and
-  // cycle: RayCore's L1s have two request ports for its two traversal units). So no access's
-  // address depends on a cache's answer (the list read follows the node read a cycle later), and
-  // only a list step's room depends on the earlier steps' answers.
+  // One cycle. First the outcome stage: the passes of the cycle before, in pipe order, each with
+  // its node read's answer (a pass reads the node cache and its outcome follows from the word a
+  // cycle later: a registered read). A pass's outcome is one of: back to the ready queue, done (to
+  // the hit unit), or a list step for the list stage. Then the list stage: this cycle's list
+  // steps in pipe order, one list-cache access each (a list pass's own, or a node pass's fused one
+  // after a leaf). Then each of the pipes takes the ray at the head of the ready queue (pipe 0
+  // first; they share the node cache, one access per pipe and cycle: RayCore's L1s have two
+  // request ports for its two traversal units). So no access's address depends on a cache's answer
+  // in its cycle, and only a list step's room depends on the earlier steps' answers.
   bool tick(Cycle now) {
-    bool any = list_stage(now);
+    bool any = out_stage(now);
+    any |= list_stage(now);
     for (uint32_t p = 0; p < pipes_ && step(now); ++p) any = true;
-    stage_.swap(asked_);
-    asked_.clear();
-    stage_at_ = now + 1;
     return any;
   }
 
   Cycle next_event() const {
-    return stage_.empty() ? ch_.trv_q.head_ready() : std::min(ch_.trv_q.head_ready(), stage_at_);
+    return outs_.empty() ? ch_.trv_q.head_ready() : std::min(ch_.trv_q.head_ready(), outs_at_);
   }
 
  private:
+  // A pass's outcome, made in the cycle after the pass (at + 1): its node read's answer (node:
+  // the word, or a miss), then at most one of a queue push, the finish or a list step.
+  struct Out {
+    uint16_t slot = 0;
+    Cycle at = 0;            // the pass's cycle
+    bool node = false;       // the pass read the node cache: the node step's outcome follows
+    bool node_fused = false; //   in a pass already counted busy
+    bool hit = false;        //   the line was there, with the node word
+    uint64_t word = 0;
+    bool push = false;       // back to the ready queue at ready
+    Cycle ready = 0;
+    bool fin = false;        // done: to the hit unit
+    bool ask = false;        // a list step for this cycle's list stage, ready cycles from base
+    bool ask_fused = false;
+    Cycle base = 0;
+  };
+
   bool step(Cycle now) {
     if (!ch_.trv_q.can_pop(now)) return false;
     const uint16_t s = ch_.trv_q.pop();
+    outs_at_ = now + 1;  // the outcome stage ran (outs_ is empty) before the pipes
+    outs_.push_back(Out{});
+    Out& o = outs_.back();
+    o.slot = s;
+    o.at = now;
     Slot& r = ch_.slots[s];
     switch (r.state) {
       case SlotState::start: {
@@ -63,16 +89,15 @@ class Trv : public SlotUnit {
         ++st_.trv_busy;
         if (fc_.empty_tree || !hls::trv_clip_box<A>(fc_.box_lo, fc_.box_hi, r.ray, r.tnear, r.tfar,
                                                              fc_.margins.widen_ulps))
-          return finish(s, r, now);
+          return finish(o, r);
         r.node = 0;
         r.state = SlotState::node;
-        ch_.trv_q.push(s, now + lat_);
-        return true;
+        return push(o, now + lat_);
       }
       case SlotState::node:
-        return node_step(s, r, now, 0, false);
+        return node_step(o, r, 0, false);
       case SlotState::list:
-        return ask_list(s, now, 0, false);
+        return ask_list(o, 0, false);
       case SlotState::leaf_done: {
         ++st_.trv_busy;
         // Results of the leaf, reduced in list order: the closest, ties to the earliest entry.
@@ -82,14 +107,34 @@ class Trv : public SlotUnit {
           r.best = r.leaf;
           r.tmax = r.leaf.t;
         }
-        return leaf_end(s, r, now, 0, fuse_);
+        return leaf_end(o, r, 0, fuse_);
       }
       case SlotState::pop:
         ++st_.trv_busy;
-        return pop(s, r, now, 0, fuse_);
+        return pop(o, r, 0, fuse_);
       default:
         throw std::logic_error("trv: ray in an unexpected state");
     }
+  }
+
+  // The outcome stage: last cycle's passes in pipe order. A node read's outcome first, then the
+  // pass's queue push (a ready cycle is at least the next cycle's: a pass's outcome enters the
+  // queue at the end of this one), finish or list step (this cycle's list stage makes it).
+  bool out_stage(Cycle now) {
+    if (outs_.empty()) return false;
+    if (now != outs_at_) throw std::logic_error("trv: the outcome stage skipped its cycle");
+    for (Out& o : outs_) {
+      Slot& r = ch_.slots[o.slot];
+      if (o.node) node_outcome(o, r);
+      if (o.fin)
+        ch_.hit_q.push(o.slot, o.at + lat_);
+      else if (o.push)
+        ch_.trv_q.push(o.slot, std::max<Cycle>(o.ready, now + 1));
+      else if (o.ask)
+        stage_.push_back({o.slot, o.base, o.ask_fused});
+    }
+    outs_.clear();
+    return true;
   }
 
   static uint32_t hit_lat(const Ascache& c) { return c.hit_latency; }
@@ -107,22 +152,40 @@ class Trv : public SlotUnit {
     return false;
   }
 
-  // The steps below run at cycle now; `extra` is how far into a fused pass the step starts (the
-  // cycles of the accesses before it), `fused` that the pass is already counted busy. A ray goes
-  // back to the ready queue now + extra + lat_ (+ the cache's hit latency after an access).
-  bool node_step(uint16_t s, Slot& r, Cycle now, uint32_t extra, bool fused) {
-    const Cycle again = now + extra + lat_;
+  // The steps below run in the pass (cycle o.at) or, after a node read, in its outcome; `extra`
+  // is how far into a fused pass the step starts (the cycles of the accesses before it), `fused`
+  // that the pass is already counted busy. A ray goes back to the ready queue o.at + extra + lat_
+  // (+ the cache's hit latency after an access).
+  bool push(Out& o, Cycle ready) {
+    o.push = true;
+    o.ready = ready;
+    return true;
+  }
+
+  // The node read: the access in the pass (the LRU, a miss and its MSHR at the pass's cycle),
+  // the rest in the outcome stage from the word.
+  bool node_step(Out& o, Slot& r, uint32_t extra, bool fused) {
     const uint32_t lb = ch_.node->line_bytes();
     const uint64_t byte = uint64_t(r.node) * 8;
     const uint8_t* line = ch_.node->access(byte / lb);
-    if (!line) {
-      if (!fused) ++st_.trv_node_miss;
-      ch_.trv_q.push(s, again);
-      return true;
+    o.node = true;
+    o.node_fused = fused;
+    o.hit = line != nullptr;
+    if (line) o.word = hls::detail::get_le(line + byte % lb, 8);
+    (void)extra;  // a node read is the pass's first access: extra is 0
+    return true;
+  }
+
+  void node_outcome(Out& o, Slot& r) {
+    const Cycle again = o.at + lat_;
+    if (!o.hit) {
+      if (!o.node_fused) ++st_.trv_node_miss;
+      push(o, again);
+      return;
     }
-    if (!fused) ++st_.trv_busy;
-    const hls::Node nd = hls::decode_node(hls::detail::get_le(line + byte % lb, 8));
-    const uint32_t x = extra + hit_lat(*ch_.node);
+    if (!o.node_fused) ++st_.trv_busy;
+    const hls::Node nd = hls::decode_node(o.word);
+    const uint32_t x = hit_lat(*ch_.node);
     const Cycle next = again + hit_lat(*ch_.node);
     if (!nd.leaf()) {
       ++st_.inner_steps;
@@ -143,11 +206,14 @@ class Trv : public SlotUnit {
         r.node = first;
         r.tfar = sp.tsplit;
       }
-      ch_.trv_q.push(s, next);
-      return true;
+      push(o, next);
+      return;
     }
     ++st_.leaf_visits;
-    if (nd.split_or_count == 0) return leaf_end(s, r, now, x, false);  // one node access a pass
+    if (nd.split_or_count == 0) {  // one node access a pass
+      leaf_end(o, r, x, false);
+      return;
+    }
     r.list_first = nd.index;
     r.list_count = nd.split_or_count;
     r.list_pos = 0;
@@ -156,27 +222,28 @@ class Trv : public SlotUnit {
     r.state = SlotState::list;
     if (fuse_) {  // the leaf's first list line fused into the pass (read by the list stage)
       ++st_.trv_fused;
-      return ask_list(s, now, x, true);
+      ask_list(o, x, true);
+      return;
     }
-    ch_.trv_q.push(s, next);
+    push(o, next);
+  }
+
+  // A list step asked for by the pass at cycle o.at, `extra` into it: the list stage makes it in
+  // the next cycle, its ready cycles counted from base = o.at + extra (at least the stage's cycle).
+  bool ask_list(Out& o, uint32_t extra, bool fused) {
+    o.ask = true;
+    o.ask_fused = fused;
+    o.base = std::max<Cycle>(o.at + extra, o.at + 1);
     return true;
   }
 
-  // A list step asked for by the pass at cycle now, `extra` into it: the list stage makes it in
-  // the next cycle, its ready cycles counted from base = now + extra (at least the stage's cycle).
-  bool ask_list(uint16_t s, Cycle now, uint32_t extra, bool fused) {
-    asked_.push_back({s, std::max<Cycle>(now + extra, now + 1), fused});
-    return true;
-  }
-
-  // The list stage: the steps asked for in the cycle before, in pipe order, each with the ist
+  // The list stage: the steps the outcome stage put in this cycle, in pipe order, each with the ist
   // queue's room as the steps before it left it (a step that misses takes none: so a ray whose
   // line is pinned for it is never kept from reading it by a step that cannot go on). The room is
   // the queue's at the cycle's start (RtuChannels::ist_room: the ist's pops of this cycle make
   // room from the next cycle on).
   bool list_stage(Cycle now) {
     if (stage_.empty()) return false;
-    if (now != stage_at_) throw std::logic_error("trv: the list stage skipped its cycle");
     for (const Asked& a : stage_) list_step(a.slot, ch_.slots[a.slot], a.base, a.fused, now);
     stage_.clear();
     return true;
@@ -223,16 +290,16 @@ class Trv : public SlotUnit {
     return true;
   }
 
-  bool leaf_end(uint16_t s, Slot& r, Cycle now, uint32_t extra, bool fuse) {
+  bool leaf_end(Out& o, Slot& r, uint32_t extra, bool fuse) {
     // A hit in this cell ends the walk; an any-hit shadow ray ends at its first leaf with a hit.
     if (r.best.found && ((r.shadow && fc_.spawn.any_hit) || !A::lt(r.tfar, r.best.t)))
-      return finish(s, r, now);
-    return pop(s, r, now, extra, fuse);
+      return finish(o, r);
+    return pop(o, r, extra, fuse);
   }
   // One stack entry per step; entries beyond the best hit are skipped (one step each). With fuse
   // (a pass that has not read the node cache yet), the popped node is fetched in the same pass.
-  bool pop(uint16_t s, Slot& r, Cycle now, uint32_t extra, bool fuse) {
-    if (r.sp == 0) return finish(s, r, now);
+  bool pop(Out& o, Slot& r, uint32_t extra, bool fuse) {
+    if (r.sp == 0) return finish(o, r);
     const Slot::Entry e = r.stack[size_t(--r.sp)];
     ++st_.pops;
     if (r.best.found && A::lt(r.best.t, e.tnear)) {
@@ -244,15 +311,14 @@ class Trv : public SlotUnit {
       r.state = SlotState::node;
       if (fuse) {
         ++st_.trv_fused;
-        return node_step(s, r, now, extra, true);
+        return node_step(o, r, extra, true);
       }
     }
-    ch_.trv_q.push(s, now + extra + lat_);
-    return true;
+    return push(o, o.at + extra + lat_);
   }
-  bool finish(uint16_t s, Slot& r, Cycle now) {
+  bool finish(Out& o, Slot& r) {
     r.state = SlotState::done;
-    ch_.hit_q.push(s, now + lat_);
+    o.fin = true;
     return true;
   }
 
@@ -263,8 +329,9 @@ class Trv : public SlotUnit {
   };
   uint32_t pipes_;
   bool fuse_;
-  std::vector<Asked> stage_, asked_;  // this cycle's list steps; the ones asked for it
-  Cycle stage_at_ = 0;                // the cycle stage_ runs in
+  std::vector<Out> outs_;    // the passes whose outcomes are made in cycle outs_at_
+  Cycle outs_at_ = 0;
+  std::vector<Asked> stage_;  // this cycle's list steps
 };
 
 }  // namespace raycore::sc

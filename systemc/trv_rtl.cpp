@@ -84,7 +84,7 @@ class TrvRtlT final : public TrvRtl {
     m_.eval();
     // The cache accesses in the model's order: the list stage's (stage p's access valid depends on
     // the answers to stages 0 .. p-1 through the ist queue's room: re-evaluate after a hit), then
-    // the pipes' node reads (no access depends on their answers: one evaluation after them).
+    // the pipes' node reads (their answers are registered for the next cycle's outcomes).
     uint32_t acc = 0, hit = 0;  // the probe's ports: 2p the pipe's node read, 2p + 1 its list read
     auto access = [&](Ascache& c, uint32_t byte, unsigned port) -> const uint8_t* {
       acc |= 1u << port;
@@ -114,7 +114,7 @@ class TrvRtlT final : public TrvRtl {
         set_bits(m_.nrsp_node_i, (p * 2 + i) * 32, 32,
                  uint32_t(hls::detail::get_le(line + byte % ch_.node->line_bytes() + 4 * i, 4)));
     }
-    if (hit & 0x55555555u) m_.eval();  // a node read hit
+    // A node read's answer goes into registers for the outcome: nothing reads it in this cycle.
     probe_.res_valid = m_.res_valid_i;
     probe_.go = m_.go_o;
     probe_.fin = m_.fin_o;
@@ -136,16 +136,16 @@ class TrvRtlT final : public TrvRtl {
       for (uint32_t i = 0; i < n; ++i)
         ch_.ist_q.push({s, pos + i, get_bits(m_.ist_words_o, (p * WORDS + i) * 32, 32)}, ready);
     }
+    // The outcomes' finished rays (passes of the cycle before), in pipe order.
+    if (m_.go_o) any = true;
     for (unsigned p = 0; p < PIPES; ++p) {
-      if (!get_bits(m_.go_o, p, 1)) continue;
+      if (!get_bits(m_.fin_o, p, 1)) continue;
       any = true;
-      const uint16_t s = uint16_t(get_bits(m_.slot_o, p * SLOT_BITS, SLOT_BITS));
+      const uint16_t s = uint16_t(get_bits(m_.fin_slot_o, p * SLOT_BITS, SLOT_BITS));
       Slot& r = ch_.slots[s];
-      if (get_bits(m_.fin_o, p, 1)) {
-        r.best = vl::get_best(m_.best_o, p * BW, W);
-        r.state = SlotState::done;
-        ch_.hit_q.push(s, now + cfg_.trv_latency);
-      }
+      r.best = vl::get_best(m_.best_o, p * BW, W);
+      r.state = SlotState::done;
+      ch_.hit_q.push(s, at(now, m_.fin_ready_o));
     }
     return any || had_results;
   }
@@ -190,7 +190,7 @@ class TrvRtlT final : public TrvRtl {
   }
 
   Cycle next_event(Cycle now) const override {
-    if (m_.pend_o) return now + 1;  // the split or the list stage works in the next cycle
+    if (m_.pend_o) return now + 1;  // an outcome or the split works in the next cycle
     if (!m_.head_valid_o) return kNever;
     return at(now, m_.head_ready_o);
   }

@@ -180,7 +180,8 @@ module rtu #(
   wire [1+BW+6*W-1:0]  h_rd;
   // trv <-> ist, trv -> hit, trv <-> caches
   wire [PIPES-1:0]     t_go, t_fin;
-  wire [PIPES*SLOT_BITS-1:0] t_slot, t_ist_slot;
+  wire [PIPES*SLOT_BITS-1:0] t_slot, t_fin_slot, t_ist_slot;
+  wire [31:0]          t_fin_ready;
   wire [PIPES*BW-1:0]  t_best;
   wire [PIPES*6-1:0]   t_ist_n;
   wire [PIPES*32-1:0]  t_ist_pos, t_ist_ready;
@@ -251,7 +252,8 @@ module rtu #(
     .nacc_valid_o(t_nacc_valid), .nacc_byte_o(t_nacc_byte), .nrsp_hit_i(n_hit),
     .nrsp_node_i(t_node_word), .lacc_valid_o(t_lacc_valid), .lacc_byte_o(t_lacc_byte),
     .lrsp_hit_i(l_hit), .lrsp_data_i(t_list_words),
-    .go_o(t_go), .slot_o(t_slot), .fin_o(t_fin), .best_o(t_best), .ist_n_o(t_ist_n),
+    .go_o(t_go), .slot_o(t_slot), .fin_o(t_fin), .fin_slot_o(t_fin_slot),
+    .fin_ready_o(t_fin_ready), .best_o(t_best), .ist_n_o(t_ist_n),
     .ist_slot_o(t_ist_slot), .ist_pos_o(t_ist_pos), .ist_ready_o(t_ist_ready), .ist_tmax_o(t_ist_tmax),
     .ist_words_o(t_ist_words),
     .rd_ist_slot_i(i_ray_slot), .rd_ist_o(i_ray_trv), .rd_hit_slot_i(h_rd_slot),
@@ -262,20 +264,17 @@ module rtu #(
     .cnt_list_steps_o(c_list_steps), .cnt_fused_o(c_fused), .stack_max_o(c_stack_max),
     .err_o(err_o));
 
-  // The pipes' finished rays count only for a pipe that took a ray (the list stage's hand-offs
-  // are 0 entries without a step).
-  wire [PIPES-1:0]    fin;
+  // The pipes' finished rays (their outcomes', a cycle after the pass), all with one ready cycle.
   wire [PIPES*32-1:0] fin_ready;
   genvar gp;
   generate
     for (gp = 0; gp < PIPES; gp = gp + 1) begin : g_pipe
-      assign fin[gp] = t_go[gp] && t_fin[gp];
-      assign fin_ready[gp*32 +: 32] = now_q + {16'd0, trv_lat_i};
+      assign fin_ready[gp*32 +: 32] = t_fin_ready;
     end
   endgenerate
   // The hand-off's tmax and the finished ray's best record are in trv_unit's slots already (read
   // through rd_*); the queue's head is the cycle model's next event.
-  wire unused_trv = ^{t_ist_tmax, t_best, t_head_valid, t_head_ready, t_pend};
+  wire unused_trv = ^{t_go, t_slot, t_ist_tmax, t_best, t_head_valid, t_head_ready, t_pend};
 
   // ---- the node and list caches: the trv's accesses, in port order ------------------------------
   // One port per pipe in each: the node cache takes pipe p's pass's node read, the list cache list
@@ -405,7 +404,7 @@ module rtu #(
     .light_x_i(light_i[0 +: W]), .light_y_i(light_i[W +: W]), .light_z_i(light_i[2*W +: W]),
     .tmin_i(tmin_i), .strategy_i(strategy_i), .segment_i(segment_i), .all_i(all_i),
     .back_i(back_i), .scale_i(scale_i), .fixed_i(fixed_i), .slab_scale_i(slab_scale_i),
-    .fin_valid_i(fin), .fin_slot_i(t_slot), .fin_ready_i(fin_ready),
+    .fin_valid_i(t_fin), .fin_slot_i(t_fin_slot), .fin_ready_i(fin_ready),
     .rd_valid_o(h_rd_valid), .rd_slot_o(h_rd_slot), .rd_i(h_rd),
     .out_valid_o(h_valid), .out_slot_o(h_slot), .out_shadow_o(h_shadow), .out_found_o(h_found),
     .out_free_o(h_free), .out_spawn_o(h_spawn), .out_h_o(h_h), .out_front_o(h_front),

@@ -8,29 +8,33 @@
 //   1. up to IST ist results (res_*): each goes into its ray's leaf record (the closest, ties to
 //      the earliest list position; results of one ray in the same cycle reduce in port order);
 //      the leaf's last result puts the ray in state leaf_done and back into the queue at now + 1;
-//   2. the list stage: the list steps that the pipes' passes asked for in the cycle before (Trv's
-//      list_stage), one per pipe, each reading its list line through lacc_* / lrsp_* (the list
-//      cache, one port per pipe), handing entries to the ist (ist_*) and pushing the ray back or
-//      leaving it to wait for the ist. The ist queue's room (room_i, at the cycle's start) is
-//      taken in stage order: stage p's room is room_i less what stages 0 .. p-1 hand out (with
-//      its line present: the entries left, to the line's end; 0 on a miss), so stage p's access
-//      valid depends on the earlier stages' line presence (the caller answers them in order);
-//   3. pipe p (p < pipes_i) takes the queue's entry p if pipes 0 .. p-1 took theirs and its ready
-//      cycle has come; its pass (trv_pass) reads the node cache through nacc_* / nrsp_* (a
-//      same-cycle response, which nothing else's access waits for), asks the list stage for a
-//      list step (registered for the next cycle), hands finished rays to the hit unit (fin_*),
-//      and pushes the ray back with its ready cycle. An inner node's split (trv.v, op 0) is not
-//      in the pass: the pass registers its inputs, and the split runs in the next two cycles and
-//      writes the ray's node, interval and stack push back (the split stage, 5. below). The ray
-//      is not taken again before that: its ready cycle is at least now + 4 (trv_latency + the
-//      node cache's hit latency >= 4, which the bindings check), and nothing else reads its slot
-//      or stack in between. A ray asking for a list step is in no queue until the stage's step;
-//   4. a ray from the rgu (in_*: a new primary ray or a shadow ray in its slot) enters the queue
+//   2. the outcome stage (Trv::out_stage): pipe p's pass of the cycle before (its registers and
+//      its node read's registered answer, trv_pass's second half) writes the ray's record,
+//      pushes it back with its ready cycle, hands it to the hit unit (fin_*) or asks this cycle's
+//      list stage for a list step;
+//   3. the list stage: this cycle's list steps, one per pipe, each reading its list line through
+//      lacc_* / lrsp_* (the list cache, one port per pipe), handing entries to the ist (ist_*)
+//      and pushing the ray back or leaving it to wait for the ist. The ist queue's room (room_i,
+//      at the cycle's start) is taken in stage order: stage p's room is room_i less what stages
+//      0 .. p-1 hand out (with its line present: the entries left, to the line's end; 0 on a
+//      miss), so stage p's access valid depends on the earlier stages' line presence (the caller
+//      answers them in order);
+//   4. pipe p (p < pipes_i) takes the queue's entry p if pipes 0 .. p-1 took theirs and its ready
+//      cycle has come; its pass (trv_pass's first half) reads the node cache through nacc_*
+//      (the answer, nrsp_*, is registered for the outcome: a registered read, which no access
+//      of this cycle waits for), writes the ray's best record and tmax and registers the rest
+//      for its outcome in the next cycle (2.). An inner node's split (trv.v, op 0) follows the
+//      outcome: it runs in the outcome's cycle and the next and writes the ray's node, interval
+//      and stack push back a cycle later (the split stage, 6. below). The ray is not taken again
+//      before that: its ready cycle is at least the pass's + 4 (trv_latency + the node cache's
+//      hit latency >= 4, which the bindings check), and nothing else reads its slot or stack in
+//      between. A ray in its outcome or asking for a list step is in no queue until the step;
+//   5. a ray from the rgu (in_*: a new primary ray or a shadow ray in its slot) enters the queue
 //      at now + 1, clipped to the scene box as it enters (trv.v, op 1: hls::trv_clip_box; the
 //      ray's start pass reads the result: the model clips in that pass, from the same inputs);
-//   5. the split stage: the splits of the inner nodes that the pipes read in the cycle before.
-// Queue pushes of a cycle are appended in that order (results, list stage, pipes 0.., rgu); the
-// queue is a FIFO whose head blocks the entries behind it until its ready cycle: the cycle
+//   6. the split stage: the splits of this cycle's outcomes' inner nodes.
+// Queue pushes of a cycle are appended in that order (results, outcomes 0.., list stage, rgu);
+// the queue is a FIFO whose head blocks the entries behind it until its ready cycle: the cycle
 // model's TimedFifo. Ready cycles are 32-bit cycle numbers compared with now_i as a signed
 // difference.
 //
@@ -41,7 +45,7 @@
 // PIPES (pipes_i <= PIPES at run time), IST (ist results per cycle), WORDS (list words per cache
 // read), READS (1: the slot read ports rd_* for the ist and hit units, as rtu.v wires them; 0: none,
 // the outputs zero, as the frame's binding reads systemc's slots). Not here: the mailbox
-// (--mailbox, refused by the binding). pend_o: the split or the list stage holds work (a binding
+// (--mailbox, refused by the binding). pend_o: an outcome or the split stage holds work (a binding
 // that skips idle cycles must clock this one).
 // lint: also READS=1 SLOT_BITS=7 DEPTH=64 PIPES=4 IST=2 WORDS=16
 module trv_unit #(
@@ -94,10 +98,13 @@ module trv_unit #(
   output wire [PIPES*32-1:0]             lacc_byte_o,
   input  wire [PIPES-1:0]                lrsp_hit_i,
   input  wire [PIPES*32*WORDS-1:0]       lrsp_data_i,
-  // Per pipe: the slot it took, finish (with the best record).
+  // Per pipe: the slot it took; the finish of its pass in the cycle before (the ray's slot and
+  // best record), to the hit unit with ready cycle fin_ready_o (the same for every pipe).
   output wire [PIPES-1:0]                go_o,
   output wire [PIPES*SLOT_BITS-1:0]      slot_o,
   output wire [PIPES-1:0]                fin_o,
+  output wire [PIPES*SLOT_BITS-1:0]      fin_slot_o,
+  output wire [31:0]                     fin_ready_o,
   output wire [PIPES*(67+5*(1+EXP_BITS+MAN_BITS))-1:0] best_o,
   // Per list stage: the ist hand-off (ist_n_o entries, 0: none).
   output wire [PIPES*6-1:0]              ist_n_o,
@@ -248,12 +255,26 @@ module trv_unit #(
   wire [IST*BW-1:0] nl_all = nl;
   wire [IST*32-1:0] nr_all = nr;
 
-  // ---- 3. the pipes ----------------------------------------------------------------------------
+  // ---- 3. the pipes: the pass (this cycle) and the outcome (the cycle after) -------------------
+  // Registered at the pass, per pipe: that it took a ray (mv_q), the slot, what the outcome needs
+  // (trv_pass's mid) and the node read's answer (the line's presence and the word). The outcome's
+  // ready cycles, the same for every pipe: from c = now - 1, the pass's cycle.
+  localparam integer MW = 177 + 14 * W;  // trv_pass's mid_o
+  wire [31:0] o_again = now_i - 32'd1 + {16'd0, lat_i};
+  wire [31:0] o_nxt   = o_again + {16'd0, node_hl_i};
+  wire [31:0] o_lbn   = now_i - 32'd1 + ((node_hl_i == 16'd0) ? 32'd1 : {16'd0, node_hl_i});
+  reg  [PIPES-1:0]     mv_q, mhit_q;
+  reg  [SLOT_BITS-1:0] ms_q    [0:PIPES-1];
+  reg  [MW-1:0]        mid_q   [0:PIPES-1];
+  reg  [63:0]          mword_q [0:PIPES-1];
   wire [PIPES:0]    go_chain /* verilator split_var */;
   assign go_chain[0] = 1'b1;
+  wire [PIPES-1:0] g_busy, g_pops, g_fused;
+  wire [PIPES*W-1:0] g_tmax;
+  wire [PIPES*BW-1:0] g_best;
+  wire [PIPES*MW-1:0] g_mid;
   wire [PIPES-1:0] p_qpush, p_wr_leaf, p_busy, p_node_miss, p_inner, p_leaf, p_split, p_lreq,
-                   p_lfused;
-  wire [PIPES*2-1:0] p_pops, p_fused;
+                   p_lfused, p_fin, p_pops, p_fused;
   wire [PIPES*3-1:0] p_st;
   wire [PIPES*7-1:0] p_sp;
   wire [PIPES*32-1:0] p_node, p_first, p_count, p_pos, p_qready, p_lbase;
@@ -276,44 +297,57 @@ module trv_unit #(
       wire [EW-1:0] e1 = stk_q[{s, sp1[DB-1:0]}];
       wire [EW-1:0] e2 = stk_q[{s, sp2[DB-1:0]}];
       wire unused_sp = ^{sp1[6:DB], sp2[6:DB]};
+      wire p_fin_raw, p_qpush_raw, p_lreq_raw, p_split_raw, p_busy_raw, p_miss_raw, p_inner_raw,
+           p_leaf_raw, p_pops_raw, p_fused_raw;
       trv_pass #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS)) u_pass (
-        .go_i(go), .now_i(now_i), .lat_i(lat_i), .node_hl_i(node_hl_i),
-        .fuse_i(fuse_i), .any_hit_i(any_hit_i), .empty_i(empty_i), .st_i(st_q[s]),
+        .go_i(go), .fuse_i(fuse_i), .any_hit_i(any_hit_i), .empty_i(empty_i), .st_i(st_q[s]),
         .clip_i(clip_q[s]), .shadow_i(shadow_q[s]), .ray_i(ray_q[s]),
         .node_i(node_q[s]), .tnear_i(tnear_q[s]), .tfar_i(tfar_q[s]), .tmax_i(tmax_q[s]),
         .sp_i(sp), .best_i(best_q[s]), .leaf_i(leaf_q[s]), .first_i(first_q[s]),
         .count_i(count_q[s]), .pos_i(pos_q[s]), .e1_i(e1), .e2_i(e2),
         .acc_a_valid_o(nacc_valid_o[p]), .acc_a_byte_o(nacc_byte_o[p*32 +: 32]),
-        .rsp_a_hit_i(nrsp_hit_i[p]), .rsp_a_node_i(nrsp_node_i[p*64 +: 64]),
+        .best_o(g_best[p*BW +: BW]), .tmax_o(g_tmax[p*W +: W]), .mid_o(g_mid[p*MW +: MW]),
+        .busy_o(g_busy[p]), .pops_o(g_pops[p]), .fused_o(g_fused[p]),
+        .mid_i(mid_q[p]), .rsp_a_hit_i(mhit_q[p]), .rsp_a_node_i(mword_q[p]), .now_i(now_i),
+        .again_i(o_again), .nxt_i(o_nxt), .lbn_i(o_lbn),
         .st_o(p_st[p*3 +: 3]), .node_o(p_node[p*32 +: 32]), .tnear_o(p_tnear[p*W +: W]),
-        .tfar_o(p_tfar[p*W +: W]), .tmax_o(p_tmax[p*W +: W]), .sp_o(p_sp[p*7 +: 7]),
-        .best_o(best_o[p*BW +: BW]), .first_o(p_first[p*32 +: 32]),
-        .count_o(p_count[p*32 +: 32]), .pos_o(p_pos[p*32 +: 32]), .wr_leaf_o(p_wr_leaf[p]),
-        .split_o(p_split[p]), .split_node_o(p_s_node[p*32 +: 32]),
+        .tfar_o(p_tfar[p*W +: W]), .sp_o(p_sp[p*7 +: 7]),
+        .first_o(p_first[p*32 +: 32]), .count_o(p_count[p*32 +: 32]), .pos_o(p_pos[p*32 +: 32]),
+        .out_tmax_o(p_tmax[p*W +: W]), .wr_leaf_o(p_wr_leaf[p]),
+        .split_o(p_split_raw), .split_node_o(p_s_node[p*32 +: 32]),
         .split_child_o(p_s_child[p*32 +: 32]),
         .split_plane_o(p_s_plane[p*W +: W]), .split_tnear_o(p_s_tnear[p*W +: W]),
         .split_tfar_o(p_s_tfar[p*W +: W]), .split_ray_o(p_s_ray[p*3*W +: 3*W]),
-        .q_push_o(p_qpush[p]), .q_ready_o(p_qready[p*32 +: 32]), .fin_o(fin_o[p]),
-        .lreq_o(p_lreq[p]), .lfused_o(p_lfused[p]), .lbase_o(p_lbase[p*32 +: 32]),
-        .busy_o(p_busy[p]), .node_miss_o(p_node_miss[p]), .inner_o(p_inner[p]),
-        .leaf_o(p_leaf[p]), .pops_o(p_pops[p*2 +: 2]), .fused_o(p_fused[p*2 +: 2]));
+        .q_push_o(p_qpush_raw), .q_ready_o(p_qready[p*32 +: 32]), .fin_o(p_fin_raw),
+        .lreq_o(p_lreq_raw), .lfused_o(p_lfused[p]), .lbase_o(p_lbase[p*32 +: 32]),
+        .out_busy_o(p_busy_raw), .node_miss_o(p_miss_raw), .inner_o(p_inner_raw),
+        .leaf_o(p_leaf_raw), .out_pops_o(p_pops_raw), .out_fused_o(p_fused_raw));
+      // The outcome's effects count only for a pipe that took a ray in the cycle before.
+      assign p_fin[p]       = mv_q[p] && p_fin_raw;
+      assign p_qpush[p]     = mv_q[p] && p_qpush_raw;
+      assign p_lreq[p]      = mv_q[p] && p_lreq_raw;
+      assign p_split[p]     = mv_q[p] && p_split_raw;
+      assign p_busy[p]      = mv_q[p] && p_busy_raw;
+      assign p_node_miss[p] = mv_q[p] && p_miss_raw;
+      assign p_inner[p]     = mv_q[p] && p_inner_raw;
+      assign p_leaf[p]      = mv_q[p] && p_leaf_raw;
+      assign p_pops[p]      = mv_q[p] && p_pops_raw;
+      assign p_fused[p]     = mv_q[p] && p_fused_raw;
+      assign fin_o[p] = p_fin[p];
+      assign fin_slot_o[p*SLOT_BITS +: SLOT_BITS] = ms_q[p];
+      assign best_o[p*BW +: BW] = best_q[ms_q[p]];
     end
   endgenerate
   wire unused_chain = go_chain[PIPES];
+  assign fin_ready_o = o_again;
 
-  // ---- 2. the list stage: the list steps the pipes asked for in the cycle before ---------------
-  // Registered at the pass: the ray's slot, its list fields, the base cycle of its ready cycles,
-  // whether the step is fused into a node pass (it counts no busy, miss or full), the leaf-entry
-  // tmax the ist tests with and the stack pointer for its queue entry.
-  reg  [PIPES-1:0]     lv_q;
-  reg  [PIPES-1:0]     lfused_q;
-  reg  [SLOT_BITS-1:0] ls_q     [0:PIPES-1];
-  reg  [31:0]          lfirst_q [0:PIPES-1];
-  reg  [31:0]          lcount_q [0:PIPES-1];
-  reg  [31:0]          lpos_q   [0:PIPES-1];
-  reg  [31:0]          lbase_q  [0:PIPES-1];
-  reg  [W-1:0]         ltmax_q  [0:PIPES-1];
-  reg  [6:0]           lsp_q    [0:PIPES-1];
+  // ---- 2. the list stage: the list steps of this cycle's outcomes ------------------------------
+  // From the outcome of the pipe's pass in the cycle before (registers and the registered node
+  // word): the ray's slot, its list fields, the base cycle of its ready cycles, whether the step
+  // is fused into a node pass (it counts no busy, miss or full), the leaf-entry tmax the ist tests
+  // with and the stack pointer for its queue entry.
+  wire [PIPES-1:0]     l_v = p_lreq;
+  wire [PIPES-1:0]     l_fused = p_lfused & p_lreq;
   wire [16*(PIPES+1)-1:0] lres /* verilator split_var */;  // room taken by stages 0 .. p-1
   wire [PIPES-1:0]     l_qpush, l_wait, l_busy, l_miss, l_full, l_step;
   wire [PIPES*32-1:0]  l_pos, l_qready;
@@ -321,9 +355,10 @@ module trv_unit #(
   genvar l;
   generate
     for (l = 0; l < PIPES; l = l + 1) begin : g_list
-      wire [31:0] first = lfirst_q[l];
-      wire [31:0] pos   = lpos_q[l];
-      wire [31:0] left  = lcount_q[l] - pos;
+      wire [31:0] first = p_first[l*32 +: 32];
+      wire [31:0] pos   = p_pos[l*32 +: 32];
+      wire [31:0] cnt   = p_count[l*32 +: 32];
+      wire [31:0] left  = cnt - pos;
       wire [31:0] idx   = first + pos;
       // Words from the entry to the line's end (lwords_i a power of two), and what the step hands
       // out with the room unlimited: the earlier stages' sum of these is what they took (each
@@ -334,29 +369,30 @@ module trv_unit #(
       wire [31:0] want   = (left < to_end) ? left : to_end;
       wire [15:0] res_l  = lres[l*16 +: 16];
       wire [15:0] room_l = (room_i > res_l) ? room_i - res_l : 16'd0;
-      assign lres[(l+1)*16 +: 16] = res_l + ((lv_q[l] && hit) ? want[15:0] : 16'd0);
+      assign lres[(l+1)*16 +: 16] = res_l + ((l_v[l] && hit) ? want[15:0] : 16'd0);
       wire        full   = room_l == 16'd0;
       wire [31:0] n      = ({16'd0, room_l} < want) ? {16'd0, room_l} : want;
       wire [31:0] npos   = pos + n;
-      wire [31:0] again  = lbase_q[l] + {16'd0, lat_i};
-      wire        took   = lv_q[l] && !full && hit;
-      assign lacc_valid_o[l] = lv_q[l] && !full;
+      wire [31:0] base   = p_lbase[l*32 +: 32];
+      wire [31:0] again  = base + {16'd0, lat_i};
+      wire        took   = l_v[l] && !full && hit;
+      assign lacc_valid_o[l] = l_v[l] && !full;
       assign lacc_byte_o[l*32 +: 32] = {idx[29:0], 2'd0};
-      assign l_busy[l] = took && !lfused_q[l];
-      assign l_miss[l] = lv_q[l] && !full && !hit && !lfused_q[l];
-      assign l_full[l] = lv_q[l] && full && !lfused_q[l];
+      assign l_busy[l] = took && !l_fused[l];
+      assign l_miss[l] = l_v[l] && !full && !hit && !l_fused[l];
+      assign l_full[l] = l_v[l] && full && !l_fused[l];
       assign l_step[l] = took;
       // All handed out: the ray waits for the ist (no queue push; without a mailbox some entries
       // are always at the ist). Else back at again (+ the list cache's hit latency after a read).
-      assign l_wait[l]  = took && (npos == lcount_q[l]);
-      assign l_qpush[l] = lv_q[l] && !l_wait[l];
+      assign l_wait[l]  = took && (npos == cnt);
+      assign l_qpush[l] = l_v[l] && !l_wait[l];
       assign l_qready[l*32 +: 32] = took ? again + {16'd0, list_hl_i} : again;
       assign l_pos[l*32 +: 32] = took ? npos : pos;
       assign ist_n_o[l*6 +: 6] = took ? n[5:0] : 6'd0;
-      assign ist_slot_o[l*SLOT_BITS +: SLOT_BITS] = ls_q[l];
+      assign ist_slot_o[l*SLOT_BITS +: SLOT_BITS] = ms_q[l];
       assign ist_pos_o[l*32 +: 32] = pos;
-      assign ist_ready_o[l*32 +: 32] = lbase_q[l] + 32'd1 + {16'd0, list_hl_i};
-      assign ist_tmax_o[l*W +: W] = ltmax_q[l];
+      assign ist_ready_o[l*32 +: 32] = base + 32'd1 + {16'd0, list_hl_i};
+      assign ist_tmax_o[l*W +: W] = p_tmax[l*W +: W];
       assign ist_words_o[l*32*WORDS +: 32*WORDS] = lrsp_data_i[l*32*WORDS +: 32*WORDS];
       wire unused_l = ^{to_end[31:16], n[31:6], idx[31:30]};
     end
@@ -387,23 +423,14 @@ module trv_unit #(
   wire unused_clip = ^{c_rdy, c_vld, c_op, c_below, c_tag, c_visit, c_tsplit, c_node, c_far_node,
                        c_far_tfar};
 
-  // ---- 5. the split stage: last cycle's inner nodes (trv.v, op 0, on the node's axis) ----------
-  // Registered at the pass: the split's inputs, the ray's slot, its stack pointer after the pass
-  // and where its queue entry went (its fq_sp follows the split's push). The split runs in the
-  // two cycles after the pass (trv.v with one register, after its subtraction; the slot, stack
-  // pointer and queue position ride as its tag); its results are registered (s_*, w*_q) and
-  // written back at the end of the cycle after that, so the ray is taken at the pass's cycle + 4
-  // at the earliest (trv_latency + the node cache's hit latency >= 4, which the bindings check).
-  reg  [PIPES-1:0]         sv_q;
-  reg  [SLOT_BITS-1:0]     ss_q    [0:PIPES-1];
-  reg  [6:0]               ssp_q   [0:PIPES-1];
-  reg  [SLOT_BITS-1:0]     sat_q   [0:PIPES-1];
-  reg  [31:0]              snode_q [0:PIPES-1];
-  reg  [31:0]              schild_q[0:PIPES-1];
-  reg  [W-1:0]             splane_q[0:PIPES-1];
-  reg  [W-1:0]             stn_q   [0:PIPES-1];
-  reg  [W-1:0]             stf_q   [0:PIPES-1];
-  reg  [3*W-1:0]           sray_q  [0:PIPES-1];
+  // ---- 5. the split stage: this cycle's outcomes' inner nodes (trv.v, op 0, on the node's axis)
+  // From the outcome (the registered pass and node word): the split's inputs, the ray's slot, its
+  // stack pointer after the pass and where its queue entry goes (its fq_sp follows the split's
+  // push). The split runs in this cycle and the next (trv.v with one register, after its
+  // subtraction; the slot, stack pointer and queue position ride as its tag); its results are
+  // registered (s_*, w*_q) and written back at the end of the cycle after that, so the ray is
+  // taken at the pass's cycle + 4 at the earliest (trv_latency + the node cache's hit latency >=
+  // 4, which the bindings check).
   localparam integer      STW = 2 * SLOT_BITS + 7;  // the split's tag: {slot, sp, queue position}
   wire [PIPES-1:0]         d_vld, d_push, s_err;
   wire [PIPES*STW-1:0]     d_tag;
@@ -427,18 +454,18 @@ module trv_unit #(
       wire [1:0]   d_visit;
       wire [W-1:0] d_tsplit, d_far_tfar;
       wire [31:0]  d_far_node;
-      wire [3*W-1:0] sr = sray_q[q];  // {o, d, inv} on the node's axis, fed as lane x
+      wire [3*W-1:0] sr = p_s_ray[q*3*W +: 3*W];  // {o, d, inv} on the node's axis, as lane x
       trv #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(0),
             .S1(1), .TAG_BITS(STW)) u_dp (
-        .clk_i(clk_i), .rst_ni(rst_ni), .widen_i(widen_i), .in_valid_i(sv_q[q]),
+        .clk_i(clk_i), .rst_ni(rst_ni), .widen_i(widen_i), .in_valid_i(p_split[q]),
         .in_ready_o(d_rdy),
-        .in_op_i(1'b0), .in_axis_i(2'd0), .in_split_i(splane_q[q]), .in_node_i(snode_q[q]),
-        .in_child_i(schild_q[q]), .in_o_x_i(sr[2*W +: W]), .in_o_y_i({W{1'b0}}),
+        .in_op_i(1'b0), .in_axis_i(2'd0), .in_split_i(p_s_plane[q*W +: W]),
+        .in_node_i(p_s_node[q*32 +: 32]), .in_child_i(p_s_child[q*32 +: 32]), .in_o_x_i(sr[2*W +: W]), .in_o_y_i({W{1'b0}}),
         .in_o_z_i({W{1'b0}}), .in_d_x_i(sr[W +: W]), .in_d_y_i({W{1'b0}}), .in_d_z_i({W{1'b0}}),
         .in_inv_x_i(sr[0 +: W]), .in_inv_y_i({W{1'b0}}), .in_inv_z_i({W{1'b0}}),
-        .in_tnear_i(stn_q[q]), .in_tfar_i(stf_q[q]), .in_lo_x_i({W{1'b0}}),
+        .in_tnear_i(p_s_tnear[q*W +: W]), .in_tfar_i(p_s_tfar[q*W +: W]), .in_lo_x_i({W{1'b0}}),
         .in_lo_y_i({W{1'b0}}), .in_lo_z_i({W{1'b0}}), .in_hi_x_i({W{1'b0}}),
-        .in_hi_y_i({W{1'b0}}), .in_hi_z_i({W{1'b0}}), .in_tag_i({ss_q[q], ssp_q[q], sat_q[q]}),
+        .in_hi_y_i({W{1'b0}}), .in_hi_z_i({W{1'b0}}), .in_tag_i({ms_q[q], p_sp[q*7 +: 7], pipe_at[q*SLOT_BITS +: SLOT_BITS]}),
         .out_valid_o(d_vld[q]),
         .out_ready_i(1'b1), .out_op_o(d_op), .out_hit_o(d_hit), .out_visit_o(d_visit),
         .out_below_o(d_below), .out_tsplit_o(d_tsplit), .out_tnear_o(d_tnear[q*W +: W]),
@@ -458,12 +485,13 @@ module trv_unit #(
     for (int_q = 0; int_q < PIPES; int_q = int_q + 1)
       {ws_q[int_q], wsp_q[int_q], wat_q[int_q]} <= d_tag[int_q*STW +: STW];
   end
-  assign pend_o = (|sv_q) || (|d_vld) || (|wv_q) || (|lv_q);
+  assign pend_o = (|mv_q) || (|d_vld) || (|wv_q);
   assign err_o = err_q || |s_err;
 
   // ---- 6. state update (with the queue's head window) ----------------------------------------
-  // Where each queue push goes: after the live entries, in the order results, list stage, pipes,
-  // rgu (the popped entries leave from the head, so the tail does not move with them).
+  // Where each queue push goes: after the live entries, in the order results, the pipes'
+  // outcomes, list stage, rgu (the popped entries leave from the head, so the tail does not move
+  // with them).
   wire [SLOT_BITS-1:0] tail = head_q + cnt_q[SLOT_BITS-1:0];
   reg  [IST*SLOT_BITS-1:0]   res_at;
   reg  [PIPES*SLOT_BITS-1:0] list_at;
@@ -482,13 +510,13 @@ module trv_unit #(
       if (res_done[a]) pushes = pushes + 1'b1;
     end
     for (a = 0; a < PIPES; a = a + 1) begin
-      list_at[a*SLOT_BITS +: SLOT_BITS] = tail + pushes[SLOT_BITS-1:0];
-      if (l_qpush[a]) pushes = pushes + 1'b1;
+      pipe_at[a*SLOT_BITS +: SLOT_BITS] = tail + pushes[SLOT_BITS-1:0];
+      if (p_qpush[a]) pushes = pushes + 1'b1;
+      if (go_o[a]) pops = pops + 1'b1;
     end
     for (a = 0; a < PIPES; a = a + 1) begin
-      pipe_at[a*SLOT_BITS +: SLOT_BITS] = tail + pushes[SLOT_BITS-1:0];
-      if (go_o[a] && p_qpush[a]) pushes = pushes + 1'b1;
-      if (go_o[a]) pops = pops + 1'b1;
+      list_at[a*SLOT_BITS +: SLOT_BITS] = tail + pushes[SLOT_BITS-1:0];
+      if (l_qpush[a]) pushes = pushes + 1'b1;
     end
     rgu_at = tail + pushes[SLOT_BITS-1:0];
     if (in_valid_i) pushes = pushes + 1'b1;
@@ -519,15 +547,15 @@ module trv_unit #(
             wn_sp[k] = sp_q[res_slot_i[x*SLOT_BITS +: SLOT_BITS]];
           end
         for (x = 0; x < PIPES; x = x + 1)
-          if (l_qpush[x] && list_at[x*SLOT_BITS +: SLOT_BITS] == w_pos) begin
-            wn_slot[k] = ls_q[x];
-            wn_ready[k] = l_qready[x*32 +: 32];
-            wn_sp[k] = lsp_q[x];
+          if (p_qpush[x] && pipe_at[x*SLOT_BITS +: SLOT_BITS] == w_pos) begin
+            wn_slot[k] = ms_q[x];
+            wn_ready[k] = p_qready[x*32 +: 32];
+            wn_sp[k] = p_sp[x*7 +: 7];
           end
         for (x = 0; x < PIPES; x = x + 1)
-          if (go_o[x] && p_qpush[x] && pipe_at[x*SLOT_BITS +: SLOT_BITS] == w_pos) begin
-            wn_slot[k] = slot_o[x*SLOT_BITS +: SLOT_BITS];
-            wn_ready[k] = p_qready[x*32 +: 32];
+          if (l_qpush[x] && list_at[x*SLOT_BITS +: SLOT_BITS] == w_pos) begin
+            wn_slot[k] = ms_q[x];
+            wn_ready[k] = l_qready[x*32 +: 32];
             wn_sp[k] = p_sp[x*7 +: 7];
           end
         if (in_valid_i && rgu_at == w_pos) begin
@@ -554,56 +582,56 @@ module trv_unit #(
       fq_ready[rgu_at] <= now_i + 32'd1;
       fq_sp[rgu_at] <= 7'd0;  // a start pass sets its own (the stack is not read)
     end
-    // The pipes' rays (distinct slots, none of them the rgu's).
+    // The pipes' rays: the pass writes the best record and tmax (distinct slots, none of them the
+    // rgu's) and registers the rest for its outcome.
     for (b = 0; b < PIPES; b = b + 1) begin
+      mhit_q[b] <= nrsp_hit_i[b];
+      mword_q[b] <= nrsp_node_i[b*64 +: 64];
       if (go_o[b]) begin
-        st_q[slot_o[b*SLOT_BITS +: SLOT_BITS]]    <= p_st[b*3 +: 3];
-        node_q[slot_o[b*SLOT_BITS +: SLOT_BITS]]  <= p_node[b*32 +: 32];
-        tnear_q[slot_o[b*SLOT_BITS +: SLOT_BITS]] <= p_tnear[b*W +: W];
-        tfar_q[slot_o[b*SLOT_BITS +: SLOT_BITS]]  <= p_tfar[b*W +: W];
-        tmax_q[slot_o[b*SLOT_BITS +: SLOT_BITS]]  <= p_tmax[b*W +: W];
-        sp_q[slot_o[b*SLOT_BITS +: SLOT_BITS]]    <= p_sp[b*7 +: 7];
-        best_q[slot_o[b*SLOT_BITS +: SLOT_BITS]]  <= best_o[b*BW +: BW];
-        first_q[slot_o[b*SLOT_BITS +: SLOT_BITS]] <= p_first[b*32 +: 32];
-        count_q[slot_o[b*SLOT_BITS +: SLOT_BITS]] <= p_count[b*32 +: 32];
-        pos_q[slot_o[b*SLOT_BITS +: SLOT_BITS]]   <= p_pos[b*32 +: 32];
+        tmax_q[slot_o[b*SLOT_BITS +: SLOT_BITS]] <= g_tmax[b*W +: W];
+        best_q[slot_o[b*SLOT_BITS +: SLOT_BITS]] <= g_best[b*BW +: BW];
+        ms_q[b] <= slot_o[b*SLOT_BITS +: SLOT_BITS];
+        mid_q[b] <= g_mid[b*MW +: MW];
+      end
+    end
+    // The outcomes of the passes of the cycle before (none of this cycle's pipes' or the rgu's
+    // rays): the record's other fields and the queue push.
+    for (b = 0; b < PIPES; b = b + 1) begin
+      if (mv_q[b]) begin
+        st_q[ms_q[b]]    <= p_st[b*3 +: 3];
+        node_q[ms_q[b]]  <= p_node[b*32 +: 32];
+        tnear_q[ms_q[b]] <= p_tnear[b*W +: W];
+        tfar_q[ms_q[b]]  <= p_tfar[b*W +: W];
+        sp_q[ms_q[b]]    <= p_sp[b*7 +: 7];
+        first_q[ms_q[b]] <= p_first[b*32 +: 32];
+        count_q[ms_q[b]] <= p_count[b*32 +: 32];
+        pos_q[ms_q[b]]   <= p_pos[b*32 +: 32];
         if (p_wr_leaf[b]) begin
-          leaf_q[slot_o[b*SLOT_BITS +: SLOT_BITS]] <= {BW{1'b0}};
-          results_q[slot_o[b*SLOT_BITS +: SLOT_BITS]] <= 32'd0;
+          leaf_q[ms_q[b]] <= {BW{1'b0}};
+          results_q[ms_q[b]] <= 32'd0;
         end
         if (p_qpush[b]) begin
-          fq_slot[pipe_at[b*SLOT_BITS +: SLOT_BITS]] <= slot_o[b*SLOT_BITS +: SLOT_BITS];
+          fq_slot[pipe_at[b*SLOT_BITS +: SLOT_BITS]] <= ms_q[b];
           fq_ready[pipe_at[b*SLOT_BITS +: SLOT_BITS]] <= p_qready[b*32 +: 32];
           fq_sp[pipe_at[b*SLOT_BITS +: SLOT_BITS]] <= p_sp[b*7 +: 7];
         end
       end
     end
-    // The list stage's rays (last cycle's: none of this cycle's pipes' or the rgu's).
+    // The list stage's rays (this cycle's outcomes' list steps: after the outcome's writes of the
+    // same ray, which they update).
     for (b = 0; b < PIPES; b = b + 1) begin
-      if (lv_q[b]) begin
-        pos_q[ls_q[b]] <= l_pos[b*32 +: 32];
-        if (l_wait[b]) st_q[ls_q[b]] <= S_WAIT;
+      if (l_v[b]) begin
+        pos_q[ms_q[b]] <= l_pos[b*32 +: 32];
+        if (l_wait[b]) st_q[ms_q[b]] <= S_WAIT;
         if (l_qpush[b]) begin
-          fq_slot[list_at[b*SLOT_BITS +: SLOT_BITS]] <= ls_q[b];
+          fq_slot[list_at[b*SLOT_BITS +: SLOT_BITS]] <= ms_q[b];
           fq_ready[list_at[b*SLOT_BITS +: SLOT_BITS]] <= l_qready[b*32 +: 32];
-          fq_sp[list_at[b*SLOT_BITS +: SLOT_BITS]] <= lsp_q[b];
+          fq_sp[list_at[b*SLOT_BITS +: SLOT_BITS]] <= p_sp[b*7 +: 7];
         end
       end
     end
-    // This cycle's list steps, for the stage.
-    for (b = 0; b < PIPES; b = b + 1) begin
-      if (go_o[b] && p_lreq[b]) begin
-        ls_q[b]     <= slot_o[b*SLOT_BITS +: SLOT_BITS];
-        lfirst_q[b] <= p_first[b*32 +: 32];
-        lcount_q[b] <= p_count[b*32 +: 32];
-        lpos_q[b]   <= p_pos[b*32 +: 32];
-        lbase_q[b]  <= p_lbase[b*32 +: 32];
-        ltmax_q[b]  <= p_tmax[b*W +: W];
-        lsp_q[b]    <= p_sp[b*7 +: 7];
-      end
-    end
     // The split stage's write-back (the rays of the pass three cycles ago: none of this cycle's
-    // pipes', the list stage's or the rgu's).
+    // pipes', outcomes', the list stage's or the rgu's).
     for (b = 0; b < PIPES; b = b + 1) begin
       if (wv_q[b]) begin
         node_q[ws_q[b]]  <= s_node[b*32 +: 32];
@@ -614,20 +642,6 @@ module trv_unit #(
           sp_q[ws_q[b]] <= wsp_q[b] + 7'd1;
           fq_sp[wat_q[b]] <= wsp_q[b] + 7'd1;
         end
-      end
-    end
-    // This cycle's splits, for the stage.
-    for (b = 0; b < PIPES; b = b + 1) begin
-      if (go_o[b] && p_split[b]) begin
-        ss_q[b]     <= slot_o[b*SLOT_BITS +: SLOT_BITS];
-        ssp_q[b]    <= p_sp[b*7 +: 7];
-        sat_q[b]    <= pipe_at[b*SLOT_BITS +: SLOT_BITS];
-        snode_q[b]  <= p_s_node[b*32 +: 32];
-        schild_q[b] <= p_s_child[b*32 +: 32];
-        splane_q[b] <= p_s_plane[b*W +: W];
-        stn_q[b]    <= p_s_tnear[b*W +: W];
-        stf_q[b]    <= p_s_tfar[b*W +: W];
-        sray_q[b]   <= p_s_ray[b*3*W +: 3*W];
       end
     end
     for (b = 0; b < PIPES; b = b + 1) begin
@@ -662,14 +676,17 @@ module trv_unit #(
     d_busy = 8'd0; d_node_miss = 8'd0; d_list_miss = 8'd0; d_ist_full = 8'd0; d_inner = 8'd0;
     d_leaf = 8'd0; d_pops = 8'd0; d_list_steps = 8'd0; d_fused = 8'd0;
     for (c = 0; c < PIPES; c = c + 1) begin
-      if (go_o[c]) begin
-        d_busy = d_busy + {7'd0, p_busy[c]};
-        d_node_miss = d_node_miss + {7'd0, p_node_miss[c]};
-        d_inner = d_inner + {7'd0, p_inner[c]};
-        d_leaf = d_leaf + {7'd0, p_leaf[c]};
-        d_pops = d_pops + {6'd0, p_pops[c*2 +: 2]};
-        d_fused = d_fused + {6'd0, p_fused[c*2 +: 2]};
+      if (go_o[c]) begin  // the pass's
+        d_busy = d_busy + {7'd0, g_busy[c]};
+        d_pops = d_pops + {7'd0, g_pops[c]};
+        d_fused = d_fused + {7'd0, g_fused[c]};
       end
+      d_busy = d_busy + {7'd0, p_busy[c]};  // the outcome's (p_*: gated by mv_q)
+      d_node_miss = d_node_miss + {7'd0, p_node_miss[c]};
+      d_inner = d_inner + {7'd0, p_inner[c]};
+      d_leaf = d_leaf + {7'd0, p_leaf[c]};
+      d_pops = d_pops + {7'd0, p_pops[c]};
+      d_fused = d_fused + {7'd0, p_fused[c]};
       d_busy = d_busy + {7'd0, l_busy[c]};
       d_list_miss = d_list_miss + {7'd0, l_miss[c]};
       d_ist_full = d_ist_full + {7'd0, l_full[c]};
@@ -695,11 +712,9 @@ module trv_unit #(
     if (!rst_ni) begin
       head_q <= {SLOT_BITS{1'b0}};
       cnt_q <= {(SLOT_BITS+1){1'b0}};
-      sv_q <= {PIPES{1'b0}};
+      mv_q <= {PIPES{1'b0}};
       wv_q <= {PIPES{1'b0}};
       s_push <= {PIPES{1'b0}};
-      lv_q <= {PIPES{1'b0}};
-      lfused_q <= {PIPES{1'b0}};
       err_q <= 1'b0;
       inc_q <= {(NC*8){1'b0}};
       sum_q <= {(NC*64){1'b0}};
@@ -707,11 +722,9 @@ module trv_unit #(
     end else begin
       head_q <= head_q + pops[SLOT_BITS-1:0];
       cnt_q <= cnt_q - pops + pushes;
-      sv_q <= go_o & p_split;
+      mv_q <= go_o;
       wv_q <= d_vld;
       s_push <= d_push;
-      lv_q <= go_o & p_lreq;
-      lfused_q <= p_lfused;
       err_q <= err_o;
       inc_q <= inc;
       sum_q <= cnt_all;
