@@ -14,9 +14,10 @@ namespace raycore::sc {
 // 46 registers for 95 FO4, plus the hit unit's registered slot read: 47, so 24 per STAGES).
 inline constexpr uint32_t kVtuLevels = 2, kIstLevels = 10, kHitLevels = 24, kRguLevels = 8;
 // The least trv_latency + node cache hit latency that rtl/units/trv_unit.v runs: it writes an
-// inner node's split back at the end of the third cycle after the pass (the split stage's trv.v
-// takes two cycles, its results are registered), so the ray may be taken in the fourth.
-inline constexpr uint32_t kTrvRtlMinLoop = 4;
+// inner node's split back at the end of the fourth cycle after the pass (the node read a cycle
+// after the pass, the outcome and the split's first level in the next, its second level, its
+// registered results written back), so the ray may be taken in the fifth.
+inline constexpr uint32_t kTrvRtlMinLoop = 5;
 
 struct CacheConfig {
   uint32_t size_bytes = 16 * 1024;

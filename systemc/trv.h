@@ -30,6 +30,7 @@ class Trv : public SlotUnit {
       : SlotUnit(name, fc, ch, st, latency), pipes_(pipes), fuse_(fuse) {
     if (pipes_ < 1 || pipes_ > 16) throw std::invalid_argument("trv pipes must be 1..16");
     outs_.reserve(pipes_);
+    reads_.reserve(pipes_);
     stage_.reserve(pipes_);
   }
 
@@ -45,12 +46,16 @@ class Trv : public SlotUnit {
   bool tick(Cycle now) {
     bool any = out_stage(now);
     any |= list_stage(now);
+    any |= read_stage(now);
     for (uint32_t p = 0; p < pipes_ && step(now); ++p) any = true;
     return any;
   }
 
   Cycle next_event() const {
-    return outs_.empty() ? ch_.trv_q.head_ready() : std::min(ch_.trv_q.head_ready(), outs_at_);
+    Cycle t = ch_.trv_q.head_ready();
+    if (!reads_.empty()) t = std::min(t, reads_at_);
+    if (!outs_.empty()) t = std::min(t, outs_at_);
+    return t;
   }
 
  private:
@@ -74,9 +79,9 @@ class Trv : public SlotUnit {
   bool step(Cycle now) {
     if (!ch_.trv_q.can_pop(now)) return false;
     const uint16_t s = ch_.trv_q.pop();
-    outs_at_ = now + 1;  // the outcome stage ran (outs_ is empty) before the pipes
-    outs_.push_back(Out{});
-    Out& o = outs_.back();
+    reads_at_ = now + 1;  // the read stage ran (reads_ is empty) before the pipes
+    reads_.push_back(Out{});
+    Out& o = reads_.back();
     o.slot = s;
     o.at = now;
     Slot& r = ch_.slots[s];
@@ -120,6 +125,24 @@ class Trv : public SlotUnit {
   // The outcome stage: last cycle's passes in pipe order. A node read's outcome first, then the
   // pass's queue push (a ready cycle is at least the next cycle's: a pass's outcome enters the
   // queue at the end of this one), finish or list step (this cycle's list stage makes it).
+  // The read stage: last cycle's passes in pipe order, each reading its node (if it has one to
+  // read) from the address it left in the ray's record; their outcomes follow in the next cycle.
+  bool read_stage(Cycle now) {
+    if (reads_.empty()) return false;
+    if (now != reads_at_) throw std::logic_error("trv: the read stage skipped its cycle");
+    for (Out& o : reads_)
+      if (o.node) node_read(o, ch_.slots[o.slot]);
+    outs_.swap(reads_);  // the outcome stage ran: outs_ was empty
+    reads_.clear();
+    outs_at_ = now + 1;
+    return true;
+  }
+
+  // Back to the ready queue: ready cycles count from the pass, but a ray pushed in cycle now
+  // is taken in the next cycle at the earliest (the RTL's head window is refilled at the edge;
+  // only --trv-latency 1 and 2 see it).
+  void requeue(uint16_t s, Cycle ready, Cycle now) { ch_.trv_q.push(s, std::max<Cycle>(ready, now + 1)); }
+
   bool out_stage(Cycle now) {
     if (outs_.empty()) return false;
     if (now != outs_at_) throw std::logic_error("trv: the outcome stage skipped its cycle");
@@ -129,7 +152,7 @@ class Trv : public SlotUnit {
       if (o.fin)
         ch_.hit_q.push(o.slot, o.at + lat_);
       else if (o.push)
-        ch_.trv_q.push(o.slot, std::max<Cycle>(o.ready, now + 1));
+        requeue(o.slot, o.ready, now);
       else if (o.ask)
         stage_.push_back({o.slot, o.base, o.ask_fused});
     }
@@ -162,18 +185,22 @@ class Trv : public SlotUnit {
     return true;
   }
 
-  // The node read: the access in the pass (the LRU, a miss and its MSHR at the pass's cycle),
-  // the rest in the outcome stage from the word.
+  // The node step: the pass leaves the node's address in the ray's record, the read stage reads
+  // it in the next cycle (the LRU, a miss and its MSHR at that cycle), the outcome stage makes
+  // the rest from the word in the cycle after.
   bool node_step(Out& o, Slot& r, uint32_t extra, bool fused) {
+    (void)r;
+    (void)extra;  // a node read is the pass's first access: extra is 0
+    o.node = true;
+    o.node_fused = fused;
+    return true;
+  }
+  void node_read(Out& o, const Slot& r) {
     const uint32_t lb = ch_.node->line_bytes();
     const uint64_t byte = uint64_t(r.node) * 8;
     const uint8_t* line = ch_.node->access(byte / lb);
-    o.node = true;
-    o.node_fused = fused;
     o.hit = line != nullptr;
     if (line) o.word = hls::detail::get_le(line + byte % lb, 8);
-    (void)extra;  // a node read is the pass's first access: extra is 0
-    return true;
   }
 
   void node_outcome(Out& o, Slot& r) {
@@ -256,13 +283,13 @@ class Trv : public SlotUnit {
     const size_t room = ch_.ist_room(now);
     if (room == 0) {
       if (!fused) ++st_.trv_ist_full;
-      ch_.trv_q.push(s, again);
+      requeue(s, again, now);
       return true;
     }
     const uint8_t* line = ch_.list->access(byte / lb);
     if (!line) {
       if (!fused) ++st_.trv_list_miss;
-      ch_.trv_q.push(s, again);
+      requeue(s, again, now);
       return true;
     }
     if (!fused) ++st_.trv_busy;
@@ -282,11 +309,11 @@ class Trv : public SlotUnit {
     r.list_pos += n;
     if (r.list_pos == r.list_count && r.results == r.list_count) {
       r.state = SlotState::leaf_done;  // nothing left at the ist (the mailbox took the rest)
-      ch_.trv_q.push(s, again + hit_lat(*ch_.list));
+      requeue(s, again + hit_lat(*ch_.list), now);
     } else if (r.list_pos == r.list_count)
       r.state = SlotState::wait_ist;  // the ist re-queues the ray with its last result
     else
-      ch_.trv_q.push(s, again + hit_lat(*ch_.list));
+      requeue(s, again + hit_lat(*ch_.list), now);
     return true;
   }
 
@@ -329,6 +356,8 @@ class Trv : public SlotUnit {
   };
   uint32_t pipes_;
   bool fuse_;
+  std::vector<Out> reads_;   // the passes whose node reads are made in cycle reads_at_
+  Cycle reads_at_ = 0;
   std::vector<Out> outs_;    // the passes whose outcomes are made in cycle outs_at_
   Cycle outs_at_ = 0;
   std::vector<Asked> stage_;  // this cycle's list steps

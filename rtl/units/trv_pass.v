@@ -1,28 +1,30 @@
-// trv_pass - one traversal pass of one ray, over two cycles: what one pipe of the traversal unit
-// does with the ray it takes from the ready queue (trv_unit holds the slots, the stacks, the queue
-// and the registers between the halves, and instantiates PIPES of these side by side). Two
+// trv_pass - one traversal pass of one ray, over three cycles: what one pipe of the traversal
+// unit does with the ray it takes from the ready queue (trv_unit holds the slots, the stacks, the
+// queue and the registers between the halves, and instantiates PIPES of these side by side). Two
 // combinational halves:
 //   the pass (the cycle c the ray is taken): the ray's record and its two top stack entries in;
-//     the node cache's access (acc_a_*), the best record and tmax (written at c's edge) and mid_o,
-//     what the outcome needs (trv_unit registers it with the node read's answer) out;
-//   the outcome (cycle c + 1): mid_i and the node read's registered answer in; the record's other
-//     fields (written at c + 1's edge), the queue push, the finish, a list step for c + 1's list
+//     the node read's address (acc_a_*: trv_unit registers it and reads the node cache in c + 1,
+//     the read stage), the best record and tmax (written at c's edge) and mid_o, what the
+//     outcome needs (trv_unit registers it, twice) out;
+//   the outcome (cycle c + 2): mid_i and the node read's registered answer in; the record's other
+//     fields (written at c + 2's edge), the queue push, the finish, a list step for c + 2's list
 //     stage and an inner node's split inputs out.
 // The rules are systemc/trv.h's (Trv::step and its node_step / node_outcome / ask_list /
-// leaf_end / pop, and Trv::out_stage), step for step:
+// leaf_end / pop, Trv::read_stage and Trv::out_stage), step for step:
 //
 //   start      the clip to the scene box was made when the ray entered (trv_unit: clip_i and the
 //              clipped interval in tnear_i / tfar_i); empty tree or no hit: finish; else node 0
 //              with the clipped interval, back to the queue at c + lat
-//   node       node_step: read the node (access A, node cache, byte node * 8) in the pass; in the
-//              outcome, from the word: a miss, back at c + lat ("looping for the next chance");
+//   node       node_step: read the node (access A, node cache, byte node * 8) in the read stage;
+//              in the outcome, from the word: a miss, back at c + lat ("looping for the next
+//              chance");
 //              an inner node, back at c + lat + node_hl, and split_o: the split (trv.v, op 0: on
 //              to the near / far child, or both with the far child pushed on the stack) is
 //              trv_unit's, from the split_* outputs (nothing else depends on it, and the ray is
 //              not taken again before it is written back); a leaf: empty -> leaf_end; else the
-//              list fields, and with fuse its first list line (lreq_o: c + 1's list stage reads
+//              list fields, and with fuse its first list line (lreq_o: c + 2's list stage reads
 //              it, from base c + max(node_hl, 1)), else back as an inner node's step
-//   list       lreq_o: c + 1's list stage makes the list step (base c + 1)
+//   list       lreq_o: c + 2's list stage makes the list step (base c + 1)
 //   leaf_done  the leaf's reduced result becomes the best hit (tmax = its t); leaf_end
 //   pop        pop
 //   leaf_end   finish if there is a hit and (an any-hit shadow ray, or the hit is not beyond this
@@ -39,7 +41,8 @@
 // fused node step of an empty leaf -> leaf_end -> pop: the second in the outcome, its comparisons
 // made in the pass) and four comparisons (fp_cmp_nt, all in the pass); no arithmetic of its own.
 // The outcome's ready cycles come in from trv_unit, one set for all pipes: again_i = c + lat,
-// nxt_i = again_i + node_hl, lbn_i = c + max(node_hl, 1), now_i = c + 1.
+// nxt_i = again_i + node_hl, lbn_i = c + max(node_hl, 1), lbl_i = c + 1. (A push's ready cycle
+// below the next cycle's is taken then: trv_unit's head window is refilled at the edge.)
 //
 // Ray states (trv_unit's st encoding): 0 start, 1 node, 2 list, 3 wait_ist, 4 leaf_done, 5 pop,
 // 6 done. Best record, packed {found, t, den, pos[31:0], id[31:0], k[1:0], nu, nv, nd}.
@@ -71,7 +74,8 @@ module trv_pass #(
   input  wire [31:0]                   pos_i,
   input  wire [32+2*(1+EXP_BITS+MAN_BITS)-1:0] e1_i, // stack[sp-1], {node, tnear, tfar} (tfar low)
   input  wire [32+2*(1+EXP_BITS+MAN_BITS)-1:0] e2_i, // stack[sp-2]
-  // Access A: the node cache (its answer registered by trv_unit for the outcome).
+  // Access A: the node cache (the address registered by trv_unit, read in the next cycle, the
+  // answer registered for the outcome).
   output wire                          acc_a_valid_o,
   output wire [31:0]                   acc_a_byte_o,
   // The record's best and tmax (written when go_i), what the outcome needs, the pass's counters.
@@ -85,7 +89,7 @@ module trv_pass #(
   input  wire [177+14*(1+EXP_BITS+MAN_BITS)-1:0] mid_i,
   input  wire                          rsp_a_hit_i,  // the node read's answer (registered)
   input  wire [63:0]                   rsp_a_node_i,
-  input  wire [31:0]                   now_i,
+  input  wire [31:0]                   lbl_i,
   input  wire [31:0]                   again_i,
   input  wire [31:0]                   nxt_i,
   input  wire [31:0]                   lbn_i,
@@ -302,7 +306,7 @@ module trv_pass #(
     st_o = m_st;  node_o = m_node;  tnear_o = m_tnear;  tfar_o = m_tfar;  sp = m_sp;
     first_o = m_first;  count_o = m_count;  pos_o = m_pos;  wr_leaf_o = 1'b0;  split_o = 1'b0;
     q_push_o = m_push;  q_ready_o = again_i;  fin_o = m_fin;
-    lreq_o = m_lreq;  lfused_o = 1'b0;  lbase_o = now_i;
+    lreq_o = m_lreq;  lfused_o = 1'b0;  lbase_o = lbl_i;
     out_busy_o = 1'b0;  node_miss_o = 1'b0;  inner_o = 1'b0;  leaf_o = 1'b0;  out_pops_o = 1'b0;
     out_fused_o = 1'b0;
     if (m_node_rd) begin  // node_outcome (extra 0)

@@ -8,7 +8,7 @@
 //   1. up to IST ist results (res_*): each goes into its ray's leaf record (the closest, ties to
 //      the earliest list position; results of one ray in the same cycle reduce in port order);
 //      the leaf's last result puts the ray in state leaf_done and back into the queue at now + 1;
-//   2. the outcome stage (Trv::out_stage): pipe p's pass of the cycle before (its registers and
+//   2. the outcome stage (Trv::out_stage): pipe p's pass of two cycles before (its registers and
 //      its node read's registered answer, trv_pass's second half) writes the ray's record,
 //      pushes it back with its ready cycle, hands it to the hit unit (fin_*) or asks this cycle's
 //      list stage for a list step;
@@ -19,20 +19,22 @@
 //      0 .. p-1 hand out (with its line present: the entries left, to the line's end; 0 on a
 //      miss), so stage p's access valid depends on the earlier stages' line presence (the caller
 //      answers them in order);
-//   4. pipe p (p < pipes_i) takes the queue's entry p if pipes 0 .. p-1 took theirs and its ready
-//      cycle has come; its pass (trv_pass's first half) reads the node cache through nacc_*
-//      (the answer, nrsp_*, is registered for the outcome: a registered read, which no access
-//      of this cycle waits for), writes the ray's best record and tmax and registers the rest
-//      for its outcome in the next cycle (2.). An inner node's split (trv.v, op 0) follows the
-//      outcome: it runs in the outcome's cycle and the next and writes the ray's node, interval
-//      and stack push back a cycle later (the split stage, 6. below). The ray is not taken again
-//      before that: its ready cycle is at least the pass's + 4 (trv_latency + the node cache's
-//      hit latency >= 4, which the bindings check), and nothing else reads its slot or stack in
-//      between. A ray in its outcome or asking for a list step is in no queue until the step;
-//   5. a ray from the rgu (in_*: a new primary ray or a shadow ray in its slot) enters the queue
+//   4. the read stage (Trv::read_stage): pipe p's pass of the cycle before reads the node cache
+//      through nacc_* at the address it registered (the answer, nrsp_*, is registered for the
+//      outcome in the next cycle: no access of this cycle waits for it);
+//   5. pipe p (p < pipes_i) takes the queue's entry p if pipes 0 .. p-1 took theirs and its ready
+//      cycle has come; its pass (trv_pass's first half) writes the ray's best record and tmax and
+//      registers its node read's address and the rest for its read stage and outcome (4., 2.).
+//      An inner node's split (trv.v, op 0) follows the outcome: it runs in the outcome's cycle
+//      and the next and writes the ray's node, interval and stack push back a cycle later (the
+//      split stage, 7. below). The ray is not taken again before that: its ready cycle is at
+//      least the pass's + 5 (trv_latency + the node cache's hit latency >= 5, which the bindings
+//      check), and nothing else reads its slot or stack in between. A ray in its read stage or
+//      outcome or asking for a list step is in no queue until the step;
+//   6. a ray from the rgu (in_*: a new primary ray or a shadow ray in its slot) enters the queue
 //      at now + 1, clipped to the scene box as it enters (trv.v, op 1: hls::trv_clip_box; the
 //      ray's start pass reads the result: the model clips in that pass, from the same inputs);
-//   6. the split stage: the splits of this cycle's outcomes' inner nodes.
+//   7. the split stage: the splits of this cycle's outcomes' inner nodes.
 // Queue pushes of a cycle are appended in that order (results, outcomes 0.., list stage, rgu);
 // the queue is a FIFO whose head blocks the entries behind it until its ready cycle: the cycle
 // model's TimedFifo. Ready cycles are 32-bit cycle numbers compared with now_i as a signed
@@ -45,7 +47,7 @@
 // PIPES (pipes_i <= PIPES at run time), IST (ist results per cycle), WORDS (list words per cache
 // read), READS (1: the slot read ports rd_* for the ist and hit units, as rtu.v wires them; 0: none,
 // the outputs zero, as the frame's binding reads systemc's slots). Not here: the mailbox
-// (--mailbox, refused by the binding). pend_o: an outcome or the split stage holds work (a binding
+// (--mailbox, refused by the binding). pend_o: a read stage, an outcome or the split stage holds work (a binding
 // that skips idle cycles must clock this one).
 // lint: also READS=1 SLOT_BITS=7 DEPTH=64 PIPES=4 IST=2 WORDS=16
 module trv_unit #(
@@ -255,18 +257,26 @@ module trv_unit #(
   wire [IST*BW-1:0] nl_all = nl;
   wire [IST*32-1:0] nr_all = nr;
 
-  // ---- 3. the pipes: the pass (this cycle) and the outcome (the cycle after) -------------------
-  // Registered at the pass, per pipe: that it took a ray (mv_q), the slot, what the outcome needs
-  // (trv_pass's mid) and the node read's answer (the line's presence and the word). The outcome's
-  // ready cycles, the same for every pipe: from c = now - 1, the pass's cycle.
+  // ---- 4., 5. the pipes: the pass (this cycle), its node read (the next) and its outcome -------
+  // Registered at the pass, per pipe: that it took a ray (rv_q), the slot, the node read's address
+  // and what the outcome needs (trv_pass's mid); in the read stage the node cache reads at that
+  // address (nacc_*), and all of it moves on (mv_q, ms_q, mid_q) with the answer (the line's
+  // presence and the word). The outcome's ready cycles, the same for every pipe: from c = now - 2,
+  // the pass's cycle.
   localparam integer MW = 177 + 14 * W;  // trv_pass's mid_o
-  wire [31:0] o_again = now_i - 32'd1 + {16'd0, lat_i};
+  wire [31:0] o_lbl   = now_i - 32'd1;
+  wire [31:0] o_again = now_i - 32'd2 + {16'd0, lat_i};
   wire [31:0] o_nxt   = o_again + {16'd0, node_hl_i};
-  wire [31:0] o_lbn   = now_i - 32'd1 + ((node_hl_i == 16'd0) ? 32'd1 : {16'd0, node_hl_i});
-  reg  [PIPES-1:0]     mv_q, mhit_q;
+  wire [31:0] o_lbn   = now_i - 32'd2 + ((node_hl_i == 16'd0) ? 32'd1 : {16'd0, node_hl_i});
+  reg  [PIPES-1:0]     rv_q, racc_q, mv_q, mhit_q;
+  reg  [SLOT_BITS-1:0] rs_q    [0:PIPES-1];
+  reg  [31:0]          rbyte_q [0:PIPES-1];
+  reg  [MW-1:0]        rmid_q  [0:PIPES-1];
   reg  [SLOT_BITS-1:0] ms_q    [0:PIPES-1];
   reg  [MW-1:0]        mid_q   [0:PIPES-1];
   reg  [63:0]          mword_q [0:PIPES-1];
+  wire [PIPES-1:0]     g_acc;
+  wire [PIPES*32-1:0]  g_byte;
   wire [PIPES:0]    go_chain /* verilator split_var */;
   assign go_chain[0] = 1'b1;
   wire [PIPES-1:0] g_busy, g_pops, g_fused;
@@ -305,10 +315,10 @@ module trv_unit #(
         .node_i(node_q[s]), .tnear_i(tnear_q[s]), .tfar_i(tfar_q[s]), .tmax_i(tmax_q[s]),
         .sp_i(sp), .best_i(best_q[s]), .leaf_i(leaf_q[s]), .first_i(first_q[s]),
         .count_i(count_q[s]), .pos_i(pos_q[s]), .e1_i(e1), .e2_i(e2),
-        .acc_a_valid_o(nacc_valid_o[p]), .acc_a_byte_o(nacc_byte_o[p*32 +: 32]),
+        .acc_a_valid_o(g_acc[p]), .acc_a_byte_o(g_byte[p*32 +: 32]),
         .best_o(g_best[p*BW +: BW]), .tmax_o(g_tmax[p*W +: W]), .mid_o(g_mid[p*MW +: MW]),
         .busy_o(g_busy[p]), .pops_o(g_pops[p]), .fused_o(g_fused[p]),
-        .mid_i(mid_q[p]), .rsp_a_hit_i(mhit_q[p]), .rsp_a_node_i(mword_q[p]), .now_i(now_i),
+        .mid_i(mid_q[p]), .rsp_a_hit_i(mhit_q[p]), .rsp_a_node_i(mword_q[p]), .lbl_i(o_lbl),
         .again_i(o_again), .nxt_i(o_nxt), .lbn_i(o_lbn),
         .st_o(p_st[p*3 +: 3]), .node_o(p_node[p*32 +: 32]), .tnear_o(p_tnear[p*W +: W]),
         .tfar_o(p_tfar[p*W +: W]), .sp_o(p_sp[p*7 +: 7]),
@@ -333,6 +343,8 @@ module trv_unit #(
       assign p_leaf[p]      = mv_q[p] && p_leaf_raw;
       assign p_pops[p]      = mv_q[p] && p_pops_raw;
       assign p_fused[p]     = mv_q[p] && p_fused_raw;
+      assign nacc_valid_o[p] = rv_q[p] && racc_q[p];  // the read stage
+      assign nacc_byte_o[p*32 +: 32] = rbyte_q[p];
       assign fin_o[p] = p_fin[p];
       assign fin_slot_o[p*SLOT_BITS +: SLOT_BITS] = ms_q[p];
       assign best_o[p*BW +: BW] = best_q[ms_q[p]];
@@ -341,7 +353,7 @@ module trv_unit #(
   wire unused_chain = go_chain[PIPES];
   assign fin_ready_o = o_again;
 
-  // ---- 2. the list stage: the list steps of this cycle's outcomes ------------------------------
+  // ---- 3. the list stage: the list steps of this cycle's outcomes ------------------------------
   // From the outcome of the pipe's pass in the cycle before (registers and the registered node
   // word): the ray's slot, its list fields, the base cycle of its ready cycles, whether the step
   // is fused into a node pass (it counts no busy, miss or full), the leaf-entry tmax the ist tests
@@ -399,7 +411,7 @@ module trv_unit #(
   endgenerate
   wire unused_lres = ^lres[PIPES*16 +: 16];
 
-  // ---- 4. the clip of the entering ray (trv.v, op 1) -------------------------------------------
+  // ---- 6. the clip of the entering ray (trv.v, op 1) -------------------------------------------
   // Packing of in_ray_i, lowest bits first: tmax, tmin, inv z, y, x, d z, y, x, o z, y, x.
   wire         c_rdy, c_vld, c_op, c_hit, c_below, c_tag;
   wire [1:0]   c_visit;
@@ -423,14 +435,14 @@ module trv_unit #(
   wire unused_clip = ^{c_rdy, c_vld, c_op, c_below, c_tag, c_visit, c_tsplit, c_node, c_far_node,
                        c_far_tfar};
 
-  // ---- 5. the split stage: this cycle's outcomes' inner nodes (trv.v, op 0, on the node's axis)
+  // ---- 7. the split stage: this cycle's outcomes' inner nodes (trv.v, op 0, on the node's axis)
   // From the outcome (the registered pass and node word): the split's inputs, the ray's slot, its
   // stack pointer after the pass and where its queue entry goes (its fq_sp follows the split's
   // push). The split runs in this cycle and the next (trv.v with one register, after its
   // subtraction; the slot, stack pointer and queue position ride as its tag); its results are
   // registered (s_*, w*_q) and written back at the end of the cycle after that, so the ray is
-  // taken at the pass's cycle + 4 at the earliest (trv_latency + the node cache's hit latency >=
-  // 4, which the bindings check).
+  // taken at the pass's cycle + 5 at the earliest (trv_latency + the node cache's hit latency >=
+  // 5, which the bindings check).
   localparam integer      STW = 2 * SLOT_BITS + 7;  // the split's tag: {slot, sp, queue position}
   wire [PIPES-1:0]         d_vld, d_push, s_err;
   wire [PIPES*STW-1:0]     d_tag;
@@ -485,10 +497,10 @@ module trv_unit #(
     for (int_q = 0; int_q < PIPES; int_q = int_q + 1)
       {ws_q[int_q], wsp_q[int_q], wat_q[int_q]} <= d_tag[int_q*STW +: STW];
   end
-  assign pend_o = (|mv_q) || (|d_vld) || (|wv_q);
+  assign pend_o = (|rv_q) || (|mv_q) || (|d_vld) || (|wv_q);
   assign err_o = err_q || |s_err;
 
-  // ---- 6. state update (with the queue's head window) ----------------------------------------
+  // ---- 8. state update (with the queue's head window) ----------------------------------------
   // Where each queue push goes: after the live entries, in the order results, the pipes'
   // outcomes, list stage, rgu (the popped entries leave from the head, so the tail does not move
   // with them).
@@ -583,15 +595,18 @@ module trv_unit #(
       fq_sp[rgu_at] <= 7'd0;  // a start pass sets its own (the stack is not read)
     end
     // The pipes' rays: the pass writes the best record and tmax (distinct slots, none of them the
-    // rgu's) and registers the rest for its outcome.
+    // rgu's) and registers the rest for its read stage, which passes it on to the outcome.
     for (b = 0; b < PIPES; b = b + 1) begin
       mhit_q[b] <= nrsp_hit_i[b];
       mword_q[b] <= nrsp_node_i[b*64 +: 64];
+      ms_q[b] <= rs_q[b];
+      mid_q[b] <= rmid_q[b];
       if (go_o[b]) begin
         tmax_q[slot_o[b*SLOT_BITS +: SLOT_BITS]] <= g_tmax[b*W +: W];
         best_q[slot_o[b*SLOT_BITS +: SLOT_BITS]] <= g_best[b*BW +: BW];
-        ms_q[b] <= slot_o[b*SLOT_BITS +: SLOT_BITS];
-        mid_q[b] <= g_mid[b*MW +: MW];
+        rs_q[b] <= slot_o[b*SLOT_BITS +: SLOT_BITS];
+        rbyte_q[b] <= g_byte[b*32 +: 32];
+        rmid_q[b] <= g_mid[b*MW +: MW];
       end
     end
     // The outcomes of the passes of the cycle before (none of this cycle's pipes' or the rgu's
@@ -630,7 +645,7 @@ module trv_unit #(
         end
       end
     end
-    // The split stage's write-back (the rays of the pass three cycles ago: none of this cycle's
+    // The split stage's write-back (the rays of the pass four cycles ago: none of this cycle's
     // pipes', outcomes', the list stage's or the rgu's).
     for (b = 0; b < PIPES; b = b + 1) begin
       if (wv_q[b]) begin
@@ -712,6 +727,8 @@ module trv_unit #(
     if (!rst_ni) begin
       head_q <= {SLOT_BITS{1'b0}};
       cnt_q <= {(SLOT_BITS+1){1'b0}};
+      rv_q <= {PIPES{1'b0}};
+      racc_q <= {PIPES{1'b0}};
       mv_q <= {PIPES{1'b0}};
       wv_q <= {PIPES{1'b0}};
       s_push <= {PIPES{1'b0}};
@@ -722,7 +739,9 @@ module trv_unit #(
     end else begin
       head_q <= head_q + pops[SLOT_BITS-1:0];
       cnt_q <= cnt_q - pops + pushes;
-      mv_q <= go_o;
+      rv_q <= go_o;
+      racc_q <= g_acc;
+      mv_q <= rv_q;
       wv_q <= d_vld;
       s_push <= d_push;
       err_q <= err_o;
