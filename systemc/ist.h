@@ -1,7 +1,9 @@
 // systemc/ist.h - the intersection unit: one Wald test (hls::ist_wald) issued per cycle into a
 // pipeline of ist_latency cycles (the sum of its stage latencies; an early exit frees the slot but
 // the result still leaves after the full latency). The triangle record comes from the triangle
-// cache; on a miss the request loops to the back of the input queue. Every test of a leaf uses the
+// cache; on a miss the request loops to the back of the input queue, at the end of the next
+// cycle (the cache's answer is registered: a miss's entry waits a cycle outside the queue, and the
+// queue's room counts it; it is ready the cycle after it is back). Every test of a leaf uses the
 // leaf-entry tmax; results are reduced in list order (closest, ties to the earliest entry) so the
 // outcome equals the golden tracer's sequential tests with tmax updated after each hit. A record
 // whose id is the ray's skip_id (skip-origin) is not tested (as the golden tracer).
@@ -80,6 +82,9 @@ class Ist : public sc_core::sc_module {
       --in_flight_;
       edge_ = true;
     }
+    // Last cycle's misses back behind the others (before this cycle's hand-offs), ready next cycle.
+    for (const IstReq& q : missed_) ch_.ist_q.push(q, now + 1);
+    missed_.clear();
     // Results leaving the pipeline.
     while (ch_.ist_pipe.can_pop(now)) {
       leave(ch_.ist_pipe.pop(), now);
@@ -106,7 +111,7 @@ class Ist : public sc_core::sc_module {
 
   Cycle next_event(Cycle now) const {
     if (rtl_) return rtl_->next_event(now);
-    if (!ports_.empty() && in_flight_ != 0) return now + 1;
+    if (!missed_.empty() || (!ports_.empty() && in_flight_ != 0)) return now + 1;
     return std::min(ch_.ist_pipe.head_ready(), ch_.ist_q.head_ready());
   }
 
@@ -138,17 +143,17 @@ class Ist : public sc_core::sc_module {
     const uint32_t lb = ch_.tri->line_bytes();
     const uint64_t byte = uint64_t(q.tri) * rb;
     const uint8_t* line = ch_.tri->access(byte / lb);
-    if (!line) {
-      ++st_.ist_tri_miss;
-      ch_.ist_q.pop();
-      ch_.ist_q.push(q, now + 1);  // loop: try again behind the others
-      idle_pins(u);
-      return true;
-    }
+    // The entry leaves the queue; its room is the trv's from the next cycle on (ist_room).
     ch_.ist_q.pop();
     if (ch_.ist_taken_at != now) ch_.ist_taken = 0;
     ch_.ist_taken_at = now;
     ++ch_.ist_taken;
+    if (!line) {
+      ++st_.ist_tri_miss;
+      missed_.push_back(q);  // loop: back behind the others at the end of the next cycle
+      idle_pins(u);
+      return true;
+    }
     ++st_.ist_busy;
     const hls::WaldTri<F> w = hls::decode_tri<F>(line + byte % lb);
     const Slot& r = ch_.slots[q.slot];
@@ -218,6 +223,7 @@ class Ist : public sc_core::sc_module {
   std::vector<pins::IstPort*> ports_;  // pin-level view: one per unit (empty: the model)
   IstRtl* rtl_ = nullptr;              // the whole unit in RTL (--rtl ist)
   std::vector<IstRes> left_;           // its results leaving this cycle
+  std::vector<IstReq> missed_;         // this cycle's misses, back in the queue in the next
   std::array<Side, 1024> side_{};
   uint32_t next_tag_ = 0, in_flight_ = 0;
   bool edge_ = false;

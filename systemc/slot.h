@@ -96,9 +96,10 @@ struct RtuChannels {
   TimedFifo<uint16_t> trv_q;     // rays ready for a traversal step (rgu, loop, ist -> trv)
   TimedFifo<IstReq> ist_q;       // trv -> ist
   TimedFifo<IstRes> ist_pipe;    // ist's pipeline (results leave after ist_latency)
-  // The entries the ist took out of ist_q for good in cycle ist_taken_at (its hits; a miss goes
-  // back): the trv's hand-offs of that cycle do not get their room (ist_room), so that the room
-  // is the queue's at the cycle's start, a register in rtl/units/ist_unit.v.
+  // The entries the ist took out of ist_q in cycle ist_taken_at (its hits, and its misses, which
+  // come back in the next cycle): the trv's hand-offs of that cycle do not get their room
+  // (ist_room), so that the room is the queue's at the cycle's start less the misses on their
+  // way back, registers in rtl/units/ist_unit.v.
   Cycle ist_taken_at = kNever;
   uint32_t ist_taken = 0;
   size_t ist_room(Cycle now) const {

@@ -13,16 +13,20 @@
 //      cycle has come: it reads the triangle cache (acc_* / rsp_*, same-cycle response) and the
 //      ray of the entry's slot (ray_slot_o / ray_i, same cycle); on a hit the test enters its
 //      ist.v (a record whose id is the ray's skip id too: its result reads as no hit; with
-//      ENTRY_REG, from a register in the next cycle), on a miss the entry goes to the back of the
-//      queue, ready at now + 1;
-//   3. the trv's hand-offs of this cycle (hin_*, one run of consecutive list positions of one
-//      slot per trv pipe, with its ready cycle) are appended behind the misses, in pipe order.
-// room_o is the queue's room at the cycle's start (qcap_i - entries), for the trv's hand-offs of
-// the same cycle: the queue holds them, since the misses that go back were in it. The queue is a
+//      ENTRY_REG, from a register in the next cycle), on a miss the entry is registered and goes
+//      to the back of the queue at the end of the next cycle, ready the cycle after (the
+//      triangle cache's answer decides no push of its own cycle);
+//   3. the misses of the cycle before (their registers), in unit order, then the trv's hand-offs
+//      of this cycle (hin_*, one run of consecutive list positions of one slot per trv pipe, with
+//      its ready cycle) in pipe order, are appended at the queue's tail.
+// room_o is the queue's room at the cycle's start less the misses on their way back (qcap_i -
+// entries - misses registered), for the trv's hand-offs of the same cycle: the queue holds them
+// and the misses. count_o counts those misses as entries. The queue is a
 // FIFO whose head blocks the entries behind it until its ready cycle (the cycle model's
 // TimedFifo); ready cycles are 32-bit cycle numbers compared with now_i as a signed difference.
-// Since a miss goes behind every entry present, unit u's access depends only on the queue's
-// registers, not on the responses to units 0 .. u-1: the caller answers the accesses in unit order.
+// Unit u's access depends only on the queue's registers, not on the responses to units 0 .. u-1:
+// the caller answers the accesses in unit order. The counters add a cycle's registered increments
+// (their outputs the sums plus the increments still registered: exact in every cycle).
 //
 // Storage: the queue, 2^QBITS registers of {slot, list position, triangle index, ready cycle}
 // (qcap_i <= 2^QBITS at run time); the delay ring, 2^HLBITS x IST results (hl_i < 2^HLBITS).
@@ -95,11 +99,11 @@ module ist_unit #(
   output wire                            head_valid_o,
   output wire [31:0]                     head_ready_o,
   output wire                            busy_o,
-  output wire [15:0]                     count_o,     // entries in the queue
+  output wire [15:0]                     count_o,     // entries in the queue (misses too)
   // Counters (systemc/config.h RtuStats: ist_busy, ist_tri_miss, tri_tests).
-  output reg  [63:0]                     cnt_busy_o,
-  output reg  [63:0]                     cnt_miss_o,
-  output reg  [63:0]                     cnt_tests_o
+  output wire [63:0]                     cnt_busy_o,
+  output wire [63:0]                     cnt_miss_o,
+  output wire [63:0]                     cnt_tests_o
 );
 
   localparam integer W   = W_;
@@ -124,7 +128,7 @@ module ist_unit #(
 
   assign head_valid_o = (cnt_q != {(QBITS+1){1'b0}});
   assign head_ready_o = q_ready[head_q];
-  assign count_o      = {{(15-QBITS){1'b0}}, cnt_q};
+  assign count_o      = {{(15-QBITS){1'b0}}, cnt_q} + {10'd0, nmq};
 
   // ---- 2. issue: unit u takes entry u while every unit before it took its entry -----------------
   wire [IST-1:0]      take, hit, miss, test;
@@ -170,7 +174,6 @@ module ist_unit #(
       wire [31:0]   id = rec[8*IDOFF_ +: 32];
       wire [RW-1:0] ray = ray_i[u*RW +: RW];
       wire          skip = (id == ray[8*W +: 32]);
-      assign test[u] = hit[u] && !skip;
       // The test entering ist.v: {k, c8 .. c0, the ray, slot, skip, list position, id}; the side
       // data rides as ist.v's tag (with k and the plane c0 .. c2, taken from the record here).
       wire [EW-1:0] ein = {k, c8, c7, c6, c5, c4, c3, c2, c1, c0, ray[0 +: 8*W],
@@ -191,6 +194,9 @@ module ist_unit #(
         assign ed = ein;
       end
       wire [8*W-1:0] eray = ed[SW +: 8*W];  // the ray without its skip id
+      // A test counts as it enters ist.v (with ENTRY_REG a cycle after the access: the skip
+      // test's compare is off the triangle cache's path).
+      assign test[u] = ev && !ed[64];  // ed[0 +: SW] = {slot, skip, pos, id}
       wire [W-1:0]  ec [0:8];
       genvar gc;
       for (gc = 0; gc < 9; gc = gc + 1) begin : g_ec
@@ -225,29 +231,45 @@ module ist_unit #(
     end
   endgenerate
 
-  // Counts of this cycle's pops (a prefix of the units), misses, hits and tests.
-  reg [5:0] npop, nmiss, nhit, ntest;
+  // This cycle's misses, registered: they go back to the queue in the next cycle (3.).
+  reg  [IST-1:0]           mq_v;
+  reg  [IST*SLOT_BITS-1:0] mq_slot;
+  reg  [IST*32-1:0]        mq_pos, mq_tri;
+  always @(posedge clk_i or negedge rst_ni)
+    if (!rst_ni) mq_v <= {IST{1'b0}};
+    else mq_v <= miss;
+  always @(posedge clk_i) begin
+    mq_slot <= ray_slot_o;
+    mq_pos  <= u_pos;
+    mq_tri  <= u_tri;
+  end
+
+  // Counts of this cycle's pops (a prefix of the units), misses, hits and tests, and of the
+  // misses of the cycle before.
+  reg [5:0] npop, nmiss, nhit, ntest, nmq;
   integer a;
   always @* begin
-    npop = 6'd0; nmiss = 6'd0; nhit = 6'd0; ntest = 6'd0;
+    npop = 6'd0; nmiss = 6'd0; nhit = 6'd0; ntest = 6'd0; nmq = 6'd0;
     for (a = 0; a < IST; a = a + 1) begin
       npop  = npop + {5'd0, take[a]};
       nmiss = nmiss + {5'd0, miss[a]};
       nhit  = nhit + {5'd0, hit[a]};
       ntest = ntest + {5'd0, test[a]};
+      nmq   = nmq + {5'd0, mq_v[a]};
     end
   end
   wire [15:0] npop16 = {10'd0, npop};
-  wire [15:0] left = {{(15-QBITS){1'b0}}, cnt_q} - npop16 + {10'd0, nmiss};
-  // The room for the trv's hand-offs of this cycle: the queue's at the cycle's start (this
-  // cycle's pops do not make room before the next; a miss goes back to the tail): a register's
-  // value, so no path runs from the triangle cache's answer into the trv.
-  assign room_o = qcap_i - {{(15-QBITS){1'b0}}, cnt_q};
+  wire [15:0] left = {{(15-QBITS){1'b0}}, cnt_q} - npop16 + {10'd0, nmq};
+  // The room for the trv's hand-offs of this cycle: the queue's at the cycle's start less the
+  // misses on their way back (this cycle's pops do not make room before the next; this cycle's
+  // misses come back in the next): registers' values, so no path runs from the triangle cache's
+  // answer into the trv.
+  assign room_o = qcap_i - count_o;
 
   // ---- 3. pushes: the misses in unit order, then each pipe's run --------------------------------
   wire [QBITS-1:0] tail = head_q + cnt_q[QBITS-1:0];
   reg  [(PIPES+1)*QBITS-1:0] base;   // where pipe p's run starts: [p*QBITS +: QBITS]
-  reg  [IST*QBITS-1:0]       mpos;   // where unit u's missed entry goes
+  reg  [IST*QBITS-1:0]       mpos;   // where unit u's last-cycle miss goes
   reg  [QBITS-1:0]           at;
   reg  [15:0]                pushes, nb;
   integer p, m;
@@ -256,7 +278,7 @@ module ist_unit #(
     mpos = {(IST*QBITS){1'b0}};
     for (m = 0; m < IST; m = m + 1) begin
       mpos[m*QBITS +: QBITS] = at;
-      if (miss[m]) at = at + 1'b1;
+      if (mq_v[m]) at = at + 1'b1;
     end
     base = {((PIPES+1)*QBITS){1'b0}};
     base[0 +: QBITS] = at;
@@ -297,26 +319,30 @@ module ist_unit #(
     nout = 6'd0;
     for (a = 0; a < IST; a = a + 1) nout = nout + {5'd0, out_v[a]};
   end
-  assign busy_o = (pend_q != 16'd0);
+  assign busy_o = (pend_q != 16'd0) || (|mq_v);
 
   // ---- state ------------------------------------------------------------------------------------
+  // The counters: the sums of the cycles before plus the last cycle's registered increments.
+  reg [17:0]   inc_q;   // {tests, misses, hits}
+  reg [3*64-1:0] sum_q;
+  assign cnt_busy_o  = sum_q[0 +: 64] + {58'd0, inc_q[0 +: 6]};
+  assign cnt_miss_o  = sum_q[64 +: 64] + {58'd0, inc_q[6 +: 6]};
+  assign cnt_tests_o = sum_q[128 +: 64] + {58'd0, inc_q[12 +: 6]};
   integer j;
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       head_q      <= {QBITS{1'b0}};
       cnt_q       <= {(QBITS+1){1'b0}};
       pend_q      <= 16'd0;
-      cnt_busy_o  <= 64'd0;
-      cnt_miss_o  <= 64'd0;
-      cnt_tests_o <= 64'd0;
+      inc_q       <= 18'd0;
+      sum_q       <= {(3*64){1'b0}};
       for (j = 0; j < HN; j = j + 1) ring_v[j] <= {IST{1'b0}};
     end else begin
       head_q <= head_q + npop16[QBITS-1:0];
       cnt_q  <= cnt_next[QBITS:0];
       pend_q <= pend_q + {10'd0, nhit} - {10'd0, nout};
-      cnt_busy_o  <= cnt_busy_o + {58'd0, nhit};
-      cnt_miss_o  <= cnt_miss_o + {58'd0, nmiss};
-      cnt_tests_o <= cnt_tests_o + {58'd0, ntest};
+      inc_q       <= {ntest, nmiss, nhit};
+      sum_q       <= {cnt_tests_o, cnt_miss_o, cnt_busy_o};
       if (!bypass) begin
         ring_v[rd] <= {IST{1'b0}};
         ring_v[wr] <= g_out_v;
@@ -376,11 +402,11 @@ module ist_unit #(
         w_slot = {SLOT_BITS{1'b0}};
         w_pos = 32'd0; w_tri = 32'd0; w_ready = 32'd0;
         for (mb = 0; mb < IST; mb = mb + 1) begin
-          sel = miss[mb] && (mpos[mb*QBITS +: QBITS] == E);
+          sel = mq_v[mb] && (mpos[mb*QBITS +: QBITS] == E);
           we = we | sel;
-          w_slot  = w_slot | ({SLOT_BITS{sel}} & ray_slot_o[mb*SLOT_BITS +: SLOT_BITS]);
-          w_pos   = w_pos | ({32{sel}} & u_pos[mb*32 +: 32]);
-          w_tri   = w_tri | ({32{sel}} & u_tri[mb*32 +: 32]);
+          w_slot  = w_slot | ({SLOT_BITS{sel}} & mq_slot[mb*SLOT_BITS +: SLOT_BITS]);
+          w_pos   = w_pos | ({32{sel}} & mq_pos[mb*32 +: 32]);
+          w_tri   = w_tri | ({32{sel}} & mq_tri[mb*32 +: 32]);
           w_ready = w_ready | ({32{sel}} & (now_i + 32'd1));
         end
         for (pp = 0; pp < PIPES; pp = pp + 1) begin
