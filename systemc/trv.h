@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "hls/image.h"
@@ -32,6 +33,7 @@ class Trv : public SlotUnit {
     outs_.reserve(pipes_);
     reads_.reserve(pipes_);
     stage_.reserve(pipes_);
+    next_stage_.reserve(pipes_);
   }
 
   // One cycle. First the outcome stage: the passes of the cycle before, in pipe order, each with
@@ -45,9 +47,13 @@ class Trv : public SlotUnit {
   // in its cycle, and only a list step's room depends on the earlier steps' answers.
   bool tick(Cycle now) {
     bool any = out_stage(now);
+    any |= list_effects(now);
     any |= list_stage(now);
     any |= read_stage(now);
     for (uint32_t p = 0; p < pipes_ && step(now); ++p) any = true;
+    stage_.swap(next_stage_);
+    next_stage_.clear();
+    stage_at_ = now + 1;
     return any;
   }
 
@@ -55,6 +61,8 @@ class Trv : public SlotUnit {
     Cycle t = ch_.trv_q.head_ready();
     if (!reads_.empty()) t = std::min(t, reads_at_);
     if (!outs_.empty()) t = std::min(t, outs_at_);
+    if (!stage_.empty()) t = std::min(t, stage_at_);
+    if (!requeues_.empty() || !handoffs_.empty()) t = std::min(t, effects_at_);
     return t;
   }
 
@@ -122,9 +130,6 @@ class Trv : public SlotUnit {
     }
   }
 
-  // The outcome stage: last cycle's passes in pipe order. A node read's outcome first, then the
-  // pass's queue push (a ready cycle is at least the next cycle's: a pass's outcome enters the
-  // queue at the end of this one), finish or list step (this cycle's list stage makes it).
   // The read stage: last cycle's passes in pipe order, each reading its node (if it has one to
   // read) from the address it left in the ray's record; their outcomes follow in the next cycle.
   bool read_stage(Cycle now) {
@@ -143,6 +148,10 @@ class Trv : public SlotUnit {
   // only --trv-latency 1 and 2 see it).
   void requeue(uint16_t s, Cycle ready, Cycle now) { ch_.trv_q.push(s, std::max<Cycle>(ready, now + 1)); }
 
+  // The outcome stage: the passes of two cycles before in pipe order. A node read's outcome
+  // first, then the pass's queue push (a ready cycle is at least the next cycle's: a pass's
+  // outcome enters the queue at the end of this one), finish or list step (the next cycle's list
+  // stage makes it).
   bool out_stage(Cycle now) {
     if (outs_.empty()) return false;
     if (now != outs_at_) throw std::logic_error("trv: the outcome stage skipped its cycle");
@@ -154,7 +163,7 @@ class Trv : public SlotUnit {
       else if (o.push)
         requeue(o.slot, o.ready, now);
       else if (o.ask)
-        stage_.push_back({o.slot, o.base, o.ask_fused});
+        next_stage_.push_back({o.slot, o.base, o.ask_fused});
     }
     outs_.clear();
     return true;
@@ -264,39 +273,59 @@ class Trv : public SlotUnit {
     return true;
   }
 
-  // The list stage: the steps the outcome stage put in this cycle, in pipe order, each with the ist
-  // queue's room as the steps before it left it (a step that misses takes none: so a ray whose
-  // line is pinned for it is never kept from reading it by a step that cannot go on). The room is
-  // the queue's at the cycle's start (RtuChannels::ist_room: the ist's pops of this cycle make
-  // room from the next cycle on).
+  // The list stage: the steps the outcome stage asked for in the cycle before, in pipe order,
+  // each with the ist queue's room as the steps before it left it (a step that misses takes none:
+  // so a ray whose line is pinned for it is never kept from reading it by a step that cannot go
+  // on). The room is the queue's at the cycle's start (RtuChannels::ist_room: the ist's pops of
+  // this cycle make room from the next cycle on; the list stage's hand-offs of the cycle before
+  // are in it). The stage's effects, the hand-offs to the ist and the rays back to the ready
+  // queue, are made in the next cycle (list_effects), from registers in the RTL.
   bool list_stage(Cycle now) {
     if (stage_.empty()) return false;
-    for (const Asked& a : stage_) list_step(a.slot, ch_.slots[a.slot], a.base, a.fused, now);
+    if (now != stage_at_) throw std::logic_error("trv: the list stage skipped its cycle");
+    effects_at_ = now + 1;
+    size_t taken = 0;  // the room the steps before took
+    for (const Asked& a : stage_) taken += list_step(a.slot, ch_.slots[a.slot], a.base, a.fused, now, taken);
     stage_.clear();
     return true;
   }
 
-  bool list_step(uint16_t s, Slot& r, Cycle base, bool fused, Cycle now) {
+  // Last cycle's list stage's effects, in its step order: the rays back to the ready queue (after
+  // the outcomes' pushes) and the hand-offs to the ist.
+  bool list_effects(Cycle now) {
+    if (requeues_.empty() && handoffs_.empty()) return false;
+    if (now != effects_at_) throw std::logic_error("trv: the list stage's effects skipped their cycle");
+    for (const auto& q : requeues_) requeue(q.first, q.second, now);
+    for (const auto& h : handoffs_) ch_.ist_q.push(h.first, h.second);
+    requeues_.clear();
+    handoffs_.clear();
+    return true;
+  }
+
+  // One list step; returns the ist queue's room it took.
+  size_t list_step(uint16_t s, Slot& r, Cycle base, bool fused, Cycle now, size_t taken) {
     const Cycle again = base + lat_;
     const uint32_t lb = ch_.list->line_bytes();
     const uint64_t byte = uint64_t(r.list_first + r.list_pos) * 4;
-    const size_t room = ch_.ist_room(now);
+    const size_t all = ch_.ist_room(now);
+    const size_t room = all > taken ? all - taken : 0;
     if (room == 0) {
       if (!fused) ++st_.trv_ist_full;
-      requeue(s, again, now);
-      return true;
+      requeues_.push_back({s, again});
+      return 0;
     }
     const uint8_t* line = ch_.list->access(byte / lb);
     if (!line) {
       if (!fused) ++st_.trv_list_miss;
-      requeue(s, again, now);
-      return true;
+      requeues_.push_back({s, again});
+      return 0;
     }
     if (!fused) ++st_.trv_busy;
     ++st_.list_steps;
     uint32_t n = std::min<uint32_t>(r.list_count - r.list_pos, uint32_t((lb - byte % lb) / 4));
     n = std::min<uint32_t>(n, uint32_t(room));
     const Cycle ready = base + 1 + hit_lat(*ch_.list);
+    size_t pushed = 0;
     for (uint32_t i = 0; i < n; ++i) {
       const uint32_t tri = uint32_t(hls::detail::get_le(line + byte % lb + size_t(i) * 4, 4));
       if (fc_.mailbox != 0 && in_mailbox(r, tri)) {  // tested before: cannot win, counts as done
@@ -304,17 +333,18 @@ class Trv : public SlotUnit {
         ++r.results;
         continue;
       }
-      ch_.ist_q.push({s, r.list_pos + i, tri}, ready);
+      handoffs_.push_back({IstReq{s, r.list_pos + i, tri}, ready});
+      ++pushed;
     }
     r.list_pos += n;
     if (r.list_pos == r.list_count && r.results == r.list_count) {
       r.state = SlotState::leaf_done;  // nothing left at the ist (the mailbox took the rest)
-      requeue(s, again + hit_lat(*ch_.list), now);
+      requeues_.push_back({s, again + hit_lat(*ch_.list)});
     } else if (r.list_pos == r.list_count)
       r.state = SlotState::wait_ist;  // the ist re-queues the ray with its last result
     else
-      requeue(s, again + hit_lat(*ch_.list), now);
-    return true;
+      requeues_.push_back({s, again + hit_lat(*ch_.list)});
+    return pushed;
   }
 
   bool leaf_end(Out& o, Slot& r, uint32_t extra, bool fuse) {
@@ -360,7 +390,11 @@ class Trv : public SlotUnit {
   Cycle reads_at_ = 0;
   std::vector<Out> outs_;    // the passes whose outcomes are made in cycle outs_at_
   Cycle outs_at_ = 0;
-  std::vector<Asked> stage_;  // this cycle's list steps
+  std::vector<Asked> stage_, next_stage_;  // this cycle's list steps; the next cycle's
+  Cycle stage_at_ = 0;
+  std::vector<std::pair<uint16_t, Cycle>> requeues_;  // the list stage's effects, made in cycle
+  std::vector<std::pair<IstReq, Cycle>> handoffs_;    //   effects_at_
+  Cycle effects_at_ = 0;
 };
 
 }  // namespace raycore::sc

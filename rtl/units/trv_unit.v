@@ -10,15 +10,18 @@
 //      the leaf's last result puts the ray in state leaf_done and back into the queue at now + 1;
 //   2. the outcome stage (Trv::out_stage): pipe p's pass of two cycles before (its registers and
 //      its node read's registered answer, trv_pass's second half) writes the ray's record,
-//      pushes it back with its ready cycle, hands it to the hit unit (fin_*) or asks this cycle's
-//      list stage for a list step;
-//   3. the list stage: this cycle's list steps, one per pipe, each reading its list line through
-//      lacc_* / lrsp_* (the list cache, one port per pipe), handing entries to the ist (ist_*)
-//      and pushing the ray back or leaving it to wait for the ist. The ist queue's room (room_i,
-//      at the cycle's start) is taken in stage order: stage p's room is room_i less what stages
-//      0 .. p-1 hand out (with its line present: the entries left, to the line's end; 0 on a
-//      miss), so stage p's access valid depends on the earlier stages' line presence (the caller
-//      answers them in order);
+//      pushes it back with its ready cycle, hands it to the hit unit (fin_*) or asks the next
+//      cycle's list stage for a list step;
+//   3. the list stage's effects of the cycle before (registers): its hand-offs to the ist
+//      (ist_*), its rays back to the queue or waiting for the ist, their new list positions;
+//      then the list stage: the list steps the outcomes asked for in the cycle before, one per
+//      pipe, each reading its list line through lacc_* / lrsp_* (the list cache, one port per
+//      pipe) and deciding its hand-off and its ray's push, registered for the next cycle. The
+//      ist queue's room (room_i, at the cycle's start, less the hand-offs entering it at this
+//      cycle's end) is taken in stage order: stage p's room is that less what stages 0 .. p-1
+//      hand out (with its line present: the entries left, to the line's end; 0 on a miss), so
+//      stage p's access valid depends on the earlier stages' line presence (the caller answers
+//      them in order);
 //   4. the read stage (Trv::read_stage): pipe p's pass of the cycle before reads the node cache
 //      through nacc_* at the address it registered (the answer, nrsp_*, is registered for the
 //      outcome in the next cycle: no access of this cycle waits for it);
@@ -30,12 +33,13 @@
 //      split stage, 7. below). The ray is not taken again before that: its ready cycle is at
 //      least the pass's + 5 (trv_latency + the node cache's hit latency >= 5, which the bindings
 //      check), and nothing else reads its slot or stack in between. A ray in its read stage or
-//      outcome or asking for a list step is in no queue until the step;
+//      outcome or its list step is in no queue until the step's effects;
 //   6. a ray from the rgu (in_*: a new primary ray or a shadow ray in its slot) enters the queue
 //      at now + 1, clipped to the scene box as it enters (trv.v, op 1: hls::trv_clip_box; the
 //      ray's start pass reads the result: the model clips in that pass, from the same inputs);
 //   7. the split stage: the splits of this cycle's outcomes' inner nodes.
-// Queue pushes of a cycle are appended in that order (results, outcomes 0.., list stage, rgu);
+// Queue pushes of a cycle are appended in that order (results, outcomes 0.., list stage's
+// effects, rgu);
 // the queue is a FIFO whose head blocks the entries behind it until its ready cycle: the cycle
 // model's TimedFifo. Ready cycles are 32-bit cycle numbers compared with now_i as a signed
 // difference.
@@ -353,63 +357,102 @@ module trv_unit #(
   wire unused_chain = go_chain[PIPES];
   assign fin_ready_o = o_again;
 
-  // ---- 3. the list stage: the list steps of this cycle's outcomes ------------------------------
-  // From the outcome of the pipe's pass in the cycle before (registers and the registered node
-  // word): the ray's slot, its list fields, the base cycle of its ready cycles, whether the step
-  // is fused into a node pass (it counts no busy, miss or full), the leaf-entry tmax the ist tests
-  // with and the stack pointer for its queue entry.
-  wire [PIPES-1:0]     l_v = p_lreq;
-  wire [PIPES-1:0]     l_fused = p_lfused & p_lreq;
+  // ---- 3. the list stage: the list steps the outcomes asked for in the cycle before ----------
+  // Registered at the outcome: the ray's slot, its list entry's index (first + position), the
+  // entries left and what the step hands out with the room unlimited (want: the entries left, to
+  // the line's end), the position, the base cycle of its ready cycles, whether the step is fused
+  // into a node pass (it counts no busy, miss or full), the leaf-entry tmax the ist tests with and
+  // the stack pointer for its queue entry. The stage reads the list cache and decides; its
+  // effects (the hand-off to the ist, the ray back to the queue or waiting, its new position) are
+  // registered and made in the next cycle (3b.).
+  reg  [PIPES-1:0]     lv_q, lfused_q;
+  reg  [SLOT_BITS-1:0] ls_q     [0:PIPES-1];
+  reg  [31:0]          lidx_q   [0:PIPES-1];
+  reg  [31:0]          lleft_q  [0:PIPES-1];
+  reg  [5:0]           lwant_q  [0:PIPES-1];
+  wire [PIPES*32-1:0]  o_idx_v, o_left_v;  // the outcome's, per pipe
+  wire [PIPES*6-1:0]   o_want_v;
+  reg  [31:0]          lpos_q   [0:PIPES-1];
+  reg  [31:0]          lbase_q  [0:PIPES-1];
+  reg  [W-1:0]         ltmax_q  [0:PIPES-1];
+  reg  [6:0]           lsp_q    [0:PIPES-1];
+  // The ist queue's room for this stage: the ist's (at the cycle's start, with its misses on the
+  // way back) less the hand-offs of the stage before, which enter it at this cycle's end.
+  reg  [15:0]          hsum;
+  integer hq;
+  always @* begin
+    hsum = 16'd0;
+    for (hq = 0; hq < PIPES; hq = hq + 1) hsum = hsum + {10'd0, ist_n_o[hq*6 +: 6]};
+  end
+  wire [15:0] room_s = (room_i > hsum) ? room_i - hsum : 16'd0;
   wire [16*(PIPES+1)-1:0] lres /* verilator split_var */;  // room taken by stages 0 .. p-1
   wire [PIPES-1:0]     l_qpush, l_wait, l_busy, l_miss, l_full, l_step;
-  wire [PIPES*32-1:0]  l_pos, l_qready;
+  wire [PIPES*6-1:0]   l_n;
+  wire [PIPES*32-1:0]  l_qready;
   assign lres[15:0] = 16'd0;
   genvar l;
   generate
     for (l = 0; l < PIPES; l = l + 1) begin : g_list
-      wire [31:0] first = p_first[l*32 +: 32];
-      wire [31:0] pos   = p_pos[l*32 +: 32];
-      wire [31:0] cnt   = p_count[l*32 +: 32];
-      wire [31:0] left  = cnt - pos;
-      wire [31:0] idx   = first + pos;
-      // Words from the entry to the line's end (lwords_i a power of two), and what the step hands
-      // out with the room unlimited: the earlier stages' sum of these is what they took (each
-      // took min(want, room left), so the room left falls by want until it reaches 0; a stage
-      // that finds no room makes no access). The hit is the line's presence, access or not.
-      wire [31:0] to_end = {25'd0, lwords_i} - (idx & ({25'd0, lwords_i} - 32'd1));
+      // In the outcome: the step's index, entries left and want (lwords_i a power of two).
+      wire [31:0] o_idx   = p_first[l*32 +: 32] + p_pos[l*32 +: 32];
+      wire [31:0] o_left  = p_count[l*32 +: 32] - p_pos[l*32 +: 32];
+      wire [31:0] o_toend = {25'd0, lwords_i} - (o_idx & ({25'd0, lwords_i} - 32'd1));
+      wire [31:0] o_want  = (o_left < o_toend) ? o_left : o_toend;
+      assign o_idx_v[l*32 +: 32] = o_idx;
+      assign o_left_v[l*32 +: 32] = o_left;
+      assign o_want_v[l*6 +: 6] = o_want[5:0];
+      wire unused_o = ^{o_want[31:6], o_toend[31:16]};
+      // The stage: the earlier stages' sum of want (with their line present) is what they took
+      // (each took min(want, room left), so the room left falls by want until it reaches 0; a
+      // stage that finds no room makes no access). The hit is the line's presence, access or not.
+      wire [31:0] idx    = lidx_q[l];
+      wire [15:0] want   = {10'd0, lwant_q[l]};
       wire        hit    = lrsp_hit_i[l];
-      wire [31:0] want   = (left < to_end) ? left : to_end;
       wire [15:0] res_l  = lres[l*16 +: 16];
-      wire [15:0] room_l = (room_i > res_l) ? room_i - res_l : 16'd0;
-      assign lres[(l+1)*16 +: 16] = res_l + ((l_v[l] && hit) ? want[15:0] : 16'd0);
+      wire [15:0] room_l = (room_s > res_l) ? room_s - res_l : 16'd0;
+      assign lres[(l+1)*16 +: 16] = res_l + ((lv_q[l] && hit) ? want : 16'd0);
       wire        full   = room_l == 16'd0;
-      wire [31:0] n      = ({16'd0, room_l} < want) ? {16'd0, room_l} : want;
-      wire [31:0] npos   = pos + n;
-      wire [31:0] base   = p_lbase[l*32 +: 32];
-      wire [31:0] again  = base + {16'd0, lat_i};
-      wire        took   = l_v[l] && !full && hit;
-      assign lacc_valid_o[l] = l_v[l] && !full;
+      wire [15:0] n      = (room_l < want) ? room_l : want;
+      wire [31:0] again  = lbase_q[l] + {16'd0, lat_i};
+      wire        took   = lv_q[l] && !full && hit;
+      assign lacc_valid_o[l] = lv_q[l] && !full;
       assign lacc_byte_o[l*32 +: 32] = {idx[29:0], 2'd0};
-      assign l_busy[l] = took && !l_fused[l];
-      assign l_miss[l] = l_v[l] && !full && !hit && !l_fused[l];
-      assign l_full[l] = l_v[l] && full && !l_fused[l];
+      assign l_busy[l] = took && !lfused_q[l];
+      assign l_miss[l] = lv_q[l] && !full && !hit && !lfused_q[l];
+      assign l_full[l] = lv_q[l] && full && !lfused_q[l];
       assign l_step[l] = took;
       // All handed out: the ray waits for the ist (no queue push; without a mailbox some entries
       // are always at the ist). Else back at again (+ the list cache's hit latency after a read).
-      assign l_wait[l]  = took && (npos == cnt);
-      assign l_qpush[l] = l_v[l] && !l_wait[l];
+      assign l_wait[l]  = took && ({16'd0, n} == lleft_q[l]);
+      assign l_qpush[l] = lv_q[l] && !l_wait[l];
       assign l_qready[l*32 +: 32] = took ? again + {16'd0, list_hl_i} : again;
-      assign l_pos[l*32 +: 32] = took ? npos : pos;
-      assign ist_n_o[l*6 +: 6] = took ? n[5:0] : 6'd0;
-      assign ist_slot_o[l*SLOT_BITS +: SLOT_BITS] = ms_q[l];
-      assign ist_pos_o[l*32 +: 32] = pos;
-      assign ist_ready_o[l*32 +: 32] = base + 32'd1 + {16'd0, list_hl_i};
-      assign ist_tmax_o[l*W +: W] = p_tmax[l*W +: W];
-      assign ist_words_o[l*32*WORDS +: 32*WORDS] = lrsp_data_i[l*32*WORDS +: 32*WORDS];
-      wire unused_l = ^{to_end[31:16], n[31:6], idx[31:30]};
+      assign l_n[l*6 +: 6] = took ? n[5:0] : 6'd0;
+      wire unused_l = ^{n[15:6], idx[31:30]};
     end
   endgenerate
   wire unused_lres = ^lres[PIPES*16 +: 16];
+
+  // ---- 3b. the list stage's effects, registered: made in the cycle after its step -------------
+  reg  [PIPES-1:0]     ev_q, eqpush_q, ewait_q;
+  reg  [SLOT_BITS-1:0] es_q     [0:PIPES-1];
+  reg  [31:0]          eqready_q[0:PIPES-1];
+  reg  [6:0]           esp_q    [0:PIPES-1];
+  reg  [5:0]           en_q     [0:PIPES-1];
+  reg  [31:0]          epos_q   [0:PIPES-1];
+  reg  [31:0]          eready_q [0:PIPES-1];
+  reg  [W-1:0]         etmax_q  [0:PIPES-1];
+  reg  [32*WORDS-1:0]  ewords_q [0:PIPES-1];
+  wire [PIPES-1:0]     e_qpush = ev_q & eqpush_q;
+  generate
+    for (l = 0; l < PIPES; l = l + 1) begin : g_eff
+      assign ist_n_o[l*6 +: 6] = ev_q[l] ? en_q[l] : 6'd0;
+      assign ist_slot_o[l*SLOT_BITS +: SLOT_BITS] = es_q[l];
+      assign ist_pos_o[l*32 +: 32] = epos_q[l];
+      assign ist_ready_o[l*32 +: 32] = eready_q[l];
+      assign ist_tmax_o[l*W +: W] = etmax_q[l];
+      assign ist_words_o[l*32*WORDS +: 32*WORDS] = ewords_q[l];
+    end
+  endgenerate
 
   // ---- 6. the clip of the entering ray (trv.v, op 1) -------------------------------------------
   // Packing of in_ray_i, lowest bits first: tmax, tmin, inv z, y, x, d z, y, x, o z, y, x.
@@ -497,7 +540,7 @@ module trv_unit #(
     for (int_q = 0; int_q < PIPES; int_q = int_q + 1)
       {ws_q[int_q], wsp_q[int_q], wat_q[int_q]} <= d_tag[int_q*STW +: STW];
   end
-  assign pend_o = (|rv_q) || (|mv_q) || (|d_vld) || (|wv_q);
+  assign pend_o = (|rv_q) || (|mv_q) || (|lv_q) || (|ev_q) || (|d_vld) || (|wv_q);
   assign err_o = err_q || |s_err;
 
   // ---- 8. state update (with the queue's head window) ----------------------------------------
@@ -528,7 +571,7 @@ module trv_unit #(
     end
     for (a = 0; a < PIPES; a = a + 1) begin
       list_at[a*SLOT_BITS +: SLOT_BITS] = tail + pushes[SLOT_BITS-1:0];
-      if (l_qpush[a]) pushes = pushes + 1'b1;
+      if (e_qpush[a]) pushes = pushes + 1'b1;
     end
     rgu_at = tail + pushes[SLOT_BITS-1:0];
     if (in_valid_i) pushes = pushes + 1'b1;
@@ -565,10 +608,10 @@ module trv_unit #(
             wn_sp[k] = p_sp[x*7 +: 7];
           end
         for (x = 0; x < PIPES; x = x + 1)
-          if (l_qpush[x] && list_at[x*SLOT_BITS +: SLOT_BITS] == w_pos) begin
-            wn_slot[k] = ms_q[x];
-            wn_ready[k] = l_qready[x*32 +: 32];
-            wn_sp[k] = p_sp[x*7 +: 7];
+          if (e_qpush[x] && list_at[x*SLOT_BITS +: SLOT_BITS] == w_pos) begin
+            wn_slot[k] = es_q[x];
+            wn_ready[k] = eqready_q[x];
+            wn_sp[k] = esp_q[x];
           end
         if (in_valid_i && rgu_at == w_pos) begin
           wn_slot[k] = in_slot_i;
@@ -632,17 +675,42 @@ module trv_unit #(
         end
       end
     end
-    // The list stage's rays (this cycle's outcomes' list steps: after the outcome's writes of the
-    // same ray, which they update).
+    // The list stage's effects (the steps of the cycle before: none of this cycle's outcomes' or
+    // the rgu's rays): the new position, waiting for the ist, or back to the queue.
     for (b = 0; b < PIPES; b = b + 1) begin
-      if (l_v[b]) begin
-        pos_q[ms_q[b]] <= l_pos[b*32 +: 32];
-        if (l_wait[b]) st_q[ms_q[b]] <= S_WAIT;
-        if (l_qpush[b]) begin
-          fq_slot[list_at[b*SLOT_BITS +: SLOT_BITS]] <= ms_q[b];
-          fq_ready[list_at[b*SLOT_BITS +: SLOT_BITS]] <= l_qready[b*32 +: 32];
-          fq_sp[list_at[b*SLOT_BITS +: SLOT_BITS]] <= p_sp[b*7 +: 7];
+      if (ev_q[b]) begin
+        pos_q[es_q[b]] <= epos_q[b] + {26'd0, en_q[b]};
+        if (ewait_q[b]) st_q[es_q[b]] <= S_WAIT;
+        if (eqpush_q[b]) begin
+          fq_slot[list_at[b*SLOT_BITS +: SLOT_BITS]] <= es_q[b];
+          fq_ready[list_at[b*SLOT_BITS +: SLOT_BITS]] <= eqready_q[b];
+          fq_sp[list_at[b*SLOT_BITS +: SLOT_BITS]] <= esp_q[b];
         end
+      end
+    end
+    // This cycle's outcomes' list steps, for the next cycle's stage; this stage's effects.
+    for (b = 0; b < PIPES; b = b + 1) begin
+      if (p_lreq[b]) begin
+        ls_q[b]    <= ms_q[b];
+        lidx_q[b]  <= o_idx_v[b*32 +: 32];
+        lleft_q[b] <= o_left_v[b*32 +: 32];
+        lwant_q[b] <= o_want_v[b*6 +: 6];
+        lpos_q[b]  <= p_pos[b*32 +: 32];
+        lbase_q[b] <= p_lbase[b*32 +: 32];
+        ltmax_q[b] <= p_tmax[b*W +: W];
+        lsp_q[b]   <= p_sp[b*7 +: 7];
+      end
+      if (lv_q[b]) begin
+        es_q[b]      <= ls_q[b];
+        eqpush_q[b]  <= l_qpush[b];
+        ewait_q[b]   <= l_wait[b];
+        eqready_q[b] <= l_qready[b*32 +: 32];
+        esp_q[b]     <= lsp_q[b];
+        en_q[b]      <= l_n[b*6 +: 6];
+        epos_q[b]    <= lpos_q[b];
+        eready_q[b]  <= lbase_q[b] + 32'd1 + {16'd0, list_hl_i};
+        etmax_q[b]   <= ltmax_q[b];
+        ewords_q[b]  <= lrsp_data_i[b*32*WORDS +: 32*WORDS];
       end
     end
     // The split stage's write-back (the rays of the pass four cycles ago: none of this cycle's
@@ -729,6 +797,9 @@ module trv_unit #(
       cnt_q <= {(SLOT_BITS+1){1'b0}};
       rv_q <= {PIPES{1'b0}};
       racc_q <= {PIPES{1'b0}};
+      lv_q <= {PIPES{1'b0}};
+      lfused_q <= {PIPES{1'b0}};
+      ev_q <= {PIPES{1'b0}};
       mv_q <= {PIPES{1'b0}};
       wv_q <= {PIPES{1'b0}};
       s_push <= {PIPES{1'b0}};
@@ -741,6 +812,9 @@ module trv_unit #(
       cnt_q <= cnt_q - pops + pushes;
       rv_q <= go_o;
       racc_q <= g_acc;
+      lv_q <= p_lreq;
+      lfused_q <= p_lfused & p_lreq;
+      ev_q <= lv_q;
       mv_q <= rv_q;
       wv_q <= d_vld;
       s_push <= d_push;
