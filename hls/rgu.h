@@ -115,7 +115,7 @@ class RguTiles {
   // The walk's start-up in rtl/units/rgu_walk.v: with start in cycle 0, the first pixel is at the
   // walk's output (the datapath's input) in this cycle: start is sampled at the end of cycle 0,
   // then one cycle per subtraction dividing rtu and rtus by the tile columns, then one cycle
-  // loading the first tile. The unit's first ray comes rgu_ray.v's 8 x STAGES cycles later.
+  // loading the first tile. The unit's first ray comes rgu_ray.v's 15 x STAGES cycles later.
   int startup() const { return std::max(rtu_, rtus_) / tiles_x_ + 2; }
   int x() const { return (tile_idx_ % tiles_x_) * tile_ + px_; }
   int y() const { return (tile_idx_ / tiles_x_) * tile_ + py_; }

@@ -98,7 +98,7 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
   opt("--ist-latency", &SimConfig::ist_latency, "ist pipeline latency (sum of stages)", 1u, 1000u);
   opt("--hit-latency", &SimConfig::hit_latency, "hit unit latency", 1u, 1000u);
   opt("--rgu-latency", &SimConfig::rgu_latency,
-      "rgu primary-ray datapath latency (rtl/units/rgu.v: 8 x STAGES)", 0u, 1000u);
+      "rgu primary-ray datapath latency (rtl/units/rgu.v: 15 x STAGES)", 0u, 1000u);
   auto kb = [&](const char* name, CacheConfig SimConfig::*cache, const char* help) {
     auto value = std::make_shared<double>((o.cfg.*cache).size_bytes / 1024.0);
     c.add_option(name, *value, help)

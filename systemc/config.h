@@ -12,7 +12,7 @@ namespace raycore::sc {
 // latency is levels x STAGES. The vtu's fp_sop phases, ist.v's and rgu.v's operator levels; hit.v
 // shares its registers out by the logic of its sublevels (scripts/gen_hit.py: weights totalling
 // 46 registers for 95 FO4, plus the hit unit's registered slot read: 47, so 24 per STAGES).
-inline constexpr uint32_t kVtuLevels = 2, kIstLevels = 10, kHitLevels = 24, kRguLevels = 8;
+inline constexpr uint32_t kVtuLevels = 2, kIstLevels = 10, kHitLevels = 24, kRguLevels = 15;
 // The least trv_latency + node cache hit latency that rtl/units/trv_unit.v runs: it writes an
 // inner node's split back at the end of the fourth cycle after the pass (the node read a cycle
 // after the pass, the outcome and the split's first level in the next, its second level, its
@@ -110,7 +110,7 @@ struct SimConfig {
   // rgu: the primary-ray datapath's latency; rtl/units/rgu.v has 8 operator levels of STAGES
   // registers: 16 = STAGES 2. The first primary ray leaves hls::RguTiles::startup() (the walk's
   // set-up after start in cycle 0) + rgu_latency cycles into the frame, as from rgu.v.
-  uint32_t rgu_latency = 16;
+  uint32_t rgu_latency = 30;
   UnitView rgu_view = UnitView::model;
   // The whole RTU: rtl/units/rtu.v Verilated (systemc/rtu_rtl.h), every RTU one model stepped from
   // C++ with the Verilated bus interface (membus_if.v); rtl only, alone (no other unit's view).

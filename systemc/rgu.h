@@ -4,7 +4,7 @@
 //
 // Start-up, as rtl/units/rgu.v: the host starts the unit in cycle 0; its walk divides rtu and N by
 // the tile columns and loads the first tile (hls::RguTiles::startup() cycles), then the datapath
-// takes `latency` cycles (SimConfig::rgu_latency = 8 x STAGES), so the first primary ray can be
+// takes `latency` cycles (SimConfig::rgu_latency = 15 x STAGES), so the first primary ray can be
 // issued in cycle startup() + latency. After that the datapath, kept full by back-pressure, has a
 // ray in every cycle until the RTU's last pixel.
 //

@@ -50,7 +50,7 @@ class RguRtl {
   virtual std::string name() const = 0;     // "Verilated rgu_unit FP24 rtz S=2"
 };
 
-// The Verilated rgu_unit of that format, rounding and STAGES (rgu_latency = 8 x STAGES) with tiles
+// The Verilated rgu_unit of that format, rounding and STAGES (rgu_latency = 15 x STAGES) with tiles
 // of `tile` pixels a side. Throws ConfigError for more slots than its parameters; nullptr when no
 // model of that format, rounding, STAGES and tile is built.
 std::unique_ptr<RguRtl> make_rtl_rgu_unit(hls::FormatId f, hls::Rounding r, unsigned stages,

@@ -1,6 +1,6 @@
 # rtl/units/rgu.cmake - the ray generation unit (rtl/units/rgu*.v), for tb/rtl/test_rtl_rgu.cpp.
 # Included by rtl/CMakeLists.txt (after find_package(verilator)). Two libraries of --cc models:
-#   raycore_rtl_rgu      the datapath rgu_ray (latency 8 * STAGES), bit-exact against
+#   raycore_rtl_rgu      the datapath rgu_ray (latency 15 * STAGES), bit-exact against
 #                        hls::rgu_primary on random cameras and pixels; variant lines
 #                        RAYCORE_RTL_RGU_VARIANT(prefix, rgu_ray, fmt, mode, stages)
 #   raycore_rtl_rgu_top  the unit rgu (pixel walk rgu_walk + rgu_ray): rays of whole frames in

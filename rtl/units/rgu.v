@@ -16,7 +16,8 @@
 // busy_o is high from start_i until the last ray has left.
 //
 // Latency: the walk's set-up (max(rtu_i, rtus_i) / tiles_x + 1 cycles after start_i, tiles_x =
-// ceil(width / 2^TILE_BITS)), one walk register, then 8 * STAGES cycles of datapath; then one ray
+// ceil(width / 2^TILE_BITS)), one walk register, then 15 * STAGES cycles of datapath (rgu_ray's
+// LPS x STAGES); then one ray
 // per cycle while out_ready_i is high.
 module rgu #(
   parameter integer EXP_BITS   = 7,
@@ -65,8 +66,9 @@ module rgu #(
 );
 
   localparam integer PB = 2 * COORD_BITS;
-  // Rays inside the datapath: at most 8 * STAGES (+ 1 at STAGES = 0, combinational).
-  localparam integer CNT_W = $clog2(8 * STAGES + 2);
+  // Rays inside the datapath: at most its latency, 15 * STAGES (rgu_ray's LPS x STAGES), + 1 at
+  // STAGES = 0 (combinational).
+  localparam integer CNT_W = $clog2(15 * STAGES + 2);
 
   wire                  walk_busy, walk_valid, walk_ready;
   wire [COORD_BITS-1:0] walk_x, walk_y;

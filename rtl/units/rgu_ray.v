@@ -8,7 +8,7 @@
 // (o goes to the output combinationally, d00, dx, dy are read by levels 1 and 2).
 //
 // Levels (the operators of a level run side by side with the same number of pipeline registers,
-// S1 .. S8 below: the level's share of the 8 x STAGES by its logic; a per-level fp_pipe of the
+// S1 .. S8 below: the level's share of the 15 x STAGES by its logic; a per-level fp_pipe of the
 // same depth carries the tag and the values needed later):
 //   0  fx, fy = the pixel coordinates in the format (combinational, exact below 2^(M+1))
 //   1-2  p[c] = d00[c] + fx*dx[c] + fy*dy[c]   3 fp_sop (S1 + S2: the products exact, one
@@ -19,7 +19,8 @@
 //   6  rl = 1 / len                               1 fp_div (RAYCORE: fp_rcp)
 //   7  d[c] = p[c] * rl                           3 fp_mul
 //   8  inv[c] = 1 / d[c]                          3 fp_div (RAYCORE: fp_rcp)
-// Latency = 8 * STAGES cycles (STAGES = 0: combinational), one ray per cycle.
+// Latency = 15 * STAGES cycles (STAGES = 0: combinational), one ray per cycle: at STAGES 2 every
+// level has the registers its logic needs for 95 FO4 (the weights below).
 // RAYCORE = 1 (FP24): rounding mode raycore (hls Rounding::raycore, overrides RNE): the adders'
 // raycore windows, truncating conversions, products and square root, raycore's table reciprocal
 // (fp_rcp) for 1 / len and 1 / d.
@@ -82,20 +83,22 @@ module rgu_ray #(
   localparam [W-1:0] ONE   = {1'b0, BIAS[E-1:0], {M{1'b0}}};  // 1.0
   localparam integer T     = TAG_BITS;
   localparam integer RND   = RAYCORE != 0 ? 0 : RNE;  // raycore truncates (conversion, sqrt)
-  // Registers per level: the 8 x STAGES of the latency shared out by the logic each level holds
-  // (the registers each needs for 95 FO4, docs/timing.md's operators: the sop with the pixel's
-  // conversion 4 over levels 1-2, a mul 1, the add3 3, the square root and each divider 7; 30 in
-  // all). Level l takes (8 STAGES Q_l) / 30 - (8 STAGES Q_l-1) / 30, Q the cumulative weights: at
-  // STAGES 2, 1 1 0 2 4 3 1 4 (the sop 2).
-  localparam integer Q1 = 2, Q2 = 4, Q3 = 5, Q4 = 8, Q5 = 15, Q6 = 22, Q7 = 23;
-  localparam integer S1 = (8 * STAGES * Q1) / 30;
-  localparam integer S2 = (8 * STAGES * Q2) / 30 - (8 * STAGES * Q1) / 30;
-  localparam integer S3 = (8 * STAGES * Q3) / 30 - (8 * STAGES * Q2) / 30;
-  localparam integer S4 = (8 * STAGES * Q4) / 30 - (8 * STAGES * Q3) / 30;
-  localparam integer S5 = (8 * STAGES * Q5) / 30 - (8 * STAGES * Q4) / 30;
-  localparam integer S6 = (8 * STAGES * Q6) / 30 - (8 * STAGES * Q5) / 30;
-  localparam integer S7 = (8 * STAGES * Q7) / 30 - (8 * STAGES * Q6) / 30;
-  localparam integer S8 = 8 * STAGES - (8 * STAGES * Q7) / 30;
+  // Registers per level: the L = LPS x STAGES of the latency shared out by the logic each level
+  // holds (the registers each needs for 95 FO4, docs/timing.md's operators: the sop with the
+  // pixel's conversion 4 over levels 1-2, a mul 1, the add3 3, the square root and each divider
+  // 7; QT = 30 in all). LPS = QT / 2, so that at STAGES 2 each level gets its weight: 2 2 1 3 7 7
+  // 1 7. Level l takes (L Q_l) / QT - (L Q_l-1) / QT, Q the cumulative weights.
+  localparam integer Q1 = 2, Q2 = 4, Q3 = 5, Q4 = 8, Q5 = 15, Q6 = 22, Q7 = 23, QT = 30;
+  localparam integer LPS = (QT + 1) / 2;  // rgu.v's and systemc/config.h kRguLevels
+  localparam integer L  = LPS * STAGES;
+  localparam integer S1 = (L * Q1) / QT;
+  localparam integer S2 = (L * Q2) / QT - (L * Q1) / QT;
+  localparam integer S3 = (L * Q3) / QT - (L * Q2) / QT;
+  localparam integer S4 = (L * Q4) / QT - (L * Q3) / QT;
+  localparam integer S5 = (L * Q5) / QT - (L * Q4) / QT;
+  localparam integer S6 = (L * Q6) / QT - (L * Q5) / QT;
+  localparam integer S7 = (L * Q7) / QT - (L * Q6) / QT;
+  localparam integer S8 = L - (L * Q7) / QT;
   wire unused_one = ^ONE;  // not read with RAYCORE = 1 (fp_rcp has its own 1)
 
   // Level handshakes: v[L] / r[L] = valid / ready at the output of level L (index 0 = the input).

@@ -11,7 +11,7 @@
 // The twin: hls::RguTiles (the pixel order; its startup() is rgu_walk.v's set-up: start_i sampled,
 // one cycle per subtraction dividing rtu and rtus by the tile columns, one loading the first
 // tile), a walk register holding the current pixel while running, and hls::rgu_primary computed
-// when the pixel enters the datapath, carried through a ReadyChain of 8 * STAGES registers (the
+// when the pixel enters the datapath, carried through a ReadyChain of 15 * STAGES registers (the
 // RTL's latency and handshake). busy_o = walking or rays in the chain.
 #pragma once
 

@@ -37,6 +37,7 @@
 #include "hls/geom.h"
 #include "hls/ray.h"
 #include "hls/rgu.h"
+#include "systemc/config.h"
 #include "tb/rtl/rtl_cosim.h"
 
 #include "rtl_rgu_models.h"
@@ -221,8 +222,8 @@ class RayCosim {
     };
     V& m = *dut_;
     drive_cam(m, cam.c);
-    const uint64_t latency = 8u * uint64_t(stages_);
-    const StreamSpec spec{name_, count, full, latency, "8*STAGES", 1000u + 64u * latency};
+    const uint64_t latency = uint64_t(sc::kRguLevels) * uint64_t(stages_);
+    const StreamSpec spec{name_, count, full, latency, "15*STAGES", 1000u + 64u * latency};
     std::mt19937_64& rng = gen_.rng();
     const StreamStats st = stream(
         dut_, spec, rng, rng,
@@ -340,9 +341,9 @@ void run_top_variant(const char* name, int stages, int tile_bits) {
     for (hls::RguTiles t(w, h, tile, rtu, rtus); !t.done(); t.next())
       expect.emplace_back(t.pixel(), hls::rgu_primary<A>(cam.c, uint32_t(t.x()), uint32_t(t.y()), 0));
     // The first ray's cycle, counted from the start_i cycle (cycle -1 here): hls::RguTiles's
-    // walk start-up (the cycle model's, systemc/rgu.h) + 8 x STAGES.
+    // walk start-up (the cycle model's, systemc/rgu.h) + kRguLevels x STAGES.
     const uint64_t setup =
-        uint64_t(hls::RguTiles(w, h, tile, rtu, rtus).startup() + 8 * stages);
+        uint64_t(hls::RguTiles(w, h, tile, rtu, rtus).startup() + sc::kRguLevels * stages);
 
     drive_cam(m, cam.c);
     set(m.width_i, w);

@@ -218,11 +218,11 @@ TEST(PinsFrame, RguTwinRtusOneAndThree) { expect_rgu_view(UnitView::twin); }
 // randomised memory latency.
 TEST(PinsFrame, RguTwinFp32OtherDepthsAndTiles) {
   sc::SimConfig cfg;
-  cfg.rgu_latency = 8;
+  cfg.rgu_latency = 15;
   cfg.rtus = 2;
   expect_same_frame(tiny_scene(), config(FormatId::fp32, Rounding::rne, false, 32, 24), cfg,
                     UnitView::model, UnitView::model, UnitView::twin);
-  cfg.rgu_latency = 24;
+  cfg.rgu_latency = 45;
   cfg.tile = 4;
   cfg.seed = 3;
   expect_same_frame(tiny_scene(), config(FormatId::fp24, Rounding::raycore, true, 32, 24), cfg,
@@ -233,8 +233,8 @@ TEST(PinsFrame, RguLatencyAndTileRefused) {
   sc::SimConfig cfg;
   cfg.rgu_view = UnitView::twin;
   cfg.rgu_latency = 12;
-  expect_refused(tiny_scene(), tc, cfg, "--rgu-latency must be 8 x STAGES");
-  cfg.rgu_latency = 16;
+  expect_refused(tiny_scene(), tc, cfg, "--rgu-latency must be 15 x STAGES");
+  cfg.rgu_latency = 30;
   cfg.tile = 6;
   expect_refused(tiny_scene(), tc, cfg, "tile must be a power of two");
 }
