@@ -27,7 +27,7 @@ SRAM_BIT_NAND2=0.5  # NAND2 eq. per single-port SRAM bit (as sim/sweep/throughpu
 
 # The RTU's units: "name|module|instances|format (fmt: EXP_BITS/MAN_BITS/RNE set) or -|parameters".
 # The parameters (systemc/config.h defaults): vtu_depth 4, ist_latency 20, hit_latency 48,
-# rgu_latency 16 = STAGES 2; 96 rays in flight -> 2^7 = 128 slots; stack_depth 64; trv_pipes 4;
+# rgu_latency 30 = STAGES 2; 96 rays in flight -> 2^7 = 128 slots; stack_depth 64; trv_pipes 4;
 # ist_units 2; list lines of 64 B = 16 words; caches node 16 KB, list 8 KB, tri 32 KB, 4 ways,
 # 64 B lines (FP24: two 32-byte triangle records), 8 MSHRs, answering in the access's cycle
 # (HIT_LATENCY 0) on 1 port per trv pipe (node: access A), 2 per trv pipe (list: A and B) or 1
@@ -118,7 +118,7 @@ section() {
   echo "Every unit of one RTU synthesised alone at the parameters of the cycle model's defaults"
   echo "(\`systemc/config.h\` SimConfig), FP24 (EXP_BITS 7, MAN_BITS 16), STAGES 2 for the pipelined"
   echo "datapaths (vtu_depth 4 = 2 x 2: the fp_sops' four phases, ist_latency 20 = 10 x 2, hit_latency 48 = 24 x 2,"
-  echo "rgu_latency 16 = 8 x 2), then summed over the RTU's instances. Same measurement as the table above"
+  echo "rgu_latency 30 = 15 x 2), then summed over the RTU's instances. Same measurement as the table above"
   echo "(NAND2 weights, \`ltp\` depth, memories kept as \`\$mem\` SRAM macros), but with \`synth -noshare\`."
   echo
   echo "- **The table sums separately synthesised units**; the RTU synthesised whole (rtl/units/rtu.v,"
