@@ -36,15 +36,18 @@ class Trv : public SlotUnit {
     next_stage_.reserve(pipes_);
   }
 
-  // One cycle. First the outcome stage: the passes of the cycle before, in pipe order, each with
-  // its node read's answer (a pass reads the node cache and its outcome follows from the word a
-  // cycle later: a registered read). A pass's outcome is one of: back to the ready queue, done (to
-  // the hit unit), or a list step for the list stage. Then the list stage: this cycle's list
-  // steps in pipe order, one list-cache access each (a list pass's own, or a node pass's fused one
-  // after a leaf). Then each of the pipes takes the ray at the head of the ready queue (pipe 0
-  // first; they share the node cache, one access per pipe and cycle: RayCore's L1s have two
-  // request ports for its two traversal units). So no access's address depends on a cache's answer
-  // in its cycle, and only a list step's room depends on the earlier steps' answers.
+  // One cycle. First the outcome stage: the passes of two cycles before, in pipe order, each
+  // with its node read's answer (a pass leaves the node's address, the read stage reads it in
+  // the next cycle and the outcome follows from the word a cycle later: registered reads). A
+  // pass's outcome is one of: back to the ready queue, done (to the hit unit), or a list step for
+  // the next cycle's list stage. Then the list stage's effects of the cycle before (its hand-offs
+  // to the ist, its rays back to the queue), the list stage (the list steps the outcomes asked for
+  // in the cycle before, in pipe order, one list-cache access each: a list pass's own, or a node
+  // pass's fused one after a leaf), the read stage (last cycle's passes read their nodes: they
+  // share the node cache, one access per pipe and cycle; RayCore's L1s have two request ports for
+  // its two traversal units), and each of the pipes takes the ray at the head of the ready queue
+  // (pipe 0 first). So no access's address depends on a cache's answer, and only a list step's
+  // room depends on the earlier steps' line presence.
   bool tick(Cycle now) {
     bool any = out_stage(now);
     any |= list_effects(now);
@@ -264,8 +267,9 @@ class Trv : public SlotUnit {
     push(o, next);
   }
 
-  // A list step asked for by the pass at cycle o.at, `extra` into it: the list stage makes it in
-  // the next cycle, its ready cycles counted from base = o.at + extra (at least the stage's cycle).
+  // A list step asked for by the pass at cycle o.at, `extra` into it: the list stage makes it a
+  // cycle after the pass's outcome, its ready cycles counted from base = o.at + extra, at least
+  // o.at + 1 (a push's ready cycle is at least the cycle after it: requeue).
   bool ask_list(Out& o, uint32_t extra, bool fused) {
     o.ask = true;
     o.ask_fused = fused;

@@ -7,7 +7,7 @@
 //     the read stage), the best record and tmax (written at c's edge) and mid_o, what the
 //     outcome needs (trv_unit registers it, twice) out;
 //   the outcome (cycle c + 2): mid_i and the node read's registered answer in; the record's other
-//     fields (written at c + 2's edge), the queue push, the finish, a list step for c + 2's list
+//     fields (written at c + 2's edge), the queue push, the finish, a list step for c + 3's list
 //     stage and an inner node's split inputs out.
 // The rules are systemc/trv.h's (Trv::step and its node_step / node_outcome / ask_list /
 // leaf_end / pop, Trv::read_stage and Trv::out_stage), step for step:
@@ -22,9 +22,9 @@
 //              to the near / far child, or both with the far child pushed on the stack) is
 //              trv_unit's, from the split_* outputs (nothing else depends on it, and the ray is
 //              not taken again before it is written back); a leaf: empty -> leaf_end; else the
-//              list fields, and with fuse its first list line (lreq_o: c + 2's list stage reads
+//              list fields, and with fuse its first list line (lreq_o: c + 3's list stage reads
 //              it, from base c + max(node_hl, 1)), else back as an inner node's step
-//   list       lreq_o: c + 2's list stage makes the list step (base c + 1)
+//   list       lreq_o: c + 3's list stage makes the list step (base c + 1)
 //   leaf_done  the leaf's reduced result becomes the best hit (tmax = its t); leaf_end
 //   pop        pop
 //   leaf_end   finish if there is a hit and (an any-hit shadow ray, or the hit is not beyond this
@@ -346,7 +346,7 @@ module trv_pass #(
             pos_o = 32'd0;
             wr_leaf_o = 1'b1;
             st_o = S_LIST;
-            if (fuse_i) begin  // the list stage reads the first line in this cycle
+            if (fuse_i) begin  // the next cycle's list stage reads the first line
               out_fused_o = 1'b1;
               lreq_o = 1'b1;
               lfused_o = 1'b1;
