@@ -111,7 +111,7 @@ class Trv : public SlotUnit {
         return push(o, now + lat_);
       }
       case SlotState::node:
-        return node_step(o, r, 0, false);
+        return node_step(o, false);
       case SlotState::list:
         return ask_list(o, 0, false);
       case SlotState::leaf_done: {
@@ -200,9 +200,7 @@ class Trv : public SlotUnit {
   // The node step: the pass leaves the node's address in the ray's record, the read stage reads
   // it in the next cycle (the LRU, a miss and its MSHR at that cycle), the outcome stage makes
   // the rest from the word in the cycle after.
-  bool node_step(Out& o, Slot& r, uint32_t extra, bool fused) {
-    (void)r;
-    (void)extra;  // a node read is the pass's first access: extra is 0
+  bool node_step(Out& o, bool fused) {  // a node read is the pass's first access (extra 0)
     o.node = true;
     o.node_fused = fused;
     return true;
@@ -372,7 +370,7 @@ class Trv : public SlotUnit {
       r.state = SlotState::node;
       if (fuse) {
         ++st_.trv_fused;
-        return node_step(o, r, extra, true);
+        return node_step(o, true);
       }
     }
     return push(o, o.at + extra + lat_);
