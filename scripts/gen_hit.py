@@ -22,8 +22,9 @@ W = "W"
 # outputs). Post wires: (name, width, expr), combinational after the sublevel's registers.
 Z = "{W{1'b0}}"
 LEVELS = [
-    # 1 (level 1, first half): the hit point's products and the primary ray's error terms
-    (1, [
+    # 1 (level 1, first half): the hit point's products and the primary ray's error terms (weight
+    #   2: t backed off by back_i ulps, an integer carry chain, comes before the multipliers)
+    (2, [
         ("mul", [("td_x", "{th}", "{d_x}"), ("td_y", "{th}", "{d_y}"), ("td_z", "{th}", "{d_z}"),
                  ("nuou", "{nu}", "{ou}"), ("nvov", "{nv}", "{ov}"), ("nudu", "{nu}", "{du}"),
                  ("nvdv", "{nv}", "{dv}"), ("tden", "{t}", "{den}")]),

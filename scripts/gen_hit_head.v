@@ -22,7 +22,8 @@
 // Ten operator levels; levels 1 and 10 are two operators deep (sublevels 1-2 and 11-12), the
 // others one. The @LPS@ x STAGES registers of the latency are shared out over the twelve sublevels
 // by the logic each holds (S1 .. S12 below: a divider or square root takes 7 shares, an add3 3,
-// an add or mul 1; a sublevel with none left is combinational into the next):
+// an add or mul 1, the first 2 for its back-off's carry chain before its multipliers; a sublevel
+// with none left is combinational into the next):
 //    1  t d_i, h_i = o_i + t d_i (t backed off by back_i ulps with skip-back); error-bound's
 //       products of the primary ray
 //    2  light - h; error-bound terms of h; the slab 2 ulps ulp(max |h_i|)

@@ -11,13 +11,13 @@ namespace raycore::sc {
 // Registers per STAGES of each pipelined datapath (rtl/units/*.v): at pin level and in RTL a unit's
 // latency is levels x STAGES. The vtu's fp_sop phases, ist.v's and rgu.v's operator levels; hit.v
 // shares its registers out by the logic of its sublevels (scripts/gen_hit.py: weights totalling
-// 46 registers for 95 FO4, plus the hit unit's registered slot read: 47, so 24 per STAGES).
+// 47 registers for 95 FO4, plus the hit unit's registered slot read: 48, so 24 per STAGES).
 inline constexpr uint32_t kVtuLevels = 2, kIstLevels = 10, kHitLevels = 24, kRguLevels = 15;
 // The least trv_latency + node cache hit latency that rtl/units/trv_unit.v runs: it writes an
-// inner node's split back at the end of the fourth cycle after the pass (the node read a cycle
+// inner node's split back at the end of the fifth cycle after the pass (the node read a cycle
 // after the pass, the outcome and the split's first level in the next, its second level, its
-// registered results written back), so the ray may be taken in the fifth.
-inline constexpr uint32_t kTrvRtlMinLoop = 5;
+// third and fourth, its registered results written back), so the ray may be taken in the sixth.
+inline constexpr uint32_t kTrvRtlMinLoop = 6;
 
 struct CacheConfig {
   uint32_t size_bytes = 16 * 1024;
@@ -87,7 +87,7 @@ struct SimConfig {
   uint32_t stack_depth = 64;     // stack entries per ray slot (1..64; a ray that needs more stops
                                  //   the run with an error: the report's stack_max says what a
                                  //   scene needs)
-  uint32_t trv_latency = 4;      // cycles of one traversal step (loop back to the ready queue)
+  uint32_t trv_latency = 5;      // cycles of one traversal step (loop back to the ready queue)
   uint32_t trv_pipes = 4;        // traversal pipelines per RTU (steps per cycle; RayCore has 2),
                                  //   sharing the ray slots and the node and list caches' ports
   bool trv_fuse = true;          // fuse a leaf's first list line into its node step, and the popped

@@ -154,6 +154,10 @@ module ascache #(
   reg [CW-1:0]           count_q, count_d;
   reg [CNT_BITS-1:0]     hits_q, hits_d, misses_q, misses_d, merges_q, merges_d;
   reg [CNT_BITS-1:0]     full_q, full_d, sfull_q, sfull_d, fills_q, fills_d;
+  // The counters add the cycle's counts a cycle later (registered increments, so that no access
+  // decision is followed by a 32-bit sum in its cycle); the outputs are the sums with the
+  // increments still to add, the same values as adding at once.
+  reg [CNT_BITS-1:0]     hits_i, misses_i, merges_i, full_i, sfull_i, fills_i;
 
   // ---------------------------------------------------------------------------------------------
   // Fill side: the MSHR's line, its set and the victim way.
@@ -425,12 +429,12 @@ module ascache #(
     head_d  = req_pop ? (head_q == LAST_MSHR ? {MW{1'b0}} : head_q + 1'b1) : head_q;
     count_d = count_q + n_alloc - {{(CW-1){1'b0}}, req_pop};
 
-    hits_d   = hits_q + n_hit;
-    misses_d = misses_q + n_miss;
-    merges_d = merges_q + n_merge;
-    full_d   = full_q + n_full;
-    sfull_d  = sfull_q + n_sfull;
-    fills_d  = fill_go ? fills_q + CNT_ONE : fills_q;
+    hits_d   = hits_q + hits_i;
+    misses_d = misses_q + misses_i;
+    merges_d = merges_q + merges_i;
+    full_d   = full_q + full_i;
+    sfull_d  = sfull_q + sfull_i;
+    fills_d  = fills_q + fills_i;
   end
 
   // Reset: valid and pin bits, LRU ranks (way w of every set has rank w), MSHR valid, queue,
@@ -463,6 +467,12 @@ module ascache #(
       full_q   <= {CNT_BITS{1'b0}};
       sfull_q  <= {CNT_BITS{1'b0}};
       fills_q  <= {CNT_BITS{1'b0}};
+      hits_i   <= {CNT_BITS{1'b0}};
+      misses_i <= {CNT_BITS{1'b0}};
+      merges_i <= {CNT_BITS{1'b0}};
+      full_i   <= {CNT_BITS{1'b0}};
+      sfull_i  <= {CNT_BITS{1'b0}};
+      fills_i  <= {CNT_BITS{1'b0}};
     end else begin
       if (fill_go) begin
         valid_q[f_set*WAYS +: WAYS]       <= f_valid_new;
@@ -483,6 +493,12 @@ module ascache #(
       full_q   <= full_d;
       sfull_q  <= sfull_d;
       fills_q  <= fills_d;
+      hits_i   <= n_hit;
+      misses_i <= n_miss;
+      merges_i <= n_merge;
+      full_i   <= n_full;
+      sfull_i  <= n_sfull;
+      fills_i  <= fill_go ? CNT_ONE : {CNT_BITS{1'b0}};
     end
   end
 
@@ -588,11 +604,11 @@ module ascache #(
   assign req_tag_o    = q_tag;
   assign req_line_o   = q_line;
   assign mshr_busy_o  = busy;
-  assign cnt_hits_o   = hits_q;
-  assign cnt_misses_o = misses_q;
-  assign cnt_merges_o = merges_q;
-  assign cnt_full_o   = full_q;
-  assign cnt_set_full_o = sfull_q;
-  assign cnt_fills_o  = fills_q;
+  assign cnt_hits_o   = hits_d;
+  assign cnt_misses_o = misses_d;
+  assign cnt_merges_o = merges_d;
+  assign cnt_full_o   = full_d;
+  assign cnt_set_full_o = sfull_d;
+  assign cnt_fills_o  = fills_d;
 
 endmodule

@@ -22,7 +22,8 @@
 // Ten operator levels; levels 1 and 10 are two operators deep (sublevels 1-2 and 11-12), the
 // others one. The 24 x STAGES registers of the latency are shared out over the twelve sublevels
 // by the logic each holds (S1 .. S12 below: a divider or square root takes 7 shares, an add3 3,
-// an add or mul 1; a sublevel with none left is combinational into the next):
+// an add or mul 1, the first 2 for its back-off's carry chain before its multipliers; a sublevel
+// with none left is combinational into the next):
 //    1  t d_i, h_i = o_i + t d_i (t backed off by back_i ulps with skip-back); error-bound's
 //       products of the primary ray
 //    2  light - h; error-bound terms of h; the slab 2 ulps ulp(max |h_i|)
@@ -34,7 +35,7 @@
 // Latency = 24 x STAGES - IN_REGS cycles (STAGES = 0: combinational), one ray per cycle: IN_REGS
 // of the 24 x STAGES registers are the caller's, in front of the inputs (hit_unit's registered
 // slot read), the rest shared out here. 24 per STAGES: at STAGES 2 every sublevel gets at least
-// its weight (the weights total 46, the slot read takes one), so each needs 95 FO4 or less by the
+// its weight (the weights total 47, the slot read takes one), so each needs 95 FO4 or less by the
 // weights' measure; systemc/config.h kHitLevels is the same number. The cycle model's default
 // hit_latency of 48 is STAGES = 2.
 //
@@ -246,20 +247,20 @@ module hit #(
   wire [W-1:0] dv_0 = pv(in_k_i, in_d_x_i, in_d_y_i, in_d_z_i);
 
   // Registers per sublevel: the 24 x STAGES - IN_REGS of the latency shared out by the weights of
-  // scripts/gen_hit.py (the registers each needs for 95 FO4; 46 in all), cumulatively.
+  // scripts/gen_hit.py (the registers each needs for 95 FO4; 47 in all), cumulatively.
   localparam integer R = 24 * STAGES - IN_REGS;
-  localparam integer S1 = (R * 1) / 46 - (R * 0) / 46;  // weight 1
-  localparam integer S2 = (R * 4) / 46 - (R * 1) / 46;  // weight 3
-  localparam integer S3 = (R * 5) / 46 - (R * 4) / 46;  // weight 1
-  localparam integer S4 = (R * 8) / 46 - (R * 5) / 46;  // weight 3
-  localparam integer S5 = (R * 11) / 46 - (R * 8) / 46;  // weight 3
-  localparam integer S6 = (R * 18) / 46 - (R * 11) / 46;  // weight 7
-  localparam integer S7 = (R * 25) / 46 - (R * 18) / 46;  // weight 7
-  localparam integer S8 = (R * 28) / 46 - (R * 25) / 46;  // weight 3
-  localparam integer S9 = (R * 35) / 46 - (R * 28) / 46;  // weight 7
-  localparam integer S10 = (R * 38) / 46 - (R * 35) / 46;  // weight 3
-  localparam integer S11 = (R * 45) / 46 - (R * 38) / 46;  // weight 7
-  localparam integer S12 = (R * 46) / 46 - (R * 45) / 46;  // weight 1
+  localparam integer S1 = (R * 2) / 47 - (R * 0) / 47;  // weight 2
+  localparam integer S2 = (R * 5) / 47 - (R * 2) / 47;  // weight 3
+  localparam integer S3 = (R * 6) / 47 - (R * 5) / 47;  // weight 1
+  localparam integer S4 = (R * 9) / 47 - (R * 6) / 47;  // weight 3
+  localparam integer S5 = (R * 12) / 47 - (R * 9) / 47;  // weight 3
+  localparam integer S6 = (R * 19) / 47 - (R * 12) / 47;  // weight 7
+  localparam integer S7 = (R * 26) / 47 - (R * 19) / 47;  // weight 7
+  localparam integer S8 = (R * 29) / 47 - (R * 26) / 47;  // weight 3
+  localparam integer S9 = (R * 36) / 47 - (R * 29) / 47;  // weight 7
+  localparam integer S10 = (R * 39) / 47 - (R * 36) / 47;  // weight 3
+  localparam integer S11 = (R * 46) / 47 - (R * 39) / 47;  // weight 7
+  localparam integer S12 = (R * 47) / 47 - (R * 46) / 47;  // weight 1
 
   // ---- sublevel 1 ------------------------------------------------------------------------------
   localparam integer C1_W = TAG_BITS + 32 + 2 + W + W + W + W + W + W + W + W + W + W;

@@ -29,9 +29,9 @@
 //      cycle has come; its pass (trv_pass's first half) writes the ray's best record and tmax and
 //      registers its node read's address and the rest for its read stage and outcome (4., 2.).
 //      An inner node's split (trv.v, op 0) follows the outcome: it runs in the outcome's cycle
-//      and the next and writes the ray's node, interval and stack push back a cycle later (the
+//      and the next two and writes the ray's node, interval and stack push back a cycle later (the
 //      split stage, 7. below). The ray is not taken again before that: its ready cycle is at
-//      least the pass's + 5 (trv_latency + the node cache's hit latency >= 5, which the bindings
+//      least the pass's + 6 (trv_latency + the node cache's hit latency >= 6, which the bindings
 //      check), and nothing else reads its slot or stack in between. A ray in its read stage or
 //      outcome or its list step is in no queue until the step's effects;
 //   6. a ray from the rgu (in_*: a new primary ray or a shadow ray in its slot) enters the queue
@@ -168,7 +168,7 @@ module trv_unit #(
   reg [31:0]     first_q   [0:NS-1];
   reg [31:0]     count_q   [0:NS-1];
   reg [31:0]     pos_q     [0:NS-1];
-  reg [31:0]     results_q [0:NS-1];
+  reg [31:0]     left_q    [0:NS-1];  // the leaf's results still to come (count - results so far)
   reg [EW-1:0]   stk_q     [0:NS*DEPTH-1];  // slot s, entry e at {s, e}
   reg [SLOT_BITS-1:0] fq_slot [0:NS-1];
   reg [31:0]     fq_ready  [0:NS-1];
@@ -219,9 +219,13 @@ module trv_unit #(
   endgenerate
 
   // ---- 1. ist results: the leaf reduction, chained over the ports ------------------------------
-  // Port u starts from the record as the earlier ports of this cycle left it (same slot).
+  // Port u starts from the record as the earlier ports of this cycle left it (same slot). Its
+  // result is the leaf's last if the results still to come, less the earlier ports' of the same
+  // ray, are this one: left_q[s] == m + 1 with m those earlier ports, a compare with a small
+  // constant straight from the slot's word (no sum in front of it: res_done starts the queue's
+  // pushes and the head window's refill).
   wire [IST*BW-1:0] nl /* verilator split_var */;  // leaf record after port u
-  wire [IST*32-1:0] nr /* verilator split_var */;  // results count after port u
+  wire [IST*32-1:0] nr /* verilator split_var */;  // results still to come after port u
   wire [IST-1:0]    res_done;
   genvar u, v;
   generate
@@ -230,16 +234,17 @@ module trv_unit #(
       wire [BW-1:0] rec = res_rec_i[u*BW +: BW];
       // The chain over the earlier ports: stage v+1 takes port v's record if it is the same ray's.
       wire [(u+1)*BW-1:0] chain /* verilator split_var */;
-      wire [(u+1)*32-1:0] rchain /* verilator split_var */;
+      wire [(u+1)*8-1:0]  mchain /* verilator split_var */;  // m + 1 after the earlier ports
       assign chain[BW-1:0] = leaf_q[s];
-      assign rchain[31:0] = results_q[s];
+      assign mchain[7:0] = 8'd1;
       for (v = 0; v < u; v = v + 1) begin : g_prev
         wire same = res_valid_i[v] && (res_slot_i[v*SLOT_BITS +: SLOT_BITS] == s);
         assign chain[(v+1)*BW +: BW] = same ? nl[v*BW +: BW] : chain[v*BW +: BW];
-        assign rchain[(v+1)*32 +: 32] = same ? nr[v*32 +: 32] : rchain[v*32 +: 32];
+        assign mchain[(v+1)*8 +: 8] = mchain[v*8 +: 8] + {7'd0, same};
       end
       wire [BW-1:0] cur = chain[u*BW +: BW];
-      wire [31:0]   cres = rchain[u*32 +: 32];
+      wire [31:0]   left = left_q[s];
+      wire [31:0]   m1 = {24'd0, mchain[u*8 +: 8]};
       wire         lt, eq;
       wire [W-1:0] u_min, u_max;
       wire         u_rdy, u_vld;
@@ -252,8 +257,8 @@ module trv_unit #(
       wire win = res_hit_i[u] && (!cur[BW-1] || lt ||
                                   (eq && (rec[BW-2-2*W -: 32] < cur[BW-2-2*W -: 32])));
       assign nl[u*BW +: BW] = win ? {1'b1, rec[BW-2:0]} : cur;
-      assign nr[u*32 +: 32] = cres + 32'd1;
-      assign res_done[u] = res_valid_i[u] && (cres + 32'd1 == count_q[s]);
+      assign nr[u*32 +: 32] = left - m1;
+      assign res_done[u] = res_valid_i[u] && (left == m1);
     end
   endgenerate
 
@@ -481,11 +486,11 @@ module trv_unit #(
   // ---- 7. the split stage: this cycle's outcomes' inner nodes (trv.v, op 0, on the node's axis)
   // From the outcome (the registered pass and node word): the split's inputs, the ray's slot, its
   // stack pointer after the pass and where its queue entry goes (its fq_sp follows the split's
-  // push). The split runs in this cycle and the next (trv.v with one register, after its
-  // subtraction; the slot, stack pointer and queue position ride as its tag); its results are
-  // registered (s_*, w*_q) and written back at the end of the cycle after that, so the ray is
-  // taken at the pass's cycle + 5 at the earliest (trv_latency + the node cache's hit latency >=
-  // 5, which the bindings check).
+  // push). The split runs over three cycles, this one and the next two (trv.v with a register
+  // after its subtraction and one after its multiplication; the slot, stack pointer and queue
+  // position ride as its tag); its results are registered (s_*, w*_q) and written back at the end
+  // of the cycle after that, so the ray is taken at the pass's cycle + 6 at the earliest
+  // (trv_latency + the node cache's hit latency >= 6, which the bindings check).
   localparam integer      STW = 2 * SLOT_BITS + 7;  // the split's tag: {slot, sp, queue position}
   wire [PIPES-1:0]         d_vld, d_push, s_err;
   wire [PIPES*STW-1:0]     d_tag;
@@ -495,6 +500,7 @@ module trv_unit #(
   // The split's results, registered for the write-back: valid, push, slot, stack pointer, queue
   // position, the next node and interval, the pushed entry.
   reg  [PIPES-1:0]         wv_q, s_push;
+  reg  [PIPES-1:0]         sv_q;  // a split in its second cycle (between trv.v's two registers)
   reg  [SLOT_BITS-1:0]     ws_q    [0:PIPES-1];
   reg  [6:0]               wsp_q   [0:PIPES-1];
   reg  [SLOT_BITS-1:0]     wat_q   [0:PIPES-1];
@@ -511,7 +517,7 @@ module trv_unit #(
       wire [31:0]  d_far_node;
       wire [3*W-1:0] sr = p_s_ray[q*3*W +: 3*W];  // {o, d, inv} on the node's axis, as lane x
       trv #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(0),
-            .S1(1), .TAG_BITS(STW)) u_dp (
+            .S1(1), .S2(1), .TAG_BITS(STW)) u_dp (
         .clk_i(clk_i), .rst_ni(rst_ni), .widen_i(widen_i), .in_valid_i(p_split[q]),
         .in_ready_o(d_rdy),
         .in_op_i(1'b0), .in_axis_i(2'd0), .in_split_i(p_s_plane[q*W +: W]),
@@ -540,7 +546,7 @@ module trv_unit #(
     for (int_q = 0; int_q < PIPES; int_q = int_q + 1)
       {ws_q[int_q], wsp_q[int_q], wat_q[int_q]} <= d_tag[int_q*STW +: STW];
   end
-  assign pend_o = (|rv_q) || (|mv_q) || (|lv_q) || (|ev_q) || (|d_vld) || (|wv_q);
+  assign pend_o = (|rv_q) || (|mv_q) || (|lv_q) || (|ev_q) || (|sv_q) || (|d_vld) || (|wv_q);
   assign err_o = err_q || |s_err;
 
   // ---- 8. state update (with the queue's head window) ----------------------------------------
@@ -666,7 +672,7 @@ module trv_unit #(
         pos_q[ms_q[b]]   <= p_pos[b*32 +: 32];
         if (p_wr_leaf[b]) begin
           leaf_q[ms_q[b]] <= {BW{1'b0}};
-          results_q[ms_q[b]] <= 32'd0;
+          left_q[ms_q[b]] <= p_count[b*32 +: 32];
         end
         if (p_qpush[b]) begin
           fq_slot[pipe_at[b*SLOT_BITS +: SLOT_BITS]] <= ms_q[b];
@@ -736,7 +742,7 @@ module trv_unit #(
     for (b = 0; b < IST; b = b + 1) begin
       if (res_valid_i[b]) begin
         leaf_q[res_slot_i[b*SLOT_BITS +: SLOT_BITS]] <= nl_all[b*BW +: BW];
-        results_q[res_slot_i[b*SLOT_BITS +: SLOT_BITS]] <= nr_all[b*32 +: 32];
+        left_q[res_slot_i[b*SLOT_BITS +: SLOT_BITS]] <= nr_all[b*32 +: 32];
       end
       if (res_done[b]) begin
         st_q[res_slot_i[b*SLOT_BITS +: SLOT_BITS]] <= S_LEAF_DONE;
@@ -802,6 +808,7 @@ module trv_unit #(
       ev_q <= {PIPES{1'b0}};
       mv_q <= {PIPES{1'b0}};
       wv_q <= {PIPES{1'b0}};
+      sv_q <= {PIPES{1'b0}};
       s_push <= {PIPES{1'b0}};
       err_q <= 1'b0;
       inc_q <= {(NC*8){1'b0}};
@@ -817,6 +824,7 @@ module trv_unit #(
       ev_q <= lv_q;
       mv_q <= rv_q;
       wv_q <= d_vld;
+      sv_q <= p_split;
       s_push <= d_push;
       err_q <= err_o;
       inc_q <= inc;

@@ -518,14 +518,14 @@ TEST(TrvRtlFrame, RefusesWhatTheModelCannotRun) {
   cfg.trv_pipes = 6;
   expect_refused(tiny_scene(), tc, cfg, "is built for at most 4 --trv-pipes");
   cfg.trv_pipes = 4;
-  cfg.trv_latency = 3;  // the split's write-back: the ray must not come back before it
+  cfg.trv_latency = 4;  // the split's write-back: the ray must not come back before it
   cfg.node_cache.hit_latency = 1;
-  expect_refused(tiny_scene(), tc, cfg, "plus the node cache's hit latency must be at least 5");
-  cfg.trv_latency = 4;
-  sc::SimConfig least = cfg;  // 4 + 1, the least it runs: a ray back in the cycle after the
+  expect_refused(tiny_scene(), tc, cfg, "plus the node cache's hit latency must be at least 6");
+  cfg.trv_latency = 5;
+  sc::SimConfig least = cfg;  // 5 + 1, the least it runs: a ray back in the cycle after the
   least.trv_view = UnitView::model;  // split's write-back, its node and stack as written
   expect_trv_rtl(corridor(), tc, least);
-  cfg.trv_latency = 4;
+  cfg.trv_latency = 5;
   cfg.trv_view = UnitView::twin;
   expect_refused(tiny_scene(), tc, cfg, "trv has no pin-level SystemC twin");
   cfg.trv_view = UnitView::rtl;  // not built: the message lists what is
@@ -936,7 +936,7 @@ TEST(RtuRtlFrame, RegistersAwayFromTheDefaults) {
   sc::SimConfig cfg;
   cfg.rtus = 2;
   cfg.seed = 11;
-  cfg.trv_latency = 3;  // with the node cache's 2: an inner node's ray back in the cycle after
+  cfg.trv_latency = 4;  // with the node cache's 2: an inner node's ray back in the cycle after
   cfg.node_cache.hit_latency = 2;  // its split's write-back (the least rtu.v runs)
   cfg.list_cache.hit_latency = 0;
   cfg.tri_cache.hit_latency = 5;
@@ -1009,10 +1009,10 @@ TEST(RtuRtlFrame, RefusesWhatItCannotRun) {
   cfg.ist_latency = 30;
   expect_refused(tiny_scene(), tc, cfg, "pipeline depths of STAGES 2");
   cfg.ist_latency = 20;
-  cfg.trv_latency = 4;
+  cfg.trv_latency = 5;
   cfg.node_cache.hit_latency = 0;
-  expect_refused(tiny_scene(), tc, cfg, "--trv-latency + the node cache's hit latency >= 5");
-  cfg.trv_latency = 4;
+  expect_refused(tiny_scene(), tc, cfg, "--trv-latency + the node cache's hit latency >= 6");
+  cfg.trv_latency = 5;
   cfg.node_cache.hit_latency = 1;
   cfg.tri_cache.hit_latency = 0;
   expect_refused(tiny_scene(), tc, cfg, "a triangle-cache hit latency of 1 .. 15");
