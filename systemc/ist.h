@@ -53,13 +53,18 @@ class Ist : public sc_core::sc_module {
   bool wants_edge() const { return edge_; }
 
   bool tick(Cycle now) {
+    // Last cycle's leaves ended by their last result back in the trv's queue, the first of this
+    // cycle's pushes, ready the next cycle (rtl/units/trv_unit.v registers them: rq_*).
+    const bool back = !done_.empty();
+    for (uint16_t s : done_) ch_.trv_q.push(s, now + 1);
+    done_.clear();
     if (rtl_) {
       left_.clear();
-      const bool active = rtl_->tick(now, left_);
-      for (const IstRes& o : left_) leave(o, now);
+      const bool active = rtl_->tick(now, left_) || back;
+      for (const IstRes& o : left_) leave(o);
       return active;
     }
-    bool active = false;
+    bool active = back;
     edge_ = false;
     for (pins::IstPort* p : ports_) {
       if (!p->out_valid()) continue;  // a result the pin-level unit put out at the last edge
@@ -87,7 +92,7 @@ class Ist : public sc_core::sc_module {
     missed_.clear();
     // Results leaving the pipeline.
     while (ch_.ist_pipe.can_pop(now)) {
-      leave(ch_.ist_pipe.pop(), now);
+      leave(ch_.ist_pipe.pop());
       active = true;
     }
     // Issue one test per unit (they share the triangle cache: one access per unit and cycle). A
@@ -110,6 +115,7 @@ class Ist : public sc_core::sc_module {
   }
 
   Cycle next_event(Cycle now) const {
+    if (!done_.empty()) return now + 1;
     if (rtl_) return rtl_->next_event(now);
     if (!missed_.empty() || (!ports_.empty() && in_flight_ != 0)) return now + 1;
     return std::min(ch_.ist_pipe.head_ready(), ch_.ist_q.head_ready());
@@ -117,8 +123,8 @@ class Ist : public sc_core::sc_module {
 
  private:
   // A result leaving the unit: into its ray's leaf record (the closest, ties to the earliest list
-  // position), the leaf's last result puts the ray back in the trv's queue.
-  void leave(const IstRes& o, Cycle now) {
+  // position), the leaf's last result puts the ray back in the trv's queue in the next cycle.
+  void leave(const IstRes& o) {
     if (ch_.ist_results) {  // the trv in RTL reduces them (systemc/trv_rtl.h)
       ch_.ist_results->push_back(o);
       return;
@@ -131,7 +137,7 @@ class Ist : public sc_core::sc_module {
     }
     if (++r.results == r.list_count) {
       r.state = SlotState::leaf_done;
-      ch_.trv_q.push(o.slot, now + 1);
+      done_.push_back(o.slot);  // back in the trv's queue in the next cycle (tick)
     }
   }
 
@@ -223,6 +229,7 @@ class Ist : public sc_core::sc_module {
   std::vector<pins::IstPort*> ports_;  // pin-level view: one per unit (empty: the model)
   IstRtl* rtl_ = nullptr;              // the whole unit in RTL (--rtl ist)
   std::vector<IstRes> left_;           // its results leaving this cycle
+  std::vector<uint16_t> done_;         // this cycle's ended leaves, back in the trv queue next
   std::vector<IstReq> missed_;         // this cycle's misses, back in the queue in the next
   std::array<Side, 1024> side_{};
   uint32_t next_tag_ = 0, in_flight_ = 0;

@@ -7,7 +7,8 @@
 // Per cycle, in the model's order:
 //   1. up to IST ist results (res_*): each goes into its ray's leaf record (the closest, ties to
 //      the earliest list position; results of one ray in the same cycle reduce in port order);
-//      the leaf's last result puts the ray in state leaf_done and back into the queue at now + 1;
+//      the leaf's last result puts the ray in state leaf_done, and back into the queue in the
+//      next cycle (registered; its ready cycle the one after: Ist::leave's deferred push);
 //   2. the outcome stage (Trv::out_stage): pipe p's pass of two cycles before (its registers and
 //      its node read's registered answer, trv_pass's second half) writes the ray's record,
 //      pushes it back with its ready cycle, hands it to the hit unit (fin_*) or asks the next
@@ -38,8 +39,8 @@
 //      at now + 1, clipped to the scene box as it enters (trv.v, op 1: hls::trv_clip_box; the
 //      ray's start pass reads the result: the model clips in that pass, from the same inputs);
 //   7. the split stage: the splits of this cycle's outcomes' inner nodes.
-// Queue pushes of a cycle are appended in that order (results, outcomes 0.., list stage's
-// effects, rgu);
+// Queue pushes of a cycle are appended in that order (the last cycle's last results, outcomes
+// 0.., list stage's effects, rgu);
 // the queue is a FIFO whose head blocks the entries behind it until its ready cycle: the cycle
 // model's TimedFifo. Ready cycles are 32-bit cycle numbers compared with now_i as a signed
 // difference.
@@ -227,6 +228,10 @@ module trv_unit #(
   wire [IST*BW-1:0] nl /* verilator split_var */;  // leaf record after port u
   wire [IST*32-1:0] nr /* verilator split_var */;  // results still to come after port u
   wire [IST-1:0]    res_done;
+  // A leaf's last result puts its ray back in the queue in the next cycle (registered here; ready
+  // the cycle after that): the queue's pushes and the head window start from registers.
+  reg  [IST-1:0]            rq_v;
+  reg  [IST*SLOT_BITS-1:0]  rq_slot;
   genvar u, v;
   generate
     for (u = 0; u < IST; u = u + 1) begin : g_res
@@ -546,7 +551,8 @@ module trv_unit #(
     for (int_q = 0; int_q < PIPES; int_q = int_q + 1)
       {ws_q[int_q], wsp_q[int_q], wat_q[int_q]} <= d_tag[int_q*STW +: STW];
   end
-  assign pend_o = (|rv_q) || (|mv_q) || (|lv_q) || (|ev_q) || (|sv_q) || (|d_vld) || (|wv_q);
+  assign pend_o = (|rv_q) || (|mv_q) || (|lv_q) || (|ev_q) || (|sv_q) || (|d_vld) || (|wv_q) ||
+                  (|rq_v);
   assign err_o = err_q || |s_err;
 
   // ---- 8. state update (with the queue's head window) ----------------------------------------
@@ -568,7 +574,7 @@ module trv_unit #(
     pipe_at = {(PIPES*SLOT_BITS){1'b0}};
     for (a = 0; a < IST; a = a + 1) begin
       res_at[a*SLOT_BITS +: SLOT_BITS] = tail + pushes[SLOT_BITS-1:0];
-      if (res_done[a]) pushes = pushes + 1'b1;
+      if (rq_v[a]) pushes = pushes + 1'b1;
     end
     for (a = 0; a < PIPES; a = a + 1) begin
       pipe_at[a*SLOT_BITS +: SLOT_BITS] = tail + pushes[SLOT_BITS-1:0];
@@ -602,10 +608,10 @@ module trv_unit #(
           if (s_push[x] && wat_q[x] == w_pos) wn_sp[k] = wsp_q[x] + 7'd1;
       end else begin            // one pushed in this cycle (or none: not read)
         for (x = 0; x < IST; x = x + 1)
-          if (res_done[x] && res_at[x*SLOT_BITS +: SLOT_BITS] == w_pos) begin
-            wn_slot[k] = res_slot_i[x*SLOT_BITS +: SLOT_BITS];
+          if (rq_v[x] && res_at[x*SLOT_BITS +: SLOT_BITS] == w_pos) begin
+            wn_slot[k] = rq_slot[x*SLOT_BITS +: SLOT_BITS];
             wn_ready[k] = now_i + 32'd1;
-            wn_sp[k] = sp_q[res_slot_i[x*SLOT_BITS +: SLOT_BITS]];
+            wn_sp[k] = sp_q[rq_slot[x*SLOT_BITS +: SLOT_BITS]];
           end
         for (x = 0; x < PIPES; x = x + 1)
           if (p_qpush[x] && pipe_at[x*SLOT_BITS +: SLOT_BITS] == w_pos) begin
@@ -744,13 +750,14 @@ module trv_unit #(
         leaf_q[res_slot_i[b*SLOT_BITS +: SLOT_BITS]] <= nl_all[b*BW +: BW];
         left_q[res_slot_i[b*SLOT_BITS +: SLOT_BITS]] <= nr_all[b*32 +: 32];
       end
-      if (res_done[b]) begin
-        st_q[res_slot_i[b*SLOT_BITS +: SLOT_BITS]] <= S_LEAF_DONE;
-        fq_slot[res_at[b*SLOT_BITS +: SLOT_BITS]] <= res_slot_i[b*SLOT_BITS +: SLOT_BITS];
+      if (res_done[b]) st_q[res_slot_i[b*SLOT_BITS +: SLOT_BITS]] <= S_LEAF_DONE;
+      if (rq_v[b]) begin  // the last cycle's last results, the first of this cycle's pushes
+        fq_slot[res_at[b*SLOT_BITS +: SLOT_BITS]] <= rq_slot[b*SLOT_BITS +: SLOT_BITS];
         fq_ready[res_at[b*SLOT_BITS +: SLOT_BITS]] <= now_i + 32'd1;
-        fq_sp[res_at[b*SLOT_BITS +: SLOT_BITS]] <= sp_q[res_slot_i[b*SLOT_BITS +: SLOT_BITS]];
+        fq_sp[res_at[b*SLOT_BITS +: SLOT_BITS]] <= sp_q[rq_slot[b*SLOT_BITS +: SLOT_BITS]];
       end
     end
+    rq_slot <= res_slot_i;
   end
 
   // The queue's head and count, the counters and the error. A cycle's counter increments (at
@@ -809,6 +816,7 @@ module trv_unit #(
       mv_q <= {PIPES{1'b0}};
       wv_q <= {PIPES{1'b0}};
       sv_q <= {PIPES{1'b0}};
+      rq_v <= {IST{1'b0}};
       s_push <= {PIPES{1'b0}};
       err_q <= 1'b0;
       inc_q <= {(NC*8){1'b0}};
@@ -825,6 +833,7 @@ module trv_unit #(
       mv_q <= rv_q;
       wv_q <= d_vld;
       sv_q <= p_split;
+      rq_v <= res_done;
       s_push <= d_push;
       err_q <= err_o;
       inc_q <= inc;
