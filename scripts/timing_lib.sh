@@ -237,7 +237,9 @@ EOF
 
 # The Tcl run by sta on a design's netlist: the worst path of each kind into r2r.rpt, i2r.rpt,
 # r2o.rpt, i2o.rpt (register to register, input to register, register to output, input to output;
-# the memories' RC_SRAM_* cells are registers here) and into top.rpt the worst path to each of the
+# the memories' RC_SRAM_* cells are registers here: their input cut cells RC_SRAM_IN end paths,
+# added to all_registers' data pins by hand since 2026-11-28, before which no path into a memory's
+# write port or synchronous read address was timed) and into top.rpt the worst path to each of the
 # 10 first distinct end registers (bit and generate indices dropped) among the TIMING_TOP worst
 # register-to-register end points.
 TIMING_TOP=100000
@@ -255,6 +257,12 @@ if {[llength \$ins] > 0} { set_input_delay 0 -clock clk \$ins }
 if {[llength [all_outputs]] > 0} { set_output_delay 0 -clock clk [all_outputs] }
 set rc [all_registers -clock_pins]
 set rd [all_registers -data_pins]
+# The SRAM macros' input cut cells (RC_SRAM_IN: write address, data and enable; a synchronous
+# read's address and enable) are end points too: all_registers leaves them out (a flip-flop
+# without an output pin), so without this no path into a memory's write port was timed.
+foreach p [get_pins -quiet -of_objects [get_cells -quiet -hierarchical -filter "ref_name == RC_SRAM_IN"] -filter "direction == input"] {
+  if {[get_property \$p lib_pin_name] == "D"} { lappend rd \$p }
+}
 puts "timing: [llength \$ins] inputs, [llength [all_outputs]] outputs, [llength \$rc] register clock pins, [llength \$rd] register data pins"
 proc rep {file args} { report_checks -path_delay max -digits 4 -format full {*}\$args > $4/\$file }
 if {[llength \$rc] > 0 && [llength \$rd] > 0} {
