@@ -18,12 +18,19 @@
 // the whole unit is RTL (rtl/units/rgu_unit.v, systemc/rgu_rtl.h: rgu.v, the shadow-ray hand-off and
 // the free slots), clocked in every cycle the RTU ticks: it decides which ray goes to the trv in
 // which slot; the model's schedule is checked against it and the C++ slot gets the primary ray.
+//
+// A ray issued (primary or shadow) enters the trv's ready queue kTrvEntryDelay cycles later, the
+// last of that cycle's pushes, ready the cycle after: rtl/units/trv_unit.v clips it against the
+// scene box on its way (trv.v over three cycles). With the trv in RTL (--rtl trv) the ray goes to
+// trv_unit.v in its cycle (set_entry_delay(0)), which delays it itself.
 #pragma once
 
 #include <systemc>
 
+#include <deque>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #include "hls/rgu.h"
 #include "systemc/pins/rgu.h"
@@ -66,7 +73,27 @@ class Rgu : public sc_core::sc_module {
 
   bool primaries_left() const { return !walk_.done(); }
 
+  void set_entry_delay(uint32_t d) { entry_delay_ = d; }
+
   bool tick(Cycle now) {
+    bool entered = false;  // the rays issued kTrvEntryDelay cycles ago into the trv's queue
+    while (!entering_.empty() && entering_.front().second == now) {
+      ch_.trv_q.push(entering_.front().first, now + 1);
+      entering_.pop_front();
+      entered = true;
+    }
+    return step(now) || entered;
+  }
+
+  Cycle next_event(Cycle now) const {
+    Cycle t = ch_.shadow_q.head_ready();
+    if (primaries_left() && free_slots() != 0) t = std::min(t, std::max(now + 1, first_));
+    if (!entering_.empty()) t = std::min(t, entering_.front().second);
+    return t;
+  }
+
+ private:
+  bool step(Cycle now) {
     edge_ = false;
     if (rtl_) return tick_rtl(now);
     if (port_) {
@@ -118,13 +145,6 @@ class Rgu : public sc_core::sc_module {
     return true;
   }
 
-  Cycle next_event(Cycle now) const {
-    Cycle t = ch_.shadow_q.head_ready();
-    if (primaries_left() && free_slots() != 0) t = std::min(t, std::max(now + 1, first_));
-    return t;
-  }
-
- private:
   std::string where(Cycle now) const {
     return "rgu of RTU " + std::to_string(rtu_) + " (" + (rtl_ ? rtl_->name() : port_->model()) +
            "), cycle " + std::to_string(now) + ": ";
@@ -198,7 +218,7 @@ class Rgu : public sc_core::sc_module {
 
   // Slot s holds the shadow ray the hit unit handed over: to the trv.
   void issued_shadow(uint16_t s, Cycle now) {
-    ch_.trv_q.push(s, now + 1);
+    enter_trv(s, now);
     ++st_.shadow_rays;
     ++st_.rgu_busy;
     ++fc_.issued;
@@ -210,7 +230,7 @@ class Rgu : public sc_core::sc_module {
     sl.shadow = false;
     sl.skip_id = ~0u;
     sl.state = SlotState::start;
-    ch_.trv_q.push(s, now + 1);
+    enter_trv(s, now);
     ++st_.primary_rays;
     ++st_.rgu_busy;
     ++fc_.issued;
@@ -221,10 +241,21 @@ class Rgu : public sc_core::sc_module {
     }
   }
 
+  // Slot s issued in cycle now: into the trv's queue now (the trv in RTL delays it itself) or
+  // kTrvEntryDelay cycles later (tick).
+  void enter_trv(uint16_t s, Cycle now) {
+    if (entry_delay_ == 0)
+      ch_.trv_q.push(s, now + 1);
+    else
+      entering_.emplace_back(s, now + entry_delay_);
+  }
+
   FrameCtx& fc_;
   RtuChannels& ch_;
   RtuStats& st_;
   int rtu_, rtus_;
+  uint32_t entry_delay_ = kTrvEntryDelay;
+  std::deque<std::pair<uint16_t, Cycle>> entering_;  // issued rays and their entry cycles
   hls::RguTiles walk_;
   Cycle first_;                      // the first cycle a primary ray can be issued in
   pins::RguPort* port_ = nullptr;    // pin-level view

@@ -81,6 +81,7 @@ class Rtu : public sc_core::sc_module {
                         "rtl/units/trv_unit.v): use --rtl trv");
     if (cfg.trv_view == UnitView::rtl) {
       trv_rtl_ = make_rtl_trv(hls::format_id<F>(), R, fc, ch_, cfg);
+      rgu.set_entry_delay(0);  // trv_unit.v delays the entering ray itself (its clip)
       if (!trv_rtl_)
         throw ConfigError(std::string("no Verilated trv_unit for ") +
                           hls::format_name(hls::format_id<F>()) + " " + hls::rounding_name(R) +

@@ -35,9 +35,11 @@
 //      least the pass's + 6 (trv_latency + the node cache's hit latency >= 6, which the bindings
 //      check), and nothing else reads its slot or stack in between. A ray in its read stage or
 //      outcome or its list step is in no queue until the step's effects;
-//   6. a ray from the rgu (in_*: a new primary ray or a shadow ray in its slot) enters the queue
-//      at now + 1, clipped to the scene box as it enters (trv.v, op 1: hls::trv_clip_box; the
-//      ray's start pass reads the result: the model clips in that pass, from the same inputs);
+//   6. a ray from the rgu (in_*: a new primary ray or a shadow ray in its slot) is written into
+//      its slot and clipped to the scene box over this cycle and the next two (trv.v, op 1:
+//      hls::trv_clip_box; the ray's start pass reads the result: the model clips in that pass,
+//      from the same inputs); at the clip's end, two cycles later, it enters the queue, ready the
+//      cycle after (systemc/config.h kTrvEntryDelay; the model's Rgu delays its push);
 //   7. the split stage: the splits of this cycle's outcomes' inner nodes.
 // Queue pushes of a cycle are appended in that order (the last cycle's last results, outcomes
 // 0.., list stage's effects, rgu);
@@ -466,13 +468,20 @@ module trv_unit #(
 
   // ---- 6. the clip of the entering ray (trv.v, op 1) -------------------------------------------
   // Packing of in_ray_i, lowest bits first: tmax, tmin, inv z, y, x, d z, y, x, o z, y, x.
-  wire         c_rdy, c_vld, c_op, c_hit, c_below, c_tag;
+  // The clip runs over three cycles, the ray's entry and the next two (trv.v with a register after
+  // its subtraction and one after its multiplication; the slot rides as its tag): the ray, its
+  // state and shadow flag are written at the entry, the clip's result at its end, where the ray
+  // enters the queue (ready the next cycle): kTrvEntryDelay = 2 cycles after it left the rgu or
+  // the hit unit (the model's Rgu delays its push the same way).
+  wire         c_rdy, c_vld, c_op, c_hit, c_below;
+  wire [SLOT_BITS-1:0] c_slot;
   wire [1:0]   c_visit;
   wire [W-1:0] c_tsplit, c_tnear, c_tfar, c_far_tfar;
   wire [31:0]  c_node, c_far_node;
+  reg          cv_q;  // a clip in its second cycle (between trv.v's two registers)
   trv #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(0),
-        .TAG_BITS(1)) u_clip (
-    .clk_i(1'b0), .rst_ni(1'b1), .widen_i(widen_i), .in_valid_i(1'b1), .in_ready_o(c_rdy),
+        .S1(1), .S2(1), .TAG_BITS(SLOT_BITS)) u_clip (
+    .clk_i(clk_i), .rst_ni(rst_ni), .widen_i(widen_i), .in_valid_i(in_valid_i), .in_ready_o(c_rdy),
     .in_op_i(1'b1), .in_axis_i(2'd0), .in_split_i({W{1'b0}}), .in_node_i(32'd0),
     .in_child_i(32'd0), .in_o_x_i(in_ray_i[10*W +: W]), .in_o_y_i(in_ray_i[9*W +: W]),
     .in_o_z_i(in_ray_i[8*W +: W]), .in_d_x_i(in_ray_i[7*W +: W]), .in_d_y_i(in_ray_i[6*W +: W]),
@@ -481,12 +490,11 @@ module trv_unit #(
     .in_tnear_i(in_ray_i[W +: W]), .in_tfar_i(in_ray_i[0 +: W]),
     .in_lo_x_i(box_i[0 +: W]), .in_lo_y_i(box_i[W +: W]), .in_lo_z_i(box_i[2*W +: W]),
     .in_hi_x_i(box_i[3*W +: W]), .in_hi_y_i(box_i[4*W +: W]), .in_hi_z_i(box_i[5*W +: W]),
-    .in_tag_i(1'b0), .out_valid_o(c_vld), .out_ready_i(1'b1), .out_op_o(c_op), .out_hit_o(c_hit),
+    .in_tag_i(in_slot_i), .out_valid_o(c_vld), .out_ready_i(1'b1), .out_op_o(c_op), .out_hit_o(c_hit),
     .out_visit_o(c_visit), .out_below_o(c_below), .out_tsplit_o(c_tsplit),
     .out_tnear_o(c_tnear), .out_tfar_o(c_tfar), .out_node_o(c_node),
-    .out_far_node_o(c_far_node), .out_far_tfar_o(c_far_tfar), .out_tag_o(c_tag));
-  wire unused_clip = ^{c_rdy, c_vld, c_op, c_below, c_tag, c_visit, c_tsplit, c_node, c_far_node,
-                       c_far_tfar};
+    .out_far_node_o(c_far_node), .out_far_tfar_o(c_far_tfar), .out_tag_o(c_slot));
+  wire unused_clip = ^{c_rdy, c_op, c_below, c_visit, c_tsplit, c_node, c_far_node, c_far_tfar};
 
   // ---- 7. the split stage: this cycle's outcomes' inner nodes (trv.v, op 0, on the node's axis)
   // From the outcome (the registered pass and node word): the split's inputs, the ray's slot, its
@@ -552,7 +560,7 @@ module trv_unit #(
       {ws_q[int_q], wsp_q[int_q], wat_q[int_q]} <= d_tag[int_q*STW +: STW];
   end
   assign pend_o = (|rv_q) || (|mv_q) || (|lv_q) || (|ev_q) || (|sv_q) || (|d_vld) || (|wv_q) ||
-                  (|rq_v);
+                  (|rq_v) || cv_q || c_vld;
   assign err_o = err_q || |s_err;
 
   // ---- 8. state update (with the queue's head window) ----------------------------------------
@@ -586,7 +594,7 @@ module trv_unit #(
       if (e_qpush[a]) pushes = pushes + 1'b1;
     end
     rgu_at = tail + pushes[SLOT_BITS-1:0];
-    if (in_valid_i) pushes = pushes + 1'b1;
+    if (c_vld) pushes = pushes + 1'b1;
   end
 
   // The window after the edge: entry k is at head_q + pops + k.
@@ -625,8 +633,8 @@ module trv_unit #(
             wn_ready[k] = eqready_q[x];
             wn_sp[k] = esp_q[x];
           end
-        if (in_valid_i && rgu_at == w_pos) begin
-          wn_slot[k] = in_slot_i;
+        if (c_vld && rgu_at == w_pos) begin
+          wn_slot[k] = c_slot;
           wn_ready[k] = now_i + 32'd1;
           wn_sp[k] = 7'd0;
         end
@@ -642,10 +650,12 @@ module trv_unit #(
       st_q[in_slot_i] <= S_START;
       shadow_q[in_slot_i] <= in_shadow_i;
       ray_q[in_slot_i] <= in_ray_i;
-      clip_q[in_slot_i] <= c_hit;
-      tnear_q[in_slot_i] <= c_tnear;
-      tfar_q[in_slot_i] <= c_tfar;
-      fq_slot[rgu_at] <= in_slot_i;
+    end
+    if (c_vld) begin  // the clip of the ray that entered two cycles before: to the queue
+      clip_q[c_slot] <= c_hit;
+      tnear_q[c_slot] <= c_tnear;
+      tfar_q[c_slot] <= c_tfar;
+      fq_slot[rgu_at] <= c_slot;
       fq_ready[rgu_at] <= now_i + 32'd1;
       fq_sp[rgu_at] <= 7'd0;  // a start pass sets its own (the stack is not read)
     end
@@ -817,6 +827,7 @@ module trv_unit #(
       wv_q <= {PIPES{1'b0}};
       sv_q <= {PIPES{1'b0}};
       rq_v <= {IST{1'b0}};
+      cv_q <= 1'b0;
       s_push <= {PIPES{1'b0}};
       err_q <= 1'b0;
       inc_q <= {(NC*8){1'b0}};
@@ -834,6 +845,7 @@ module trv_unit #(
       wv_q <= d_vld;
       sv_q <= p_split;
       rq_v <= res_done;
+      cv_q <= in_valid_i;
       s_push <= d_push;
       err_q <= err_o;
       inc_q <= inc;
