@@ -36,10 +36,10 @@
 //      check), and nothing else reads its slot or stack in between. A ray in its read stage or
 //      outcome or its list step is in no queue until the step's effects;
 //   6. a ray from the rgu (in_*: a new primary ray or a shadow ray in its slot) is written into
-//      its slot and clipped to the scene box over this cycle and the next two (trv.v, op 1:
+//      its slot and clipped to the scene box over this cycle and the next three (trv.v, op 1:
 //      hls::trv_clip_box; the ray's start pass reads the result: the model clips in that pass,
-//      from the same inputs); at the clip's end, two cycles later, it enters the queue, ready the
-//      cycle after (systemc/config.h kTrvEntryDelay; the model's Rgu delays its push);
+//      from the same inputs); at the clip's end, three cycles later, it enters the queue, ready
+//      the cycle after (systemc/config.h kTrvEntryDelay; the model's Rgu delays its push);
 //   7. the split stage: the splits of this cycle's outcomes' inner nodes.
 // Queue pushes of a cycle are appended in that order (the last cycle's last results, outcomes
 // 0.., list stage's effects, rgu);
@@ -468,19 +468,19 @@ module trv_unit #(
 
   // ---- 6. the clip of the entering ray (trv.v, op 1) -------------------------------------------
   // Packing of in_ray_i, lowest bits first: tmax, tmin, inv z, y, x, d z, y, x, o z, y, x.
-  // The clip runs over three cycles, the ray's entry and the next two (trv.v with a register after
-  // its subtraction and one after its multiplication; the slot rides as its tag): the ray, its
-  // state and shadow flag are written at the entry, the clip's result at its end, where the ray
-  // enters the queue (ready the next cycle): kTrvEntryDelay = 2 cycles after it left the rgu or
-  // the hit unit (the model's Rgu delays its push the same way).
+  // The clip runs over four cycles, the ray's entry and the next three (trv.v with a register
+  // after its subtraction, its multiplication and its comparisons; the slot rides as its tag): the
+  // ray, its state and shadow flag are written at the entry, the clip's result at its end, where
+  // the ray enters the queue (ready the next cycle): kTrvEntryDelay = 3 cycles after it left the
+  // rgu or the hit unit (the model's Rgu delays its push the same way).
   wire         c_rdy, c_vld, c_op, c_hit, c_below;
   wire [SLOT_BITS-1:0] c_slot;
   wire [1:0]   c_visit;
   wire [W-1:0] c_tsplit, c_tnear, c_tfar, c_far_tfar;
   wire [31:0]  c_node, c_far_node;
-  reg          cv_q;  // a clip in its second cycle (between trv.v's two registers)
+  reg  [1:0]   cv_q;  // a clip in its second or third cycle (between trv.v's registers)
   trv #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(0),
-        .S1(1), .S2(1), .TAG_BITS(SLOT_BITS)) u_clip (
+        .S1(1), .S2(1), .S3(1), .TAG_BITS(SLOT_BITS)) u_clip (
     .clk_i(clk_i), .rst_ni(rst_ni), .widen_i(widen_i), .in_valid_i(in_valid_i), .in_ready_o(c_rdy),
     .in_op_i(1'b1), .in_axis_i(2'd0), .in_split_i({W{1'b0}}), .in_node_i(32'd0),
     .in_child_i(32'd0), .in_o_x_i(in_ray_i[10*W +: W]), .in_o_y_i(in_ray_i[9*W +: W]),
@@ -560,7 +560,7 @@ module trv_unit #(
       {ws_q[int_q], wsp_q[int_q], wat_q[int_q]} <= d_tag[int_q*STW +: STW];
   end
   assign pend_o = (|rv_q) || (|mv_q) || (|lv_q) || (|ev_q) || (|sv_q) || (|d_vld) || (|wv_q) ||
-                  (|rq_v) || cv_q || c_vld;
+                  (|rq_v) || (|cv_q) || c_vld;
   assign err_o = err_q || |s_err;
 
   // ---- 8. state update (with the queue's head window) ----------------------------------------
@@ -651,7 +651,7 @@ module trv_unit #(
       shadow_q[in_slot_i] <= in_shadow_i;
       ray_q[in_slot_i] <= in_ray_i;
     end
-    if (c_vld) begin  // the clip of the ray that entered two cycles before: to the queue
+    if (c_vld) begin  // the clip of the ray that entered three cycles before: to the queue
       clip_q[c_slot] <= c_hit;
       tnear_q[c_slot] <= c_tnear;
       tfar_q[c_slot] <= c_tfar;
@@ -827,7 +827,7 @@ module trv_unit #(
       wv_q <= {PIPES{1'b0}};
       sv_q <= {PIPES{1'b0}};
       rq_v <= {IST{1'b0}};
-      cv_q <= 1'b0;
+      cv_q <= 2'b00;
       s_push <= {PIPES{1'b0}};
       err_q <= 1'b0;
       inc_q <= {(NC*8){1'b0}};
@@ -845,7 +845,7 @@ module trv_unit #(
       wv_q <= d_vld;
       sv_q <= p_split;
       rq_v <= res_done;
-      cv_q <= in_valid_i;
+      cv_q <= {cv_q[0], in_valid_i};
       s_push <= d_push;
       err_q <= err_o;
       inc_q <= inc;
