@@ -69,7 +69,7 @@ module hit_unit #(
   output wire                            head_valid_o,
   output wire [31:0]                     head_ready_o,
   output wire                            busy_o,
-  output reg  [63:0]                     cnt_busy_o
+  output wire [63:0]                     cnt_busy_o
 );
 
   localparam integer W  = 1 + EXP_BITS + MAN_BITS;
@@ -189,18 +189,25 @@ module hit_unit #(
   // Rays inside hit.v.
   reg [7:0] inside_q;
   assign busy_o = (inside_q != 8'd0);
+  // hit_busy: the count and the last cycle's take, added at the output (the same value in every
+  // cycle as one register counting take; the 64-bit increment off the path from the queue's head).
+  reg [63:0] busy_q;
+  reg        take_q;
+  assign cnt_busy_o = busy_q + {63'd0, take_q};
 
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       head_q     <= {SLOT_BITS{1'b0}};
       cnt_q      <= {(SLOT_BITS+1){1'b0}};
       inside_q   <= 8'd0;
-      cnt_busy_o <= 64'd0;
+      busy_q     <= 64'd0;
+      take_q     <= 1'b0;
     end else begin
       head_q     <= head_q + (take ? ONE : {SLOT_BITS{1'b0}});
       cnt_q      <= cnt_q - {{SLOT_BITS{1'b0}}, take} + npush;
       inside_q   <= inside_q + {7'd0, take} - {7'd0, o_valid};
-      cnt_busy_o <= cnt_busy_o + {63'd0, take};
+      busy_q     <= cnt_busy_o;
+      take_q     <= take;
       for (p = 0; p < PIPES; p = p + 1)
         if (fin_valid_i[p]) begin
           q_slot[at[p*SLOT_BITS +: SLOT_BITS]]  <= fin_slot_i[p*SLOT_BITS +: SLOT_BITS];

@@ -299,12 +299,18 @@ module ist_unit #(
   wire [7:0]          hd = hl_i - ER32[7:0];  // hl_i >= ENTRY_REG (the binding checks)
   reg  [IST-1:0]      ring_v [0:HN-1];
   reg  [IST*RESW-1:0] ring_r [0:HN-1];
-  wire [HLBITS-1:0]   rd = now_i[HLBITS-1:0];
+  // The entry due in the next cycle is read in this one into out_*_q (the next cycle's results
+  // start at registers, not at now_i's slot decode; with hd 1 it is this cycle's ist.v result,
+  // written to the ring in the same edge).
+  wire [HLBITS-1:0]   rd1 = now_i[HLBITS-1:0] + {{(HLBITS-1){1'b0}}, 1'b1};
   wire [HLBITS-1:0]   wr = now_i[HLBITS-1:0] + hd[HLBITS-1:0];
   wire                bypass = (hd == 8'd0);
+  wire                next_now = (hd == 8'd1);
   wire                unused_hd = ^hd;
-  wire [IST-1:0]      out_v = bypass ? g_out_v : ring_v[rd];
-  wire [IST*RESW-1:0] out_r = bypass ? g_out_r : ring_r[rd];
+  reg  [IST-1:0]      out_v_q;
+  reg  [IST*RESW-1:0] out_r_q;
+  wire [IST-1:0]      out_v = bypass ? g_out_v : out_v_q;
+  wire [IST*RESW-1:0] out_r = bypass ? g_out_r : out_r_q;
   generate
     for (u = 0; u < IST; u = u + 1) begin : g_res
       assign res_valid_o[u] = out_v[u];
@@ -337,19 +343,24 @@ module ist_unit #(
       inc_q       <= 18'd0;
       sum_q       <= {(3*64){1'b0}};
       for (j = 0; j < HN; j = j + 1) ring_v[j] <= {IST{1'b0}};
+      out_v_q     <= {IST{1'b0}};
     end else begin
       head_q <= head_q + npop16[QBITS-1:0];
       cnt_q  <= cnt_next[QBITS:0];
       pend_q <= pend_q + {10'd0, nhit} - {10'd0, nout};
       inc_q       <= {ntest, nmiss, nhit};
       sum_q       <= {cnt_tests_o, cnt_miss_o, cnt_busy_o};
+      out_v_q <= {IST{1'b0}};
       if (!bypass) begin
-        ring_v[rd] <= {IST{1'b0}};
+        out_v_q    <= next_now ? g_out_v : ring_v[rd1];
+        ring_v[rd1] <= {IST{1'b0}};
         ring_v[wr] <= g_out_v;
         ring_r[wr] <= g_out_r;
       end
     end
   end
+
+  always @(posedge clk_i) out_r_q <= next_now ? g_out_r : ring_r[rd1];
 
   // ---- the queue's registers: each entry written from one of this cycle's push sources ---------
   // Pipe p's run rotated: element i of g_rot[p] is {list position, triangle index} of word

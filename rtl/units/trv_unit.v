@@ -221,10 +221,15 @@ module trv_unit #(
     end
   endgenerate
 
-  // ---- 1. ist results: the leaf reduction, chained over the ports ------------------------------
-  // Port u starts from the record as the earlier ports of this cycle left it (same slot). Its
-  // result is the leaf's last if the results still to come, less the earlier ports' of the same
-  // ray, are this one: left_q[s] == m + 1 with m those earlier ports, a compare with a small
+  // ---- 1. ist results: the leaf reduction over the ports ---------------------------------------
+  // Port u acts on the record as the earlier ports of this cycle left it (same slot): the best of
+  // the slot's leaf record and the earlier same-slot ports' hits, as the chain "port by port, each
+  // keeping the closer hit (ties to the earlier list position)" leaves it. That best is one of those
+  // records, so the port's choice is which: every compare is of port u's hit with one candidate
+  // (the leaf record, or an earlier port's hit), all side by side, and the chain runs over one-hot
+  // choices (who is best after port v) instead of through a compare per port: one compare deep.
+  // Its result is the leaf's last if the results still to come, less the earlier ports' of the
+  // same ray, are this one: left_q[s] == m + 1 with m those earlier ports, a compare with a small
   // constant straight from the slot's word (no sum in front of it: res_done starts the queue's
   // pushes and the head window's refill).
   wire [IST*BW-1:0] nl /* verilator split_var */;  // leaf record after port u
@@ -234,36 +239,68 @@ module trv_unit #(
   // the cycle after that): the queue's pushes and the head window start from registers.
   reg  [IST-1:0]            rq_v;
   reg  [IST*SLOT_BITS-1:0]  rq_slot;
+  // Who is best after port u, one-hot: bit IST the slot's leaf record, bit v port v's hit.
+  wire [IST*(IST+1)-1:0] best_of /* verilator split_var */;
+  wire unused_best = ^best_of[(IST-1)*(IST+1) +: IST+1];  // no port after the last
   genvar u, v;
   generate
     for (u = 0; u < IST; u = u + 1) begin : g_res
       wire [SLOT_BITS-1:0] s = res_slot_i[u*SLOT_BITS +: SLOT_BITS];
       wire [BW-1:0] rec = res_rec_i[u*BW +: BW];
-      // The chain over the earlier ports: stage v+1 takes port v's record if it is the same ray's.
-      wire [(u+1)*BW-1:0] chain /* verilator split_var */;
-      wire [(u+1)*8-1:0]  mchain /* verilator split_var */;  // m + 1 after the earlier ports
-      assign chain[BW-1:0] = leaf_q[s];
+      wire [BW-1:0] leaf = leaf_q[s];
+      // beats[c]: port u's hit is closer than candidate c (c = IST: the leaf record, if it has
+      // one; c = v < u: port v's hit), ties to the earlier list position.
+      wire [IST:0] beats;
+      // before: who is best before port u (the last earlier same-slot port's choice, else the leaf).
+      wire [(u+1)*(IST+1)-1:0] before /* verilator split_var */;
+      wire [(u+1)*8-1:0]       mchain /* verilator split_var */;  // m + 1 after the earlier ports
+      assign before[IST:0] = {1'b1, {IST{1'b0}}};
       assign mchain[7:0] = 8'd1;
-      for (v = 0; v < u; v = v + 1) begin : g_prev
-        wire same = res_valid_i[v] && (res_slot_i[v*SLOT_BITS +: SLOT_BITS] == s);
-        assign chain[(v+1)*BW +: BW] = same ? nl[v*BW +: BW] : chain[v*BW +: BW];
-        assign mchain[(v+1)*8 +: 8] = mchain[v*8 +: 8] + {7'd0, same};
+      for (v = 0; v < IST; v = v + 1) begin : g_cand
+        if (v < u) begin : g_prev
+          wire [BW-1:0] o = res_rec_i[v*BW +: BW];
+          wire same = res_valid_i[v] && (res_slot_i[v*SLOT_BITS +: SLOT_BITS] == s);
+          assign before[(v+1)*(IST+1) +: IST+1] = same ? best_of[v*(IST+1) +: IST+1]
+                                                       : before[v*(IST+1) +: IST+1];
+          assign mchain[(v+1)*8 +: 8] = mchain[v*8 +: 8] + {7'd0, same};
+          wire lt, eq, c_rdy, c_vld;
+          wire [W-1:0] c_min, c_max;
+          fp_cmp_nt #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .STAGES(0)) u_cmp (
+            .clk_i(1'b0), .rst_ni(1'b1), .in_valid_i(1'b1), .in_ready_o(c_rdy),
+            .in_a_i(rec[BW-2 -: W]), .in_b_i(o[BW-2 -: W]), .out_valid_o(c_vld),
+            .out_ready_i(1'b1), .out_lt_o(lt), .out_eq_o(eq), .out_min_o(c_min), .out_max_o(c_max));
+          wire unused = ^{c_min, c_max, c_rdy, c_vld, o[BW-1]};
+          // The record's pos field lies below t and den.
+          assign beats[v] = lt || (eq && (rec[BW-2-2*W -: 32] < o[BW-2-2*W -: 32]));
+        end else begin : g_none
+          assign beats[v] = 1'b0;
+        end
       end
-      wire [BW-1:0] cur = chain[u*BW +: BW];
+      wire lt, eq, l_rdy, l_vld;
+      wire [W-1:0] l_min, l_max;
+      fp_cmp_nt #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .STAGES(0)) u_cmp (
+        .clk_i(1'b0), .rst_ni(1'b1), .in_valid_i(1'b1), .in_ready_o(l_rdy),
+        .in_a_i(rec[BW-2 -: W]), .in_b_i(leaf[BW-2 -: W]), .out_valid_o(l_vld),
+        .out_ready_i(1'b1), .out_lt_o(lt), .out_eq_o(eq), .out_min_o(l_min), .out_max_o(l_max));
+      wire unused = ^{l_min, l_max, l_rdy, l_vld, rec[BW-1]};
+      assign beats[IST] = !leaf[BW-1] || lt ||
+                          (eq && (rec[BW-2-2*W -: 32] < leaf[BW-2-2*W -: 32]));
+      wire [IST:0] cur = before[u*(IST+1) +: IST+1];
+      wire win = res_hit_i[u] && |(cur & beats);
+      wire [IST:0] me = {{(IST-u){1'b0}}, 1'b1, {u{1'b0}}};
+      wire [IST:0] bo = win ? me : cur;
+      assign best_of[u*(IST+1) +: IST+1] = bo;
+      // The record of that choice.
+      reg [BW-1:0] pick;
+      integer c;
+      always @* begin
+        pick = bo[IST] ? leaf : {BW{1'b0}};
+        for (c = 0; c < IST; c = c + 1)
+          if (bo[c]) pick = pick | {1'b1, res_rec_i[c*BW +: BW-1]};
+      end
+      assign nl[u*BW +: BW] = pick;
       wire [31:0]   left = left_q[s];
       wire [31:0]   m1 = {24'd0, mchain[u*8 +: 8]};
-      wire         lt, eq;
-      wire [W-1:0] u_min, u_max;
-      wire         u_rdy, u_vld;
-      fp_cmp_nt #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .STAGES(0)) u_cmp (
-        .clk_i(1'b0), .rst_ni(1'b1), .in_valid_i(1'b1), .in_ready_o(u_rdy),
-        .in_a_i(rec[BW-2 -: W]), .in_b_i(cur[BW-2 -: W]), .out_valid_o(u_vld),
-        .out_ready_i(1'b1), .out_lt_o(lt), .out_eq_o(eq), .out_min_o(u_min), .out_max_o(u_max));
-      wire unused = ^{u_min, u_max, u_rdy, u_vld, rec[BW-1]};
-      // The record's pos field lies below t and den.
-      wire win = res_hit_i[u] && (!cur[BW-1] || lt ||
-                                  (eq && (rec[BW-2-2*W -: 32] < cur[BW-2-2*W -: 32])));
-      assign nl[u*BW +: BW] = win ? {1'b1, rec[BW-2:0]} : cur;
       assign nr[u*32 +: 32] = left - m1;
       assign res_done[u] = res_valid_i[u] && (left == m1);
     end
