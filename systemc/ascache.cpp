@@ -25,7 +25,8 @@ Ascache::Ascache(sc_core::sc_module_name name, const CacheConfig& cfg, uint64_t 
   req_.reset(cfg.mshrs);
 }
 
-bool Ascache::present(uint64_t line) const {
+bool Ascache::present(uint64_t line) {
+  settle();
   if (rtl_) throw std::logic_error(std::string(name()) + ": present() with the RTL bound");
   const size_t set = size_t(line % sets_) * ways_;
   for (uint32_t w = 0; w < ways_; ++w)
@@ -34,6 +35,8 @@ bool Ascache::present(uint64_t line) const {
 }
 
 const uint8_t* Ascache::access(uint64_t line) {
+  settle();
+  accessed_ = now;
   ++probe_now().accesses;
   if (rtl_) return access_rtl(line);
   ++st_.accesses;
@@ -86,19 +89,29 @@ uint32_t Ascache::allocate(uint64_t line) {
 }
 
 void Ascache::fill(uint32_t tag) {
-  Mshr& m = mshr_[tag];
-  if (!m.valid) throw std::logic_error(std::string(name()) + ": fill of a free MSHR");
+  settle();
+  if (tag >= mshr_.size() || !mshr_[tag].valid)
+    throw std::logic_error(std::string(name()) + ": fill of a free MSHR");
+  if (pend_.valid)
+    throw std::logic_error(std::string(name()) + ": a second fill in cycle " + std::to_string(now) +
+                           " (the cache has one fill port)");
+  if (accessed_ == now)
+    throw std::logic_error(std::string(name()) + ": a fill after an access in cycle " +
+                           std::to_string(now) + " (the cycle's fill comes first: its victim is "
+                           "chosen from the state at the cycle's start)");
   ++probe_now().fills;
+  ++st_.fills;
+  pend_ = Pending{true, now, tag, SIZE_MAX};
   if (rtl_) {
+    rtl_->at(now);  // a new cycle: the RTL's edge closing the last one
     sync_pops();
-    rtl_->fill(tag, m.buf.data());
-    m.valid = false;
-    --busy_;
-    ++st_.fills;
+    rtl_->fill(tag, mshr_[tag].buf.data());
     return;
   }
   // The victim: the first invalid way, else the least recently used way that is not pinned (there
-  // is one: a miss takes an MSHR only while pinned + awaited < ways in its set).
+  // is one: a miss takes an MSHR only while pinned + awaited < ways in its set, and this fill's
+  // MSHR is one of the awaited).
+  const Mshr& m = mshr_[tag];
   const size_t set = size_t(m.line % sets_) * ways_;
   size_t victim = SIZE_MAX;
   for (uint32_t w = 0; w < ways_; ++w) {
@@ -111,13 +124,22 @@ void Ascache::fill(uint32_t tag) {
   if (victim == SIZE_MAX)
     throw std::logic_error(std::string(name()) + ": fill of line " + std::to_string(m.line) +
                            " into a set whose every way is pinned");
-  tag_[victim] = m.line + 1;
-  stamp_[victim] = ++clock_;
-  pin_[victim] = 1;
-  std::memcpy(data_.data() + victim * line_, m.buf.data(), line_);
+  pend_.victim = victim;
+}
+
+// The fill of an earlier cycle, at that cycle's closing edge: its line in the victim way (the most
+// recently used, after that cycle's hits), pinned, and its MSHR free.
+void Ascache::settle() {
+  if (!pend_.valid || now <= pend_.at) return;
+  Mshr& m = mshr_[pend_.tag];
+  if (pend_.victim != SIZE_MAX) {
+    tag_[pend_.victim] = m.line + 1;
+    pin_[pend_.victim] = 1;
+    std::memcpy(data_.data() + pend_.victim * line_, m.buf.data(), line_);
+  }
   m.valid = false;
   --busy_;
-  ++st_.fills;
+  pend_.valid = false;
 }
 
 const CacheStats& Ascache::stats() const {
@@ -134,6 +156,7 @@ void Ascache::sync_pops() {
 
 // The RTL decides; the MSHR bookkeeping here must agree with it (the same rules as access()).
 const uint8_t* Ascache::access_rtl(uint64_t line) {
+  rtl_->at(now);  // a new cycle: the RTL's edge closing the last one
   sync_pops();
   ++st_.accesses;
   const uint8_t* data = nullptr;

@@ -37,7 +37,9 @@ class AscacheRtlT final : public AscacheRtl {
     if (line >> kLineW)
       throw std::runtime_error(name() + ": line index " + std::to_string(line) +
                                " beyond the RTL's 26 bits (an image over 4 GB)");
-    if (n_acc_ == PORTS) edge();
+    if (n_acc_ == PORTS)
+      throw std::logic_error(name() + ": more than " + std::to_string(PORTS) +
+                             " accesses in one cycle");
     const unsigned k = n_acc_++;
     set_bits(m_.acc_valid_i, k, 1, 1);
     set_bits(m_.acc_line_i, k * kLineW, kLineW, uint32_t(line));
@@ -55,7 +57,8 @@ class AscacheRtlT final : public AscacheRtl {
   }
 
   void fill(uint32_t tag, const uint8_t* data) override {
-    if (fill_ || n_acc_) edge();
+    if (fill_ || n_acc_)
+      throw std::logic_error(name() + ": a fill after this cycle's fill or accesses");
     m_.fill_valid_i = 1;
     m_.fill_tag_i = static_cast<std::remove_reference_t<decltype(m_.fill_tag_i)>>(tag);
     vl::set_bytes(m_.fill_data_i, 0, LB, data);
@@ -64,7 +67,9 @@ class AscacheRtlT final : public AscacheRtl {
   }
 
   void pop(uint64_t line, uint32_t tag) override {
-    if (pop_ || fill_ || n_acc_) edge();
+    if (fill_ || n_acc_)
+      throw std::logic_error(name() + ": the bus took a request after this cycle's fill or accesses");
+    if (pop_) edge();  // an edge of its own (see ascache_rtl.h)
     if (!m_.req_valid_o || m_.req_line_o != line || m_.req_tag_o != tag)
       throw std::logic_error(name() + ": the bus took line " + std::to_string(line) + " (MSHR " +
                              std::to_string(tag) + "), the RTL's request queue holds " +
@@ -75,6 +80,10 @@ class AscacheRtlT final : public AscacheRtl {
     pop_ = true;
   }
 
+  void at(uint64_t cycle) override {
+    if (cycle != cycle_ && (pop_ || fill_ || n_acc_)) edge();
+    cycle_ = cycle;
+  }
   void check(uint64_t hits, uint64_t misses, uint64_t merges, uint64_t full, uint64_t set_full,
              uint64_t fills) override {
     if (pop_ || fill_ || n_acc_) edge();
@@ -104,6 +113,7 @@ class AscacheRtlT final : public AscacheRtl {
 
   M m_;
   unsigned n_acc_ = 0;
+  uint64_t cycle_ = 0;
   bool fill_ = false, pop_ = false;
   uint8_t line_[LB] = {};
 };

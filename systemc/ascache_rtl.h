@@ -10,11 +10,12 @@
 // own bookkeeping (a merge needs the line in flight, a new MSHR a free one, the lowest free one;
 // the request queue's head when the bus takes it; the RTL's counters at the end).
 //
-// Edges: the cache has no notion of time, only of the order of events, so the binding clocks it
-// when an event could not join the pending edge's order (ascache.v: request pop, fill, then up
-// to PORTS accesses in port order): a pop after a fill or an access, a second fill, or an access
-// beyond PORTS starts a new edge. The state after any sequence of calls is then the C++ model's
-// after the same calls.
+// Edges: the binding clocks the cache when Ascache tells it of a new cycle (at(cycle)), and within
+// a cycle in ascache.v's order (request pop, fill, then up to PORTS accesses in port order): a pop
+// after a pop is an edge of its own (the bus's pops are passed on late, several at once; a pop
+// changes only the request queue). A pop after the cycle's fill or accesses, a second fill or an
+// access beyond PORTS in one cycle throw std::logic_error: the fill acts at the cycle's closing
+// edge, so an edge inside the cycle would show it to the cycle's later accesses.
 #pragma once
 
 #include <cstdint>
@@ -32,6 +33,8 @@ class AscacheRtl {
   virtual Kind access(uint64_t line, const uint8_t** data) = 0;
   // The fill of MSHR tag with the line's bytes (Ascache::fill).
   virtual void fill(uint32_t tag, const uint8_t* data) = 0;
+  // The events from now on are of this cycle: if it is a new one, the last cycle's edge.
+  virtual void at(uint64_t cycle) = 0;
   // The bus took the request queue's head, which the caller expects to be (line, tag): throws
   // std::logic_error if the RTL's head is not that.
   virtual void pop(uint64_t line, uint32_t tag) = 0;

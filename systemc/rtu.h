@@ -173,7 +173,7 @@ class Rtu : public sc_core::sc_module {
   }
 
   bool tick(Cycle now) {
-    node.now = list.now = tri.now = now;
+    for (Ascache* c : {&node, &list, &tri}) c->advance(now);  // last cycle's fills installed
     bool a = vtu_unit.tick(now);
     a |= hit.tick(now);
     a |= ist.tick(now);

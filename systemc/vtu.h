@@ -88,19 +88,19 @@ class VtuUnit : public sc_core::sc_module, public MemClient {
     fills_.push({port, tag}, start + records - 1 + depth_);
   }
 
-  // Lines leaving the pipeline are installed in their cache.
+  // Lines leaving the pipeline are installed in their cache, one a cycle per cache (its one fill
+  // port): a line that finds its cache's port taken in this cycle (two lines of one cache back
+  // together, from the L2 and the memory) waits for the next, and the lines behind it with it.
   bool tick(Cycle now) {
     bool active = false;
-    while (bypass_.can_pop(now)) {
-      const Fill f = bypass_.pop();
-      caches_[f.port]->fill(f.tag);
-      active = true;
-    }
-    while (fills_.can_pop(now)) {
-      const Fill f = fills_.pop();
-      caches_[f.port]->fill(f.tag);
-      active = true;
-    }
+    std::array<bool, 3> taken{};
+    for (TimedFifo<Fill>* q : {&bypass_, &fills_})
+      while (q->can_pop(now) && !taken[q->front().port]) {
+        const Fill f = q->pop();
+        taken[f.port] = true;
+        caches_[f.port]->fill(f.tag);
+        active = true;
+      }
     if (port_) active |= tick_pins();
     return active;
   }

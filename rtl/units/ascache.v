@@ -25,14 +25,19 @@
 // has no ready: it is always taken, as Ascache::fill. A fill comes after its request was taken
 // (req_valid_o && req_ready_i).
 //
-// Order within one clock edge (the cycle model ticks the vtu's fills before the requesters'
-// accesses): request pop, fill, then access. So an access sees the line installed by the fill of
-// the same cycle (hit, data through the write-first data array), not a line that fill evicted,
-// and may allocate the MSHR that fill freed; the LRU update of the access follows the fill's.
+// The fill acts at the edge that ends its cycle, and nothing an access sees depends on it (the
+// fill path is cut from the access path: Ascache::fill chooses its victim when called, before the
+// cycle's accesses, and installs when the next cycle starts). The fill's victim is chosen from the
+// state at the cycle's start; the cycle's accesses see that state too: the fill's line is not yet
+// there (an access to it merges into the fill's MSHR, which is still busy and cannot be allocated
+// in the cycle), the victim's old line is (it may hit, its old bytes: the data array is read
+// before the write). At the edge the line is written, valid and pinned (after the hits' unpins),
+// and the MSHR freed. The fill leaves the LRU ranks as they are: its way is pinned (no victim)
+// until its first hit, and that hit makes it the most recent whatever its rank was.
 //
 // Two response forms:
 //   HIT_LATENCY >= 1, PORTS = 1 (the pin-level twin of systemc/pins/ascache.h): the data array is
-//     a 1R1W SRAM (ascache_ram, synchronous write-first read) read at the access edge; 1 = the
+//     a 1R1W SRAM (ascache_ram, synchronous read-first read) read at the access edge; 1 = the
 //     SRAM's output register, each further cycle adds a register of the response and its line.
 //   HIT_LATENCY 0, any PORTS (the frame's cache, systemc/ascache_rtl.h): the responses come in the
 //     access's own cycle, as Ascache::access answers the cycle model's requesters (which add the
@@ -160,11 +165,10 @@ module ascache #(
   reg [CNT_BITS-1:0]     hits_i, misses_i, merges_i, full_i, sfull_i, fills_i;
 
   // ---------------------------------------------------------------------------------------------
-  // Fill side: the MSHR's line, its set and the victim way.
+  // Fill side: the MSHR's line, its set and the victim way (from the state at the cycle's start).
   reg              fill_go;
   reg [LINE_W-1:0] f_line;
   wire [RW-1:0]    f_way;
-  wire [WAYS*RW-1:0] f_rank_new;
   wire [SW-1:0]    f_set = set_of(f_line);
   wire [TW-1:0]    f_tag = tag_of(f_line);
 
@@ -185,21 +189,11 @@ module ascache #(
 
   ascache_victim #(.WAYS(WAYS), .RW(RW)) u_victim (
     .valid_i(f_valid), .pin_i(f_pin), .rank_i(f_rank), .way_o(f_way));
-  // The fill's way as a one-hot vector (its pin is set).
-  reg [WAYS-1:0] f_onehot;
-  integer fo;
-  always @* begin
-    f_onehot = {WAYS{1'b0}};
-    for (fo = 0; fo < WAYS; fo = fo + 1)
-      if (f_way == fo[RW-1:0]) f_onehot[fo] = 1'b1;
-  end
-  ascache_touch #(.WAYS(WAYS), .RW(RW)) u_touch_fill (
-    .rank_i(f_rank), .way_i(f_way), .rank_o(f_rank_new));
 
   // ---------------------------------------------------------------------------------------------
-  // Access side: PORTS lookups in port order. Port k sees the set as the fill leaves it, the LRU
-  // ranks and pins as the hits of ports 0 .. k-1 leave them, and the MSHRs after the fill and the
-  // allocations of ports 0 .. k-1 (Ascache::access called k times in a cycle). A hit depends on
+  // Access side: PORTS lookups in port order. Port k sees the set at the cycle's start (not the
+  // cycle's fill), the LRU ranks and pins as the hits of ports 0 .. k-1 leave them, and the MSHRs
+  // after the allocations of ports 0 .. k-1 (Ascache::access called k times in a cycle). A hit depends on
   // the tags alone; the MSHRs' part is a prefix over the ports (below): each port's allocation
   // needs only which earlier ports allocated (the same line: a merge; their count: the free MSHR
   // it takes and whether any is left; those of its set: set full), not the MSHR arrays as the
@@ -220,12 +214,12 @@ module ascache #(
   wire [PORTS*PW-1:0]        a_held0;    // its set's ways pinned + awaited at the start
   wire [PORTS*LINE_W-1:0]    a_line_v;
 
-  // MSHRs before port 0: the fill frees its own first.
-  reg [MSHRS-1:0] mv_post;
+  // The MSHR the fill frees at the edge (busy for the cycle's accesses).
+  reg [MSHRS-1:0] f_free;
   always @* begin
-    mv_post = mv_q;
+    f_free = {MSHRS{1'b0}};
     for (i = 0; i < MSHRS; i = i + 1)
-      if (fill_go && fill_tag_i == i[MW-1:0]) mv_post[i] = 1'b0;
+      if (fill_go && fill_tag_i == i[MW-1:0]) f_free[i] = 1'b1;
   end
   // The free MSHRs in index order (fl: the i-th lowest at [i*MW +: MW], i < nfree): an allocation
   // takes the lowest free one, so the port with n allocations before it takes the n-th.
@@ -235,7 +229,7 @@ module ascache #(
     fl = {(MSHRS*MW){1'b0}};
     nfree = {CW{1'b0}};
     for (i = 0; i < MSHRS; i = i + 1)
-      if (!mv_post[i]) begin
+      if (!mv_q[i]) begin
         fl[nfree*MW +: MW] = i[MW-1:0];
         nfree = nfree + 1'b1;
       end
@@ -248,11 +242,10 @@ module ascache #(
       wire              av   = acc_valid_i[gk];
       wire [SW-1:0]     set  = set_of(line);
       wire [TW-1:0]     tag  = tag_of(line);
-      wire              same_fill = fill_go && f_set == set;
       wire [WAYS-1:0]    valid = valid_q[set*WAYS +: WAYS];
       wire [WAYS*TW-1:0] tags  = tag_q[set];
-      // The set's ranks: the fill's, then the latest earlier port that hit in the same set.
-      wire [WAYS*RW-1:0] rank_set = same_fill ? f_rank_new : rank_q[set*WAYS*RW +: WAYS*RW];
+      // The set's ranks: the latest earlier port's that hit in the same set, else the registers'.
+      wire [WAYS*RW-1:0] rank_set = rank_q[set*WAYS*RW +: WAYS*RW];
       wire [WAYS*RW-1:0] rank_pre;
       if (gk == 0) begin : g_first
         assign rank_pre = rank_set;
@@ -273,8 +266,7 @@ module ascache #(
         hit = 1'b0;
         way = {RW{1'b0}};
         for (wk = 0; wk < WAYS; wk = wk + 1)
-          if (same_fill && f_way == wk[RW-1:0] ? f_tag == tag
-                                               : valid[wk] && tags[wk*TW +: TW] == tag) begin
+          if (valid[wk] && tags[wk*TW +: TW] == tag) begin
             hit = 1'b1;
             way = wk[RW-1:0];
           end
@@ -289,13 +281,13 @@ module ascache #(
         inflight = 1'b0;
         awaited  = {PW{1'b0}};
         for (mk = 0; mk < MSHRS; mk = mk + 1) begin
-          if (mv_post[mk] && ml_q[mk*LINE_W +: LINE_W] == line) inflight = 1'b1;
-          if (mv_post[mk] && ms_q[mk*SW +: SW] == set) awaited = awaited + 1'b1;
+          if (mv_q[mk] && ml_q[mk*LINE_W +: LINE_W] == line) inflight = 1'b1;
+          if (mv_q[mk] && ms_q[mk*SW +: SW] == set) awaited = awaited + 1'b1;
         end
       end
-      // The set's pins as the fill and the hits of ports 0 .. k-1 leave them (a fill pins its way,
-      // a hit unpins its way), and how many of its ways are pinned or awaited by an MSHR.
-      wire [WAYS-1:0] pin_set = pin_q[set*WAYS +: WAYS] | (same_fill ? f_onehot : {WAYS{1'b0}});
+      // The set's pins as the hits of ports 0 .. k-1 leave them (a hit unpins its way), and how
+      // many of its ways are pinned or awaited by an MSHR (the fill's MSHR among them).
+      wire [WAYS-1:0] pin_set = pin_q[set*WAYS +: WAYS];
       wire [WAYS-1:0] pin_pre;
       if (gk == 0) begin : g_pin_first
         assign pin_pre = pin_set;
@@ -374,17 +366,12 @@ module ascache #(
   // Next state.
   wire req_pop = req_valid_o && req_ready_i;
 
-  // The fill's way: valid, its tag.
-  reg [WAYS-1:0]    f_valid_new;
+  // The fill's way: its tag.
   reg [WAYS*TW-1:0] f_tags_new;
   always @* begin
-    f_valid_new = f_valid;
     f_tags_new  = tag_q[f_set];
     for (w = 0; w < WAYS; w = w + 1)
-      if (f_way == w[RW-1:0]) begin
-        f_valid_new[w] = 1'b1;
-        f_tags_new[w*TW +: TW] = f_tag;
-      end
+      if (f_way == w[RW-1:0]) f_tags_new[w*TW +: TW] = f_tag;
   end
 
   // How many of this cycle's accesses hit, missed, ... (the allocations: n_alloc above).
@@ -409,7 +396,7 @@ module ascache #(
   always @* begin
     // Each allocation: its free MSHR takes the line, and its index the queue's entry tail + a_at.
     a_free  = {MW{1'b0}};
-    mv_d    = mv_post;
+    mv_d    = mv_q & ~f_free;
     ml_d    = ml_q;
     ms_d    = ms_q;
     fifo_d  = fifo_q;
@@ -440,9 +427,11 @@ module ascache #(
   // Reset: valid and pin bits, LRU ranks (way w of every set has rank w), MSHR valid, queue,
   // counters.
   // Tags, MSHR lines and queue entries are meaningful only under a valid bit and are not reset.
-  // The set arrays take the fill's update, then the access's LRU update (a_rank_new already
-  // includes the fill's when both are in the same set, so the later assignment is the whole one);
-  // the fill's way is pinned, then every hit's way unpinned (a hit on the line just filled too).
+  // The set arrays take the hits' LRU updates in port order (a later hit's ranks include the
+  // earlier ones'); every hit's way unpinned, then the fill's way pinned (a hit on the victim's old
+  // line in the fill's cycle too). The fill does not touch the LRU ranks: its way is pinned, so
+  // never a victim, until its first hit, which makes it the most recent and keeps the others'
+  // order, whatever its rank was (Ascache::settle leaves the stamp too).
   wire [WAYS*RW-1:0] rank_reset;
   genvar gw;
   generate
@@ -474,15 +463,14 @@ module ascache #(
       sfull_i  <= {CNT_BITS{1'b0}};
       fills_i  <= {CNT_BITS{1'b0}};
     end else begin
-      if (fill_go) begin
-        valid_q[f_set*WAYS +: WAYS]       <= f_valid_new;
-        rank_q[f_set*WAYS*RW +: WAYS*RW]  <= f_rank_new;
-        pin_q[f_set*WAYS +: WAYS]         <= f_pin | f_onehot;
-      end
       for (pk = 0; pk < PORTS; pk = pk + 1)  // in port order: a later hit's ranks include earlier
         if (a_hit_v[pk]) rank_q[a_set_v[pk*SW +: SW]*WAYS*RW +: WAYS*RW] <= a_rank_out[pk*WAYS*RW +: WAYS*RW];
       for (pk = 0; pk < PORTS; pk = pk + 1)
         if (a_hit_v[pk]) pin_q[addr_of(a_set_v[pk*SW +: SW], a_way_v[pk*RW +: RW])] <= 1'b0;
+      if (fill_go) begin
+        valid_q[addr_of(f_set, f_way)] <= 1'b1;
+        pin_q[addr_of(f_set, f_way)]   <= 1'b1;
+      end
       mv_q     <= mv_d;
       head_q   <= head_d;
       tail_q   <= tail_d;
@@ -510,9 +498,9 @@ module ascache #(
   end
 
   // ---------------------------------------------------------------------------------------------
-  // Data array, written by the fill. HIT_LATENCY >= 1 (one port): an SRAM read by a hit at the
-  // same edge (write-first), then the response registers. HIT_LATENCY 0: PORTS asynchronous reads
-  // (a register file), the line of a way the fill writes in this cycle is the fill's data.
+  // Data array, written by the fill at its cycle's edge. HIT_LATENCY >= 1 (one port): an SRAM read
+  // by a hit at the same edge (read-first: a hit on the victim's old line reads its old bytes),
+  // then the response registers. HIT_LATENCY 0: PORTS asynchronous reads (a register file).
   wire [AW-1:0] ram_waddr = addr_of(f_set, f_way);
 
   localparam integer RSW = 4 + TAG_BITS;
@@ -522,7 +510,7 @@ module ascache #(
       always @(posedge clk_i) if (fill_go) data_q[ram_waddr] <= fill_data_i;
       for (gk = 0; gk < PORTS; gk = gk + 1) begin : g_rsp
         wire [AW-1:0] ra = addr_of(a_set_v[gk*SW +: SW], a_way_v[gk*RW +: RW]);
-        assign rsp_data_o[gk*DW +: DW] = fill_go && ra == ram_waddr ? fill_data_i : data_q[ra];
+        assign rsp_data_o[gk*DW +: DW] = data_q[ra];
       end
       assign rsp_valid_o = acc_valid_i;
       assign rsp_hit_o   = a_there_v;  // for a port without an access: the line is present

@@ -1,11 +1,11 @@
 // ascache_ram - the data array of rtl/units/ascache.v: DEPTH lines of WIDTH bits, one write port
 // and one synchronous read port (a 1R1W SRAM macro; yosys infers a $mem cell from it).
 //
-// The read is write-first (transparent): a read of the line written at the same edge returns the
-// new data. ascache.v needs exactly that: a fill and an access are ordered fill first within a
-// cycle (as the cycle model ticks them), so an access that hits the line being installed reads the
-// fill's data. rdata_o holds the last read until the next one (no reset: it is meaningful only
-// for a hit, and only lines that were written can hit).
+// The read is read-first: a read of the line written at the same edge returns the old data.
+// ascache.v needs exactly that: a fill acts at the edge that ends its cycle, so an access in the
+// fill's cycle that hits the victim's old line reads the old line. rdata_o holds the last read
+// until the next one (no reset: it is meaningful only for a hit, and only lines that were written
+// can hit).
 module ascache_ram #(
   parameter integer DEPTH  = 256,
   parameter integer WIDTH  = 512,
@@ -25,10 +25,7 @@ module ascache_ram #(
 
   always @(posedge clk_i) begin
     if (we_i) mem_q[waddr_i] <= wdata_i;
-    if (re_i) begin
-      if (we_i && waddr_i == raddr_i) rdata_q <= wdata_i;
-      else                            rdata_q <= mem_q[raddr_i];
-    end
+    if (re_i) rdata_q <= mem_q[raddr_i];
   end
 
   assign rdata_o = rdata_q;

@@ -7,13 +7,15 @@
 //
 //   1. request pop   req_valid_o && req_ready_i   -> Ascache::req().pop()
 //   2. fill          fill_valid_i                 -> fill_data_i into Ascache::mshr_data(tag),
-//                                                    then Ascache::fill(tag)
+//                                                    then Ascache::fill(tag) (its victim chosen
+//                                                    now, installed at this edge)
 //   3. access        acc_valid_i                  -> Ascache::access(acc_line_i) with now = the
 //                                                    cycle; the result (hit + line, or the miss
 //                                                    kind, told by which counter moved) enters a
 //                                                    delay line of hit_latency registers
 //
-// and after the edge: rsp_* = the delay line's end, req_valid_o = Ascache::req().can_pop(next
+// and after the edge (Ascache::advance to the next cycle: the fill installed, its MSHR free):
+// rsp_* = the delay line's end, req_valid_o = Ascache::req().can_pop(next
 // cycle) (a request is visible the cycle after its miss, as Ascache pushes it with ready now + 1),
 // req_line_o / req_tag_o = its head, mshr_busy_o, cnt_* = Ascache::mshrs_busy(), stats(). Every
 // output is registered (no combinational path from an input), as in the RTL. rsp_hit_o ..
@@ -164,10 +166,12 @@ class AscacheTwin : public sc_core::sc_module {
       return;
     }
     const Cycle now = cycle_;
+    cache_.advance(now);
     // 1. The request at the head leaves if the memory side takes it.
     TimedFifo<MemReq>& rq = cache_.req();
     if (rq.can_pop(now) && req_ready_i.read()) rq.pop();
-    // 2. Fill, then 3. access: the cycle model's order (the vtu installs before trv/ist look up).
+    // 2. Fill, then 3. access: the cycle model's order (the vtu's fill chooses its victim from the
+    // state at the cycle's start; its line is installed at this edge, after the accesses).
     if (fill_valid_i.read()) {
       used_ = true;
       const uint32_t tag = fill_tag_i.read();
@@ -180,7 +184,6 @@ class AscacheTwin : public sc_core::sc_module {
     Rsp in;
     if (acc_valid_i.read()) {
       used_ = true;
-      cache_.now = now;
       const CacheStats before = cache_.stats();
       const uint8_t* p = cache_.access(acc_line_i.read());
       const CacheStats& after = cache_.stats();
@@ -202,7 +205,7 @@ class AscacheTwin : public sc_core::sc_module {
       if (out.hit) held_data_ = out.data;
     }
     held_.valid = out.valid;
-    ++cycle_;
+    cache_.advance(++cycle_);
     write_outputs();
   }
 

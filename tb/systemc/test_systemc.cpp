@@ -264,6 +264,7 @@ TEST(Ascache, LruHitMissAndFill) {
   // One set of two ways, 16-byte lines.
   sc::Ascache c("c", {32, 2, 16, 2, 1}, 1000, 16);
   ASSERT_EQ(c.sets(), 1u);
+  sc::Cycle now = 0;
   auto fetch = [&](uint64_t line) {
     EXPECT_EQ(c.access(line), nullptr);
     ASSERT_TRUE(c.req().can_pop(~0ull));
@@ -271,7 +272,12 @@ TEST(Ascache, LruHitMissAndFill) {
     EXPECT_EQ(q.addr, 1000 + line * 16);
     EXPECT_EQ(q.bytes, 16u);
     for (uint32_t i = 0; i < 16; ++i) q.data[i] = uint8_t(line * 16 + i);
-    c.fill(q.tag);
+    c.advance(++now);
+    c.fill(q.tag);  // installed at this cycle's edge: a miss (merged) in its own cycle
+    EXPECT_EQ(c.access(line), nullptr);
+    EXPECT_EQ(c.mshrs_busy(), 1u);
+    c.advance(++now);
+    EXPECT_EQ(c.mshrs_busy(), 0u);
   };
   fetch(0);
   fetch(1);
@@ -285,9 +291,10 @@ TEST(Ascache, LruHitMissAndFill) {
   EXPECT_TRUE(c.present(2));
   ASSERT_NE(c.access(2), nullptr);
   EXPECT_EQ(c.access(2)[3], 2 * 16 + 3);
-  EXPECT_EQ(c.stats().accesses, 7u);
+  EXPECT_EQ(c.stats().accesses, 10u);
   EXPECT_EQ(c.stats().hits, 4u);
-  EXPECT_EQ(c.stats().misses, 3u);
+  EXPECT_EQ(c.stats().misses, 6u);
+  EXPECT_EQ(c.stats().mshr_merges, 3u);
   EXPECT_EQ(c.stats().fills, 3u);
   EXPECT_EQ(c.stats().set_full, 0u);
 }
@@ -298,11 +305,14 @@ TEST(Ascache, PinnedUntilFirstHit) {
   // One set of two ways, 16-byte lines, three MSHRs.
   sc::Ascache c("c", {32, 2, 16, 3, 1}, 0, 16);
   ASSERT_EQ(c.sets(), 1u);
-  auto fill_next = [&] {
+  sc::Cycle now = 0;
+  auto fill_next = [&] {  // a fill in a cycle of its own, then the next cycle
     ASSERT_TRUE(c.req().can_pop(~0ull));
     const sc::MemReq q = c.req().pop();
     for (uint32_t i = 0; i < 16; ++i) q.data[i] = uint8_t(q.addr + i);
+    c.advance(++now);
     c.fill(q.tag);
+    c.advance(++now);
   };
   EXPECT_EQ(c.access(0), nullptr);  // MSHR 0
   EXPECT_EQ(c.access(1), nullptr);  // MSHR 1: both ways awaited
@@ -348,11 +358,56 @@ TEST(Ascache, MshrMergeAndFull) {
   EXPECT_EQ(c.mshrs_busy(), 2u);
   const sc::MemReq a = c.req().pop();
   EXPECT_EQ(a.addr, 7u * 32);
+  c.advance(1);
   c.fill(a.tag);
+  EXPECT_EQ(c.access(11), nullptr);  // the fill's MSHR is busy until the cycle's edge: full
+  EXPECT_EQ(c.stats().mshr_full, 2u);
+  EXPECT_EQ(c.mshrs_busy(), 2u);
+  c.advance(2);
   EXPECT_EQ(c.mshrs_busy(), 1u);
   EXPECT_NE(c.access(7), nullptr);  // hit now, while line 9 is still outstanding
   EXPECT_EQ(c.access(11), nullptr);  // the freed MSHR takes it
   EXPECT_EQ(c.req().size(), 2u);
+}
+
+// The fill acts at its cycle's closing edge: its victim is chosen from the state at the cycle's
+// start, the cycle's accesses still hit the victim's old line (its old bytes) and merge on the
+// filled one, the fill's MSHR is free from the next cycle, and one fill per cycle, before the
+// cycle's accesses.
+TEST(Ascache, FillAtTheCyclesEdge) {
+  sc::Ascache c("c", {32, 2, 16, 3, 1}, 0, 16);  // one set of two ways
+  sc::Cycle now = 0;
+  auto fill = [&](uint64_t line, uint8_t v, bool next_cycle = true) {
+    EXPECT_EQ(c.access(line), nullptr);
+    const sc::MemReq q = c.req().pop();
+    std::memset(q.data, v, 16);
+    if (next_cycle) c.advance(++now);
+    c.fill(q.tag);
+  };
+  fill(0, 10);
+  c.advance(++now);
+  fill(1, 11);
+  c.advance(++now);
+  ASSERT_NE(c.access(0), nullptr);  // unpins 0 and 1, 1 the most recent
+  ASSERT_NE(c.access(1), nullptr);
+  EXPECT_EQ(c.access(2), nullptr);  // MSHR for line 2
+  const sc::MemReq q = c.req().pop();
+  std::memset(q.data, 12, 16);
+  c.advance(++now);
+  c.fill(q.tag);                        // victim: line 0, the least recent at the cycle's start
+  const uint8_t* p = c.access(0);       // still there in the fill's cycle, its old bytes
+  ASSERT_NE(p, nullptr);
+  EXPECT_EQ(p[0], 10);
+  EXPECT_EQ(c.access(2), nullptr);      // not yet: merged into the fill's MSHR
+  EXPECT_EQ(c.stats().mshr_merges, 1u);
+  EXPECT_THROW(c.fill(q.tag), std::logic_error);  // one fill per cycle (and after an access)
+  c.advance(++now);
+  EXPECT_FALSE(c.present(0));  // the hit in the fill's cycle did not save it
+  EXPECT_TRUE(c.present(1));
+  p = c.access(2);
+  ASSERT_NE(p, nullptr);
+  EXPECT_EQ(p[0], 12);
+  EXPECT_EQ(c.mshrs_busy(), 0u);
 }
 
 // ---- membus -------------------------------------------------------------------------------------
