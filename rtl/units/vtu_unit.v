@@ -118,18 +118,26 @@ module vtu_unit #(
   // ---- 3. the head line's groups or records ---------------------------------------------------
   // With the queue empty, the line whose last beat arrives is the head at once (its first group
   // or record is driven in that cycle, from the buffer with the beat merged in), as the model
-  // starts a line in the cycle of its mem_resp.
+  // starts a line in the cycle of its mem_resp. Otherwise the head is the queue's: its buffer,
+  // port, MSHR and line index read a cycle ahead into registers (hd_*_q, below), so that the
+  // group or record driven into vtu.v comes from registers, not through the queue's and the
+  // buffers' read (issue 26's timing; the same cycles and bits).
+  reg  [LW-1:0]     hd_buf_q;
+  reg               hd_tri_q;
+  reg  [MB_-1:0]    hd_tag_q;
+  reg  [LINE_W-1:0] hd_line_q;
   wire              push   = beat && beat_last_i && !bypass;
   wire              direct = push && (cnt_q == {(QB+1){1'b0}});
-  wire              h_tri  = direct ? (bport == 2'd2) : q_line[head_q][MB_];
-  wire [MB_-1:0]    h_tag  = direct ? beat_tag_i : q_line[head_q][MB_-1:0];
-  wire [IB-1:0]     h_idx  = (h_tri ? TRI_BASE : {IB{1'b0}}) + {{(IB-MB_){1'b0}}, h_tag};
-  wire [LW-1:0]     h_buf  = direct ? b_line : buf_q[h_idx];
-  wire [LINE_W-1:0] h_line = line_q[h_idx];
+  wire              h_tri  = direct ? (bport == 2'd2) : hd_tri_q;
+  wire [MB_-1:0]    h_tag  = direct ? beat_tag_i : hd_tag_q;
+  wire [LW-1:0]     h_buf  = direct ? b_line : hd_buf_q;
+  wire [LINE_W-1:0] h_line = direct ? line_q[b_idx] : hd_line_q;  // direct: b_idx is the head's
   // Nodes or records of the line inside the image: n = min(per line, count - first); a node line
   // is ceil(n/4) groups (at least one cycle either way, as the model's).
-  wire [31:0] per   = h_tri ? TREC : NREC;
-  wire [31:0] first = {{(32-LINE_W){1'b0}}, h_line} * per;
+  localparam [31:0] TREC32 = TREC, NREC32 = NREC;
+  wire [31:0] per   = h_tri ? TREC32 : NREC32;
+  wire [31:0] hl32  = {{(32-LINE_W){1'b0}}, h_line};
+  wire [31:0] first = h_tri ? hl32 * TREC32 : hl32 * NREC32;  // by constants
   wire [31:0] avail = (h_tri ? tri_count_i : node_count_i) - first;
   wire [31:0] nrec  = (avail < per) ? avail : per;
   wire [31:0] nunit = h_tri ? nrec : (nrec + 32'd3) >> 2;
@@ -244,6 +252,32 @@ module vtu_unit #(
   assign busy_o = (inside_q != 8'd0) || drive;
 
   wire [QB-1:0] tail = head_q + cnt_q[QB-1:0];
+
+  // The head after this edge, read ahead into hd_*_q: the line of this cycle's last beat when it
+  // becomes the head (the queue empty, or its one line leaving, and the beat's line not done in
+  // this cycle), else the queue's next entry when the head line leaves and another waits; else
+  // the head stays (its buffer changes only in records already driven: a record is written back
+  // as it leaves vtu.v, after it was driven; the queue's lines have all their beats).
+  wire              pop     = take && last;
+  wire [QB-1:0]     nx_head = head_q + 1'b1;
+  wire [1+MB_-1:0]  nx_ent  = q_line[nx_head];
+  wire [IB-1:0]     nx_idx  = (nx_ent[MB_] ? TRI_BASE : {IB{1'b0}}) + {{(IB-MB_){1'b0}}, nx_ent[MB_-1:0]};
+  wire              hd_beat = push && ((cnt_q == {(QB+1){1'b0}}) ? !pop
+                                                                  : (pop && cnt_q == {{QB{1'b0}}, 1'b1}));
+  wire              hd_next = pop && (cnt_q > {{QB{1'b0}}, 1'b1});
+  always @(posedge clk_i) begin  // no reset: read only while the queue holds a line
+    if (hd_beat) begin
+      hd_buf_q  <= b_line;
+      hd_tri_q  <= bport == 2'd2;
+      hd_tag_q  <= beat_tag_i;
+      hd_line_q <= line_q[b_idx];
+    end else if (hd_next) begin
+      hd_buf_q  <= buf_q[nx_idx];
+      hd_tri_q  <= nx_ent[MB_];
+      hd_tag_q  <= nx_ent[MB_-1:0];
+      hd_line_q <= line_q[nx_idx];
+    end
+  end
   integer i, l;
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
@@ -257,7 +291,7 @@ module vtu_unit #(
       cnt_q <= cnt_q + {{QB{1'b0}}, push} - {{QB{1'b0}}, take && last};
       if (take) begin
         rec_q <= last ? {RIB{1'b0}} : rec_q + 1'b1;
-        if (last) head_q <= head_q + 1'b1;
+        if (last) head_q <= nx_head;
       end
       inside_q   <= inside_q + {7'd0, take} - {7'd0, o_valid};
       cnt_busy_o <= cnt_busy_o + {63'd0, take};
