@@ -27,6 +27,7 @@ class AscacheRtlT final : public AscacheRtl {
   AscacheRtlT() { vl::async_reset(m_); }
   ~AscacheRtlT() override { m_.final(); }
 
+  unsigned ports() const override { return PORTS; }
   std::string name() const override {
     return "Verilated ascache " + std::to_string(SETS) + "x" + std::to_string(WAYS) + "x" +
            std::to_string(LB) + "B, " + std::to_string(MSHRS) + " MSHRs, " +

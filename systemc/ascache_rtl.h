@@ -42,6 +42,7 @@ class AscacheRtl {
   // std::logic_error on a difference.
   virtual void check(uint64_t hits, uint64_t misses, uint64_t merges, uint64_t full,
                      uint64_t set_full, uint64_t fills) = 0;
+  virtual unsigned ports() const = 0;     // accesses per cycle (PORTS)
   virtual std::string name() const = 0;  // "Verilated ascache 64x4x64B, 8 MSHRs, 8 ports"
 };
 

@@ -74,6 +74,13 @@ class Rtu : public sc_core::sc_module {
                             " ways x " + std::to_string(c->line_bytes()) + " B, " +
                             std::to_string(c->mshrs_total()) + " MSHRs) in this build; built: " +
                             rtl_ascache_built());
+        // A cycle's accesses to one cache: one per trv pipe (node, list), one per ist unit (tri).
+        const uint32_t most = c == &tri ? cfg.ist_units : cfg.trv_pipes;
+        if (most > r->ports())
+          throw ConfigError("--rtl ascache: " + r->name() + " takes " +
+                            std::to_string(r->ports()) + " accesses a cycle, the " +
+                            c->basename() + " may get " + std::to_string(most) + " (" +
+                            (c == &tri ? "--ist-units" : "--trv-pipes") + ")");
         c->bind_rtl(std::move(r));
       }
     if (cfg.trv_view == UnitView::twin)

@@ -691,6 +691,9 @@ TEST(AscacheRtlFrame, RefusesWhatIsNotBuilt) {
                                    "no Verilated ascache for the node_cache (8 sets x 4 ways");
   EXPECT_NE(std::string(r.error).find("64 sets x 4 ways x 64 B, 8 MSHRs"), std::string::npos)
       << r.error;
+  cfg.node_cache.size_bytes = 16 * 1024;  // built, but more pipes than its 8 ports a cycle
+  cfg.trv_pipes = 9;
+  expect_refused(tiny_scene(), tc, cfg, "takes 8 accesses a cycle, the node_cache may get 9");
 }
 
 // ---- every subset of the units in RTL -----------------------------------------------------------
