@@ -127,10 +127,11 @@ void Ascache::fill(uint32_t tag) {
   pend_.victim = victim;
 }
 
-// The fill of an earlier cycle, at that cycle's closing edge: its line in the victim way (the most
-// recently used, after that cycle's hits), pinned, and its MSHR free.
-void Ascache::settle() {
-  if (!pend_.valid || now <= pend_.at) return;
+// The fill of an earlier cycle, at that cycle's closing edge: its line in the victim way, pinned,
+// and its MSHR free. Its LRU stamp stays the victim's: a pinned way is no victim, and its first
+// hit makes it the most recent (the others' order is the same whatever its stamp was), as
+// ascache.v, which leaves the ranks.
+void Ascache::install() {
   Mshr& m = mshr_[pend_.tag];
   if (pend_.victim != SIZE_MAX) {
     tag_[pend_.victim] = m.line + 1;

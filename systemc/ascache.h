@@ -110,7 +110,11 @@ class Ascache : public sc_core::sc_module {
   };
   Pending pend_;
   Cycle accessed_ = kNever;  // the cycle of the last access (a fill must come before them)
-  void settle();
+  // Every access and fill checks for a fill of an earlier cycle (inline: the frame's inner loop).
+  void settle() {
+    if (pend_.valid && now > pend_.at) install();
+  }
+  void install();
   TimedFifo<MemReq> req_;
   CacheStats st_;
   // RTL view: the Verilated cache, and the requests queued in it (line, MSHR) that the bus has not
