@@ -118,16 +118,26 @@ module ist_unit #(
   localparam integer EW  = 2 + 9 * W + 8 * W + SW;               // a test entering ist.v
 
   // ---- the queue --------------------------------------------------------------------------------
-  // Entry e's registers (g_q[e], below), read through these.
-  wire [SLOT_BITS-1:0] q_slot  [0:QN-1];
-  wire [31:0]          q_pos   [0:QN-1];
-  wire [31:0]          q_tri   [0:QN-1];
-  wire [31:0]          q_ready [0:QN-1];
+  // Entry e's values after this edge (its registers, or what this cycle's pushes write into them:
+  // g_q[e], below), read through these by the head window.
+  wire [SLOT_BITS-1:0] n_slot  [0:QN-1];
+  wire [31:0]          n_pos   [0:QN-1];
+  wire [31:0]          n_tri   [0:QN-1];
+  wire [31:0]          n_ready [0:QN-1];
   reg [QBITS-1:0]     head_q;
   reg [QBITS:0]       cnt_q;
 
+  // The head window: entries head_q + u (u < IST) in registers, refilled at every edge from the
+  // entries' values after it (at the new head, this cycle's pushes included), so that the units'
+  // triangle-cache accesses and ray reads start from registers, not from a read of the queue
+  // (issue 26's timing; the same cycles and bits). Beyond cnt_q the window is not read.
+  reg [SLOT_BITS-1:0] w_slot_q  [0:IST-1];
+  reg [31:0]          w_pos_q   [0:IST-1];
+  reg [31:0]          w_tri_q   [0:IST-1];
+  reg [31:0]          w_ready_q [0:IST-1];
+
   assign head_valid_o = (cnt_q != {(QBITS+1){1'b0}});
-  assign head_ready_o = q_ready[head_q];
+  assign head_ready_o = w_ready_q[0];
   assign count_o      = {{(15-QBITS){1'b0}}, cnt_q} + {10'd0, nmq};
 
   // ---- 2. issue: unit u takes entry u while every unit before it took its entry -----------------
@@ -139,19 +149,17 @@ module ist_unit #(
   genvar u;
   generate
     for (u = 0; u < IST; u = u + 1) begin : g_issue
-      localparam [QBITS-1:0] UQ = u;
       localparam [4:0] U5 = u;
-      wire [QBITS-1:0] e = head_q + UQ;
-      wire [31:0] dt = q_ready[e] - now_i;
+      wire [31:0] dt = w_ready_q[u] - now_i;
       assign rdy[u] = ({{(31-QBITS){1'b0}}, cnt_q} > u) && ($signed(dt) <= 0) && (U5 < units_i);
       assign take[u] = &rdy[u:0];
       assign hit[u]   = take[u] && rsp_hit_i[u];
       assign miss[u]  = take[u] && !rsp_hit_i[u];
       assign acc_valid_o[u] = take[u];
-      assign ray_slot_o[u*SLOT_BITS +: SLOT_BITS] = q_slot[e];  // a miss copies it to the tail
-      assign u_pos[u*32 +: 32] = q_pos[e];
-      // The record: line q_tri / RPL, record q_tri % RPL of it.
-      wire [31:0] tidx = q_tri[e];
+      assign ray_slot_o[u*SLOT_BITS +: SLOT_BITS] = w_slot_q[u];  // a miss copies it to the tail
+      assign u_pos[u*32 +: 32] = w_pos_q[u];
+      // The record: line tri / RPL, record tri % RPL of it.
+      wire [31:0] tidx = w_tri_q[u];
       assign u_tri[u*32 +: 32] = tidx;
       if (RPL > 1) begin : g_line
         assign acc_line_o[u*32 +: 32] = tidx >> RPLB;
@@ -177,7 +185,7 @@ module ist_unit #(
       // The test entering ist.v: {k, c8 .. c0, the ray, slot, skip, list position, id}; the side
       // data rides as ist.v's tag (with k and the plane c0 .. c2, taken from the record here).
       wire [EW-1:0] ein = {k, c8, c7, c6, c5, c4, c3, c2, c1, c0, ray[0 +: 8*W],
-                           q_slot[e], skip, q_pos[e], id};
+                           w_slot_q[u], skip, w_pos_q[u], id};
       wire          ev;
       wire [EW-1:0] ed;
       if (ENTRY_REG != 0) begin : g_ereg  // registered: ist.v's level 1 starts from a register
@@ -362,6 +370,21 @@ module ist_unit #(
 
   always @(posedge clk_i) out_r_q <= next_now ? g_out_r : ring_r[rd1];
 
+  // The head window's refill: entry head_q + npop + u after this edge (no reset: read only below
+  // cnt_q, and refilled at every edge).
+  generate
+    for (u = 0; u < IST; u = u + 1) begin : g_window
+      localparam [QBITS-1:0] UQ = u;
+      wire [QBITS-1:0] w_at = head_q + npop16[QBITS-1:0] + UQ;
+      always @(posedge clk_i) begin
+        w_slot_q[u]  <= n_slot[w_at];
+        w_pos_q[u]   <= n_pos[w_at];
+        w_tri_q[u]   <= n_tri[w_at];
+        w_ready_q[u] <= n_ready[w_at];
+      end
+    end
+  endgenerate
+
   // ---- the queue's registers: each entry written from one of this cycle's push sources ---------
   // Pipe p's run rotated: element i of g_rot[p] is {list position, triangle index} of word
   // (i - base_p) mod J. J: WORDS rounded up to a power of two, at most the queue (a run is no
@@ -397,10 +420,6 @@ module ist_unit #(
       localparam [QBITS-1:0] E = ge;
       reg [SLOT_BITS-1:0] slot_q;
       reg [31:0]          pos_q, tri_q, ready_q;
-      assign q_slot[ge] = slot_q;
-      assign q_pos[ge] = pos_q;
-      assign q_tri[ge] = tri_q;
-      assign q_ready[ge] = ready_q;
       // The sources are disjoint (consecutive ranges of one cycle's pushes): their values OR'd.
       reg                 we;
       reg [SLOT_BITS-1:0] w_slot;
@@ -437,6 +456,11 @@ module ist_unit #(
           tri_q   <= w_tri;
           ready_q <= w_ready;
         end
+      // The entry after this edge (the head window's refill reads it).
+      assign n_slot[ge]  = we ? w_slot : slot_q;
+      assign n_pos[ge]   = we ? w_pos : pos_q;
+      assign n_tri[ge]   = we ? w_tri : tri_q;
+      assign n_ready[ge] = we ? w_ready : ready_q;
     end
   endgenerate
 
