@@ -634,23 +634,55 @@ module trv_unit #(
     if (c_vld) pushes = pushes + 1'b1;
   end
 
-  // The window after the edge: entry k is at head_q + pops + k.
+  // The window after the edge: entry k is at head_q + pops + k. An entry already queued is
+  // candidate j = pops + k (j < 2 PIPES) of the entries behind the head: the window's own
+  // registers for j < PIPES, the array at head_q + j beyond, each with the stack pointer the split
+  // stage writes at this edge. The array is read at addresses from registers (head_q), in parallel
+  // with the ready compares and the pipes' go chain: only a select by pops follows them (not the
+  // array's read at head_q + pops + k).
+  reg [SLOT_BITS-1:0] cj_slot [0:2*PIPES-1];
+  reg [31:0]          cj_ready[0:2*PIPES-1];
+  reg [6:0]           cj_sp   [0:2*PIPES-1];
+  reg [SLOT_BITS-1:0] cj_pos;
+  integer cj, cx;
+  always @* begin
+    for (cj = 0; cj < 2 * PIPES; cj = cj + 1) begin
+      cj_pos = head_q + cj[SLOT_BITS-1:0];
+      if (cj < PIPES) begin
+        cj_slot[cj] = w_slot_q[cj];
+        cj_ready[cj] = w_ready_q[cj];
+        cj_sp[cj] = w_sp_q[cj];
+      end else begin
+        cj_slot[cj] = fq_slot[cj_pos];
+        cj_ready[cj] = fq_ready[cj_pos];
+        cj_sp[cj] = fq_sp[cj_pos];
+      end
+      for (cx = 0; cx < PIPES; cx = cx + 1)
+        if (s_push[cx] && wat_q[cx] == cj_pos) cj_sp[cj] = wsp_q[cx] + 7'd1;
+    end
+  end
   reg [SLOT_BITS-1:0] wn_slot [0:PIPES-1];
   reg [31:0]          wn_ready[0:PIPES-1];
   reg [6:0]           wn_sp   [0:PIPES-1];
   reg [SLOT_BITS-1:0] w_pos;
   reg [SLOT_BITS:0]   w_rel;
-  integer k, x;
+  integer j, k, x;
   always @* begin
+    j = 0;  // each branch below runs only one of the two loops: no latch for the other's index
+    x = 0;
     for (k = 0; k < PIPES; k = k + 1) begin
       w_rel = pops + k[SLOT_BITS:0];
       w_pos = head_q + w_rel[SLOT_BITS-1:0];
-      wn_slot[k] = fq_slot[w_pos];
-      wn_ready[k] = fq_ready[w_pos];
-      wn_sp[k] = fq_sp[w_pos];
+      wn_slot[k] = cj_slot[k];
+      wn_ready[k] = cj_ready[k];
+      wn_sp[k] = cj_sp[k];
       if (w_rel < cnt_q) begin  // an entry already queued
-        for (x = 0; x < PIPES; x = x + 1)
-          if (s_push[x] && wat_q[x] == w_pos) wn_sp[k] = wsp_q[x] + 7'd1;
+        for (j = 0; j < 2 * PIPES; j = j + 1)
+          if (w_rel == j[SLOT_BITS:0]) begin
+            wn_slot[k] = cj_slot[j];
+            wn_ready[k] = cj_ready[j];
+            wn_sp[k] = cj_sp[j];
+          end
       end else begin            // one pushed in this cycle (or none: not read)
         for (x = 0; x < IST; x = x + 1)
           if (rq_v[x] && res_at[x*SLOT_BITS +: SLOT_BITS] == w_pos) begin
