@@ -19,10 +19,11 @@ inline constexpr uint32_t kVtuLevels = 2, kIstLevels = 10, kHitLevels = 24, kRgu
 // third and fourth, its registered results written back), so the ray may be taken in the sixth.
 inline constexpr uint32_t kTrvRtlMinLoop = 6;
 // Cycles from a ray's issue (the rgu's primary ray, or the hit unit's shadow ray handed over) to
-// its entry into the trv's ready queue: trv_unit.v clips it against the scene box on the way
-// (trv.v op 1 with a register after its subtraction, its multiplication and its comparisons),
-// its result written with the queue push at the end of the third cycle after the issue.
-inline constexpr uint32_t kTrvEntryDelay = 3;
+// its entry into the trv's ready queue: trv_unit.v registers the entering ray and clips it against
+// the scene box on the way (trv.v op 1 with a register after its subtraction, its multiplication,
+// its comparisons and its comparator tree), its result written with the queue push at the end of
+// the fifth cycle after the issue.
+inline constexpr uint32_t kTrvEntryDelay = 5;
 
 struct CacheConfig {
   uint32_t size_bytes = 16 * 1024;

@@ -36,10 +36,10 @@
 //      check), and nothing else reads its slot or stack in between. A ray in its read stage or
 //      outcome or its list step is in no queue until the step's effects;
 //   6. a ray from the rgu (in_*: a new primary ray or a shadow ray in its slot) is written into
-//      its slot and clipped to the scene box over this cycle and the next three (trv.v, op 1:
+//      its slot, registered, and clipped to the scene box over the next five cycles (trv.v, op 1:
 //      hls::trv_clip_box; the ray's start pass reads the result: the model clips in that pass,
-//      from the same inputs); at the clip's end, three cycles later, it enters the queue, ready
-//      the cycle after (systemc/config.h kTrvEntryDelay; the model's Rgu delays its push);
+//      from the same inputs); at the clip's end, five cycles after the entry, it enters the queue,
+//      ready the cycle after (systemc/config.h kTrvEntryDelay; the model's Rgu delays its push);
 //   7. the split stage: the splits of this cycle's outcomes' inner nodes.
 // Queue pushes of a cycle are appended in that order (the last cycle's last results, outcomes
 // 0.., list stage's effects, rgu);
@@ -505,29 +505,39 @@ module trv_unit #(
 
   // ---- 6. the clip of the entering ray (trv.v, op 1) -------------------------------------------
   // Packing of in_ray_i, lowest bits first: tmax, tmin, inv z, y, x, d z, y, x, o z, y, x.
-  // The clip runs over four cycles, the ray's entry and the next three (trv.v with a register
-  // after its subtraction, its multiplication and its comparisons; the slot rides as its tag): the
-  // ray, its state and shadow flag are written at the entry, the clip's result at its end, where
-  // the ray enters the queue (ready the next cycle): kTrvEntryDelay = 3 cycles after it left the
-  // rgu or the hit unit (the model's Rgu delays its push the same way).
+  // The ray, its state and shadow flag are written into its slot at the entry. The clip runs over
+  // the next CL cycles: the entering ray registered (so that rtu.v's choice of the primary or the
+  // shadow ray ends at a register), then trv.v with a register after its subtraction, its
+  // multiplication, its comparisons (and its comparator tree, CLIP_S4 = 1; the slot rides as its
+  // tag). At the clip's end the result is written and the ray enters the queue (ready the next
+  // cycle): CL = kTrvEntryDelay cycles after it left the rgu or the hit unit (systemc/config.h;
+  // the model's Rgu delays its push the same way).
+  localparam integer CLIP_S4 = 1;
+  localparam integer CL = 4 + CLIP_S4;
   wire         c_rdy, c_vld, c_op, c_hit, c_below;
   wire [SLOT_BITS-1:0] c_slot;
   wire [1:0]   c_visit;
   wire [W-1:0] c_tsplit, c_tnear, c_tfar, c_far_tfar;
   wire [31:0]  c_node, c_far_node;
-  reg  [1:0]   cv_q;  // a clip in its second or third cycle (between trv.v's registers)
+  reg  [CL-2:0] cv_q;  // the clips in flight: [0] the registered entry, then between trv.v's registers
+  reg  [11*W-1:0]      e_ray_q;
+  reg  [SLOT_BITS-1:0] e_slot_q;
+  always @(posedge clk_i) begin
+    e_ray_q <= in_ray_i;
+    e_slot_q <= in_slot_i;
+  end
   trv #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(0),
-        .S1(1), .S2(1), .S3(1), .TAG_BITS(SLOT_BITS)) u_clip (
-    .clk_i(clk_i), .rst_ni(rst_ni), .widen_i(widen_i), .in_valid_i(in_valid_i), .in_ready_o(c_rdy),
+        .S1(1), .S2(1), .S3(1), .S4(CLIP_S4), .TAG_BITS(SLOT_BITS)) u_clip (
+    .clk_i(clk_i), .rst_ni(rst_ni), .widen_i(widen_i), .in_valid_i(cv_q[0]), .in_ready_o(c_rdy),
     .in_op_i(1'b1), .in_axis_i(2'd0), .in_split_i({W{1'b0}}), .in_node_i(32'd0),
-    .in_child_i(32'd0), .in_o_x_i(in_ray_i[10*W +: W]), .in_o_y_i(in_ray_i[9*W +: W]),
-    .in_o_z_i(in_ray_i[8*W +: W]), .in_d_x_i(in_ray_i[7*W +: W]), .in_d_y_i(in_ray_i[6*W +: W]),
-    .in_d_z_i(in_ray_i[5*W +: W]), .in_inv_x_i(in_ray_i[4*W +: W]),
-    .in_inv_y_i(in_ray_i[3*W +: W]), .in_inv_z_i(in_ray_i[2*W +: W]),
-    .in_tnear_i(in_ray_i[W +: W]), .in_tfar_i(in_ray_i[0 +: W]),
+    .in_child_i(32'd0), .in_o_x_i(e_ray_q[10*W +: W]), .in_o_y_i(e_ray_q[9*W +: W]),
+    .in_o_z_i(e_ray_q[8*W +: W]), .in_d_x_i(e_ray_q[7*W +: W]), .in_d_y_i(e_ray_q[6*W +: W]),
+    .in_d_z_i(e_ray_q[5*W +: W]), .in_inv_x_i(e_ray_q[4*W +: W]),
+    .in_inv_y_i(e_ray_q[3*W +: W]), .in_inv_z_i(e_ray_q[2*W +: W]),
+    .in_tnear_i(e_ray_q[W +: W]), .in_tfar_i(e_ray_q[0 +: W]),
     .in_lo_x_i(box_i[0 +: W]), .in_lo_y_i(box_i[W +: W]), .in_lo_z_i(box_i[2*W +: W]),
     .in_hi_x_i(box_i[3*W +: W]), .in_hi_y_i(box_i[4*W +: W]), .in_hi_z_i(box_i[5*W +: W]),
-    .in_tag_i(in_slot_i), .out_valid_o(c_vld), .out_ready_i(1'b1), .out_op_o(c_op), .out_hit_o(c_hit),
+    .in_tag_i(e_slot_q), .out_valid_o(c_vld), .out_ready_i(1'b1), .out_op_o(c_op), .out_hit_o(c_hit),
     .out_visit_o(c_visit), .out_below_o(c_below), .out_tsplit_o(c_tsplit),
     .out_tnear_o(c_tnear), .out_tfar_o(c_tfar), .out_node_o(c_node),
     .out_far_node_o(c_far_node), .out_far_tfar_o(c_far_tfar), .out_tag_o(c_slot));
@@ -720,7 +730,7 @@ module trv_unit #(
       shadow_q[in_slot_i] <= in_shadow_i;
       ray_q[in_slot_i] <= in_ray_i;
     end
-    if (c_vld) begin  // the clip of the ray that entered three cycles before: to the queue
+    if (c_vld) begin  // the clip of the ray that entered CL cycles before: to the queue
       clip_q[c_slot] <= c_hit;
       tnear_q[c_slot] <= c_tnear;
       tfar_q[c_slot] <= c_tfar;
@@ -896,7 +906,7 @@ module trv_unit #(
       wv_q <= {PIPES{1'b0}};
       sv_q <= {PIPES{1'b0}};
       rq_v <= {IST{1'b0}};
-      cv_q <= 2'b00;
+      cv_q <= {(CL-1){1'b0}};
       s_push <= {PIPES{1'b0}};
       err_q <= 1'b0;
       inc_q <= {(NC*8){1'b0}};
@@ -914,7 +924,7 @@ module trv_unit #(
       wv_q <= d_vld;
       sv_q <= p_split;
       rq_v <= res_done;
-      cv_q <= {cv_q[0], in_valid_i};
+      cv_q <= {cv_q[CL-3:0], in_valid_i};
       s_push <= d_push;
       err_q <= err_o;
       inc_q <= inc;
