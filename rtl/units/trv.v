@@ -253,44 +253,59 @@ module trv #(
   wire [W-1:0] m01, m23, n01, n23, t0, t1;
   wire         t1_lt_t0;
   wire [W-1:0] t1_unused_min;  // min(t1, t0): not needed
-  wire [5:0]   l4_unused_lt;       // lt of the min/max comparators: not needed
-  wire [6:0]   l4_unused_eq, l4_unused_v, l4_unused_r;
+  wire [5:0]   l4_lt, l4_eq;       // the min/max comparators' outcomes (select the widened leaves)
+  wire [6:0]   l4_unused_v, l4_unused_r;
+  wire         l4_unused_eq;
   wire [7*W-1:0] l4_unused_mm;  // the other of min/max
   fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(0)) u_l4_m01 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(1'b1), .in_ready_o(l4_unused_r[0]),
     .in_a_i(c3_tnear), .in_b_i(sl_x), .out_valid_o(l4_unused_v[0]), .out_ready_i(1'b1),
-    .out_lt_o(l4_unused_lt[0]), .out_eq_o(l4_unused_eq[0]), .out_min_o(l4_unused_mm[0*W +: W]),
+    .out_lt_o(l4_lt[0]), .out_eq_o(l4_eq[0]), .out_min_o(l4_unused_mm[0*W +: W]),
     .out_max_o(m01));
   fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(0)) u_l4_m23 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(1'b1), .in_ready_o(l4_unused_r[1]),
     .in_a_i(sl_y), .in_b_i(sl_z), .out_valid_o(l4_unused_v[1]), .out_ready_i(1'b1),
-    .out_lt_o(l4_unused_lt[1]), .out_eq_o(l4_unused_eq[1]), .out_min_o(l4_unused_mm[1*W +: W]),
+    .out_lt_o(l4_lt[1]), .out_eq_o(l4_eq[1]), .out_min_o(l4_unused_mm[1*W +: W]),
     .out_max_o(m23));
   fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(0)) u_l4_t0 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(1'b1), .in_ready_o(l4_unused_r[2]),
     .in_a_i(m01), .in_b_i(m23), .out_valid_o(l4_unused_v[2]), .out_ready_i(1'b1),
-    .out_lt_o(l4_unused_lt[2]), .out_eq_o(l4_unused_eq[2]), .out_min_o(l4_unused_mm[2*W +: W]),
+    .out_lt_o(l4_lt[2]), .out_eq_o(l4_eq[2]), .out_min_o(l4_unused_mm[2*W +: W]),
     .out_max_o(t0));
   fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(0)) u_l4_n01 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(1'b1), .in_ready_o(l4_unused_r[3]),
     .in_a_i(c3_tfar), .in_b_i(sh_x), .out_valid_o(l4_unused_v[3]), .out_ready_i(1'b1),
-    .out_lt_o(l4_unused_lt[3]), .out_eq_o(l4_unused_eq[3]), .out_min_o(n01),
+    .out_lt_o(l4_lt[3]), .out_eq_o(l4_eq[3]), .out_min_o(n01),
     .out_max_o(l4_unused_mm[3*W +: W]));
   fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(0)) u_l4_n23 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(1'b1), .in_ready_o(l4_unused_r[4]),
     .in_a_i(sh_y), .in_b_i(sh_z), .out_valid_o(l4_unused_v[4]), .out_ready_i(1'b1),
-    .out_lt_o(l4_unused_lt[4]), .out_eq_o(l4_unused_eq[4]), .out_min_o(n23),
+    .out_lt_o(l4_lt[4]), .out_eq_o(l4_eq[4]), .out_min_o(n23),
     .out_max_o(l4_unused_mm[4*W +: W]));
   fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(0)) u_l4_t1 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(1'b1), .in_ready_o(l4_unused_r[5]),
     .in_a_i(n01), .in_b_i(n23), .out_valid_o(l4_unused_v[5]), .out_ready_i(1'b1),
-    .out_lt_o(l4_unused_lt[5]), .out_eq_o(l4_unused_eq[5]), .out_min_o(t1),
+    .out_lt_o(l4_lt[5]), .out_eq_o(l4_eq[5]), .out_min_o(t1),
     .out_max_o(l4_unused_mm[5*W +: W]));
+  // The hit's operands, tfar N ulps up and tnear N ulps down, widened at the tree's leaves and
+  // selected by the tree's own comparisons (max = b if a < b, min = b if b < a): the same muxes
+  // with add_ulps applied to each input, so this is add_ulps(t1, N, up) and add_ulps(t0, N, down)
+  // bit for bit, with the integer adds beside the comparator tree instead of after it.
+  wire [W-1:0] w_sl_x = add_ulps(sl_x, widen_i, 1'b0), w_sl_y = add_ulps(sl_y, widen_i, 1'b0);
+  wire [W-1:0] w_sl_z = add_ulps(sl_z, widen_i, 1'b0), w_tn = add_ulps(c3_tnear, widen_i, 1'b0);
+  wire [W-1:0] w_sh_x = add_ulps(sh_x, widen_i, 1'b1), w_sh_y = add_ulps(sh_y, widen_i, 1'b1);
+  wire [W-1:0] w_sh_z = add_ulps(sh_z, widen_i, 1'b1), w_tf = add_ulps(c3_tfar, widen_i, 1'b1);
+  wire [W-1:0] w_m01 = l4_lt[0] ? w_sl_x : w_tn;
+  wire [W-1:0] w_m23 = l4_lt[1] ? w_sl_z : w_sl_y;
+  wire [W-1:0] w_t0  = l4_lt[2] ? w_m23 : w_m01;
+  wire [W-1:0] w_n01 = (!l4_lt[3] && !l4_eq[3]) ? w_sh_x : w_tf;
+  wire [W-1:0] w_n23 = (!l4_lt[4] && !l4_eq[4]) ? w_sh_z : w_sh_y;
+  wire [W-1:0] w_t1  = (!l4_lt[5] && !l4_eq[5]) ? w_n23 : w_n01;
   fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(0)) u_l4_hit (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(1'b1), .in_ready_o(l4_unused_r[6]),
-    .in_a_i(add_ulps(t1, widen_i, 1'b1)), .in_b_i(add_ulps(t0, widen_i, 1'b0)),
+    .in_a_i(w_t1), .in_b_i(w_t0),
     .out_valid_o(l4_unused_v[6]), .out_ready_i(1'b1),
-    .out_lt_o(t1_lt_t0), .out_eq_o(l4_unused_eq[6]), .out_min_o(t1_unused_min),
+    .out_lt_o(t1_lt_t0), .out_eq_o(l4_unused_eq), .out_min_o(t1_unused_min),
     .out_max_o(l4_unused_mm[6*W +: W]));
 
   // Outputs (split: systemc/trv.h's child order and interval update).
@@ -317,7 +332,7 @@ module trv #(
   wire unused_ok;
   assign unused_ok = ^{l1_unused_v, l1_unused_r, l1_unused_min, l1_unused_max, l2_unused_v,
                        l2_unused_r, l3_unused_eq, l3_unused_mm, l3_unused_v, l3_unused_r,
-                       l4_unused_lt, l4_unused_eq, l4_unused_v, l4_unused_r, l4_unused_mm,
+                       l4_unused_eq, l4_eq[2:0], l4_unused_v, l4_unused_r, l4_unused_mm,
                        t1_unused_min};
 
 endmodule
