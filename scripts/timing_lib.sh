@@ -10,7 +10,10 @@
 # One design: yosys maps it to the OSU 0.18 um standard cells (qflow-tech-osu018) and writes a
 # structural netlist; OpenSTA (`sta`) times it:
 #   read_verilog <sources>; chparam <parameters> <module>
-#   synth -noshare [-flatten] -top <module> -run :fine      (hierarchy kept for rtu.v whole)
+#   synth -noshare -flatten -top <module> -run :fine
+#     (rtu.v whole: its units kept as modules, each flattened inside: `hierarchy -top rtu;
+#     setattr -mod -set keep_hierarchy 1 rtu/c:* %M` first, so the operators of a unit are
+#     optimised together as in the unit alone, and paths between units stay visible by instance)
 #   memories: of at most TIMING_MEM_WORDS words, or read-only: memory_map (flip-flops / logic);
 #     larger: SRAM macros (TIMING_MEM_V below: the macro's pins are cut by timing cells)
 #   opt -fast -full; memory_map; opt -full; techmap; opt -fast
@@ -525,8 +528,8 @@ print("timing: %d buffers inserted" % nbuf)
 '
 
 # timing_design NAME MODULE CHPARAM [hier]: map and time one design (CHPARAM: "-set P V ..." or
-# empty; hier keeps the hierarchy: every module mapped once per parameter set, the netlist
-# hierarchical). Needs TIMING_TMP, TIMING_FO4 (timing_fo4's) and TIMING_MACRO (timing_macro_lib's
+# empty; hier keeps the top's instances as modules (each mapped once per parameter set, flattened
+# inside: its operators optimised together), the netlist hierarchical). Needs TIMING_TMP, TIMING_FO4 (timing_fo4's) and TIMING_MACRO (timing_macro_lib's
 # file). Sets T_STATUS (ok, or timeout: yosys did not finish in TIMING_TIMEOUT s), T_SECS (yosys
 # wall seconds; TIMING_WHOLE_TIMEOUT for hier), T_STA_SECS (the buffering and sta), T_CELLS (standard cells of the netlist, 0 for hier) and T_PATHS (the
 # paths.tsv file, see TIMING_PARSE_PY). Exits on a yosys or sta error. Cached in TIMING_CACHE: the
@@ -539,14 +542,16 @@ print("timing: %d buffers inserted" % nbuf)
 timing_design() {
   local name=$1 mod=$2 chp=$3 hier=${4:-} dir="$TIMING_TMP/$1" srcs script nkey skey pkey t0 rc=0
   local flatten=-flatten stat="stat -liberty $TIMING_LIBERTY" to=$TIMING_TIMEOUT
-  [ "$hier" = hier ] && { flatten=""; stat="stat -top $mod -liberty $TIMING_LIBERTY"; to=$TIMING_WHOLE_TIMEOUT; }
+  local keep=""
+  [ "$hier" = hier ] && { keep="hierarchy -top $mod; setattr -mod -set keep_hierarchy 1 $mod/c:* %M;"
+                          stat="stat -top $mod -liberty $TIMING_LIBERTY"; to=$TIMING_WHOLE_TIMEOUT; }
   mkdir -p "$dir"
   printf '%s\n' "$TIMING_ABC" > "$dir/abc.script"
   printf '%s\n' "$TIMING_MEM_V" > "$dir/mem_cut.v"
   cp "$TIMING_MACRO" "$dir/raycore_sram.lib"
   srcs=$(srcs_for "$mod")
   script="read_liberty -lib $TIMING_LIBERTY; read_liberty -lib DIR/raycore_sram.lib; read_verilog $srcs; \
-    ${chp:+chparam $chp $mod;} \
+    ${chp:+chparam $chp $mod;}${keep:+ $keep} \
     synth -noshare $flatten -top $mod -run :fine; \
     memory_map r:SIZE<=$TIMING_MEM_WORDS r:WR_PORTS=0; \
     techmap -map DIR/mem_cut.v t:\$mem_v2; \
