@@ -10,10 +10,12 @@
 # One design: yosys maps it to the OSU 0.18 um standard cells (qflow-tech-osu018) and writes a
 # structural netlist; OpenSTA (`sta`) times it:
 #   read_verilog <sources>; chparam <parameters> <module>
-#   synth -noshare -flatten -top <module> -run :fine
-#     (rtu.v whole: its units kept as modules, each flattened inside: `hierarchy -top rtu;
-#     setattr -mod -set keep_hierarchy 1 rtu/c:* %M` first, so the operators of a unit are
-#     optimised together as in the unit alone, and paths between units stay visible by instance)
+#   synth -noshare [-flatten] -top <module> -run :fine      (hierarchy kept for rtu.v whole)
+#     (RAYCORE_TIMING_WHOLE_FLAT=1: rtu.v whole with its units kept as modules, each flattened
+#     inside: `hierarchy -top rtu; setattr -mod -set keep_hierarchy 1 rtu/c:* %M; synth -flatten`,
+#     so that a unit's operators are optimised together as in the unit alone. Slow: yosys' opt
+#     passes remove constant pipeline registers one stage per round over the whole design; a run
+#     at 3175c7b was stopped after 93 minutes, still in the `opt -fast` after techmap)
 #   memories: of at most TIMING_MEM_WORDS words, or read-only: memory_map (flip-flops / logic);
 #     larger: SRAM macros (TIMING_MEM_V below: the macro's pins are cut by timing cells)
 #   opt -fast -full; memory_map; opt -full; techmap; opt -fast
@@ -528,8 +530,9 @@ print("timing: %d buffers inserted" % nbuf)
 '
 
 # timing_design NAME MODULE CHPARAM [hier]: map and time one design (CHPARAM: "-set P V ..." or
-# empty; hier keeps the top's instances as modules (each mapped once per parameter set, flattened
-# inside: its operators optimised together), the netlist hierarchical). Needs TIMING_TMP, TIMING_FO4 (timing_fo4's) and TIMING_MACRO (timing_macro_lib's
+# empty; hier keeps the hierarchy: every module mapped once per parameter set, the netlist
+# hierarchical; with RAYCORE_TIMING_WHOLE_FLAT=1 the top's instances are the modules kept, each
+# flattened inside). Needs TIMING_TMP, TIMING_FO4 (timing_fo4's) and TIMING_MACRO (timing_macro_lib's
 # file). Sets T_STATUS (ok, or timeout: yosys did not finish in TIMING_TIMEOUT s), T_SECS (yosys
 # wall seconds; TIMING_WHOLE_TIMEOUT for hier), T_STA_SECS (the buffering and sta), T_CELLS (standard cells of the netlist, 0 for hier) and T_PATHS (the
 # paths.tsv file, see TIMING_PARSE_PY). Exits on a yosys or sta error. Cached in TIMING_CACHE: the
@@ -543,8 +546,9 @@ timing_design() {
   local name=$1 mod=$2 chp=$3 hier=${4:-} dir="$TIMING_TMP/$1" srcs script nkey skey pkey t0 rc=0
   local flatten=-flatten stat="stat -liberty $TIMING_LIBERTY" to=$TIMING_TIMEOUT
   local keep=""
-  [ "$hier" = hier ] && { keep="hierarchy -top $mod; setattr -mod -set keep_hierarchy 1 $mod/c:* %M;"
-                          stat="stat -top $mod -liberty $TIMING_LIBERTY"; to=$TIMING_WHOLE_TIMEOUT; }
+  [ "$hier" = hier ] && { flatten=""; stat="stat -top $mod -liberty $TIMING_LIBERTY"; to=$TIMING_WHOLE_TIMEOUT; }
+  [ "$hier" = hier ] && [ "${RAYCORE_TIMING_WHOLE_FLAT:-0}" = 1 ] &&
+    { flatten=-flatten; keep="hierarchy -top $mod; setattr -mod -set keep_hierarchy 1 $mod/c:* %M;"; }
   mkdir -p "$dir"
   printf '%s\n' "$TIMING_ABC" > "$dir/abc.script"
   printf '%s\n' "$TIMING_MEM_V" > "$dir/mem_cut.v"
