@@ -15,7 +15,7 @@
 #     inside: `hierarchy -top rtu; setattr -mod -set keep_hierarchy 1 rtu/c:* %M; synth -flatten`,
 #     so that a unit's operators are optimised together as in the unit alone. Slow: yosys' opt
 #     passes remove constant pipeline registers one stage per round over the whole design; a run
-#     at 3175c7b was stopped after 93 minutes, still in the `opt -fast` after techmap)
+#     on rtl/ at ee7296e was stopped after 93 minutes, still in the `opt -fast` after techmap)
 #   memories: of at most TIMING_MEM_WORDS words, or read-only: memory_map (flip-flops / logic);
 #     larger: SRAM macros (TIMING_MEM_V below: the macro's pins are cut by timing cells)
 #   opt -fast -full; memory_map; opt -full; techmap; opt -fast
