@@ -6,7 +6,10 @@
 # FP24, rounding rtz where the module has RNE, STAGES 2 unless RAYCORE_TIMING_STAGES says otherwise),
 # every unit of AREA_UNITS (scripts/area_lib.sh; the parameters of make area's first table: module
 # defaults, FP24 rtz, STAGES 2, ascache the 16 KB node cache) and rtl/units/rtu.v whole at its
-# parameter defaults (the cycle model's), FP24 rtz, its hierarchy kept. One yosys + sta run per
+# parameter defaults (the cycle model's), FP24 rtz, its hierarchy kept: by default
+# (RAYCORE_TIMING_WHOLE_MODE=units) each of its instances mapped flat in a yosys run of its own at
+# rtu.v's parameters and rtu.v's own logic in one more, the netlists linked by sta; modules: every
+# module mapped once per parameter set (scripts/timing_lib.sh). One yosys + sta run per
 # design (scripts/timing_lib.sh, cached in out/timing-cache); FO4 measured first on an INVX1 chain.
 #
 # Environment: RAYCORE_TIMING_TIMEOUT (s, default 3600) bounds one unit's yosys run,
@@ -105,10 +108,14 @@ fi
 # The documents (python3): docs/timing.md and docs/timing.json from designs.tsv and paths.tsv.
 python3 - "$RES" "$OUT_MD" "$OUT_JSON" "$TIMING_FO4" "$TIMING_FO4_28NM_PS" "$TIMING_MARGIN" \
   "$TIMING_SRAM_FO4" "$TIMING_LIBERTY" "$(yosys -V | head -1)" "$(sta -version)" "$STAGES" \
-  "$TIMING_TIMEOUT" "$TIMING_WHOLE_TIMEOUT" "$TIMING_MEM_WORDS" "$(srcs_for rtu)" "$SOURCES" <<'EOF'
+  "$TIMING_TIMEOUT" "$TIMING_WHOLE_TIMEOUT" "$TIMING_MEM_WORDS" "$(srcs_for rtu)" "$SOURCES" \
+  "${RAYCORE_TIMING_WHOLE_MODE:-units}" <<'EOF'
 import datetime, json, sys
 (res, out_md, out_json, fo4, fo4_28, margin, sram_fo4, liberty, yosys_v, sta_v, stages,
- t_unit, t_whole, mem_words, rtu_srcs, sources) = sys.argv[1:]
+ t_unit, t_whole, mem_words, rtu_srcs, sources, whole_mode) = sys.argv[1:]
+WHOLE_DESC = {"units": "each of its instances (the units) mapped flat at rtu.v's parameters, rtu.v's own logic apart, "
+                       "the netlists linked (RAYCORE_TIMING_WHOLE_MODE=units)",
+              "modules": "every module mapped once per parameter set (RAYCORE_TIMING_WHOLE_MODE=modules)"}
 fo4, fo4_28, margin, sram_fo4 = float(fo4), float(fo4_28), float(margin), float(sram_fo4)
 KINDS = [("r2r", "reg_to_reg", "register to register"), ("i2r", "in_to_reg", "input to register"),
          ("r2o", "reg_to_out", "register to output"), ("i2o", "in_to_out", "input to output")]
@@ -122,7 +129,7 @@ designs = {}
 order = []
 for line in open(res):
     name, mod, file, params, status, ysecs, ssecs, cells, pfile = line.rstrip("\n").split("\t")
-    desc = ("%s whole at its parameter defaults (the cycle model's), hierarchy kept" % file if mod == "rtu"
+    desc = ("%s whole at its parameter defaults (the cycle model's), %s" % (file, WHOLE_DESC[whole_mode]) if mod == "rtu"
             else "%s alone%s" % (file, ", " + params if params else ""))
     d = {"design": desc, "module": mod, "file": file, "params": params, "status": status, "yosys_s": int(ysecs),
          "sta_s": int(ssecs), "cells": int(cells), "fo4_ns": fo4, "paths": {}, "top_paths": []}
@@ -198,15 +205,30 @@ A("  stages each driving the next and 3 more INVX1 (fanout 4), timed by `sta`; F
 A("  delays of two middle stages (one rising, one falling output). Not assumed.")
 A("- **Mapping** (yosys, one run per design): `read_verilog` the module's sources (scripts/area_lib.sh")
 A("  `srcs_for`), `chparam`, `synth -noshare -flatten -top M -run :fine` (rtu.v whole: without")
-A("  `-flatten`), memories (below), `opt; memory_map; opt; techmap; opt`, `rename -wire -suffix _reg`")
+A("  `-flatten`, see below), memories (below), `opt; memory_map; opt; techmap; opt`, `rename -wire -suffix _reg`")
 A("  on the flip-flops (each flip-flop instance named after the register it drives), `dfflibmap")
 A("  -liberty L`, `abc -script S -liberty L` with S = yosys' own liberty script (strash, fraig, scorr,")
 A("  dc2, dch, `&nf -D 1000`) followed by **`topo; buffer -p -N 8; upsize -D 1000; dnsize -D 1000;")
 A("  stime -p`**: ABC's buffering (every net of more than 8 loads becomes a buffer tree; yosys 0.23's")
 A("  `abc -D` alone does not buffer) and gate sizing, delay-oriented (target 1 ns, below every path).")
 A("  Then `setundef -zero; splitnets -ports; opt_clean -purge` and `write_verilog -noexpr`: a structural")
-A("  netlist (flat; rtu.v whole hierarchical: every module mapped once per parameter set, so OpenSTA")
-A("  links the hierarchy and times paths across instances).")
+A("  netlist (flat; rtu.v whole hierarchical, so that OpenSTA links the hierarchy and times paths across")
+A("  instances).")
+if whole_mode == "units":
+    A("- **rtu.v whole, unit by unit** (`RAYCORE_TIMING_WHOLE_MODE=units`, the default since 2026-12-01): each")
+    A("  instance of rtu.v (rgu_unit, slot_ram, trv_unit, the three ascaches, ist_unit, hit_unit, vtu_unit)")
+    A("  is mapped flat in a yosys run of its own at rtu.v's parameters (`hierarchy -top rtu; hierarchy -top")
+    A("  <its module>; synth -flatten`, the steps above), rtu.v's own logic in one more run with the units as")
+    A("  black boxes, and sta links the netlists: a unit's operators are optimised together as in the unit")
+    A("  alone (what a commercial flow's ungrouping of the operators does), the paths between units are timed")
+    A("  across the instances. `RAYCORE_TIMING_WHOLE_MODE=modules` maps every module of rtu.v once per")
+    A("  parameter set instead (each rtl/fp operator alone, no optimisation across its ports): at rtl/ 8043638")
+    A("  10.11 ns = 101.9 FO4 that way against 9.63 ns = 97.1 FO4 unit by unit (the single yosys run")
+    A("  `setattr -mod -set keep_hierarchy 1 rtu/c:* %M; synth -flatten` that would give the same netlist")
+    A("  did not finish in 93 minutes).")
+else:
+    A("- **rtu.v whole, module by module** (`RAYCORE_TIMING_WHOLE_MODE=modules`): every module of rtu.v")
+    A("  mapped once per parameter set, each rtl/fp operator alone.")
 A("- **Buffering between ABC runs**: ABC sees one module's logic at a time, without the flip-flops,")
 A("  so a flip-flop's output, a module's input port or (rtu.v whole) a net between instances can")
 A("  drive hundreds of loads unbuffered (vtu_unit hierarchical: a 12 ns clock-to-Q). A pass over the")

@@ -11,11 +11,18 @@
 # structural netlist; OpenSTA (`sta`) times it:
 #   read_verilog <sources>; chparam <parameters> <module>
 #   synth -noshare [-flatten] -top <module> -run :fine      (hierarchy kept for rtu.v whole)
-#     (RAYCORE_TIMING_WHOLE_FLAT=1: rtu.v whole with its units kept as modules, each flattened
-#     inside: `hierarchy -top rtu; setattr -mod -set keep_hierarchy 1 rtu/c:* %M; synth -flatten`,
-#     so that a unit's operators are optimised together as in the unit alone. Slow: yosys' opt
-#     passes remove constant pipeline registers one stage per round over the whole design; a run
-#     on rtl/ at ee7296e was stopped after 93 minutes, still in the `opt -fast` after techmap)
+#     rtu.v whole (mode hier), RAYCORE_TIMING_WHOLE_MODE:
+#       units (the default): each instance of rtu.v (a unit: rgu_unit, trv_unit, the ascaches, ...)
+#         mapped flat in a yosys run of its own at rtu.v's parameters (`hierarchy -top rtu;
+#         hierarchy -top <its module>; synth -flatten`), rtu.v's own logic in one more run with
+#         the units as black boxes, the netlists linked by sta: each unit's operators optimised
+#         together as in the unit alone (what a commercial flow's ungrouping does), the paths
+#         between units timed across instances. Runs RAYCORE_TIMING_JOBS (default 2) at a time.
+#       modules: every module mapped once per parameter set (each rtl/fp operator alone, no
+#         optimisation across its ports: constant operands, fp_pipe carries, lane muxes).
+#     (The single run `hierarchy -top rtu; setattr -mod -set keep_hierarchy 1 rtu/c:* %M;
+#     synth -flatten` gives the units' netlist too but did not finish: yosys' opt passes remove
+#     constant pipeline registers one stage per round over the whole design; stopped at 93 min.)
 #   memories: of at most TIMING_MEM_WORDS words, or read-only: memory_map (flip-flops / logic);
 #     larger: SRAM macros (TIMING_MEM_V below: the macro's pins are cut by timing cells)
 #   opt -fast -full; memory_map; opt -full; techmap; opt -fast
@@ -529,12 +536,57 @@ fo.close()
 print("timing: %d buffers inserted" % nbuf)
 '
 
+# timing_yosys_units DIR TOP TIMEOUT HEAD TAIL: the units mode of rtu.v whole (see the header):
+# lists the modules of TOP's instances, maps each flat in a yosys run of its own (RAYCORE_TIMING_JOBS
+# at a time; DIR/net_<i>.v, DIR/stat_<i>.txt), TOP's own logic with those modules as black boxes
+# (DIR/net_top.v), and joins them into DIR/net.v. Returns 124 if a run did not finish within
+# TIMEOUT seconds (of the whole), 1 if one failed (its log printed).
+timing_yosys_units() {
+  local dir=$1 top=$2 to=$3 head=$4 tail=$5 t_end i=0 kids=() k s rc=0
+  t_end=$(( $(date +%s) + to ))
+  s="${head//DIR/$dir} hierarchy -top $top; tee -q -o $dir/kids.txt select -list $top/c:* %M"
+  timeout "$to" yosys -q -l "$dir/yosys_list.log" -p "$s" >/dev/null || return $?
+  # the lines without a "/": the modules (the others are their contents)
+  while IFS= read -r k; do [[ "$k" == */* ]] || kids+=("$k"); done < "$dir/kids.txt"
+  [ ${#kids[@]} -gt 0 ] || { echo "timing: $top has no instances" >&2; return 1; }
+  # the top's own logic first (short; a mistake shows at once), then the instances' modules, each
+  # counted by a plain stat (the top is not in its run)
+  s="$head hierarchy -top $top; blackbox$(printf ' %s' "${kids[@]}"); synth -noshare -top $top -run :fine; $tail"
+  s=${s//STAT/stat_top.txt}; s=${s//NET/net_top.v}; s=${s//DIR/$dir}
+  printf '%s\n' "$s" > "$dir/unit_top.ys"
+  echo top > "$dir/runs.txt"
+  for k in "${kids[@]}"; do
+    s="$head hierarchy -top $top; hierarchy -top $k; synth -noshare -flatten -top $k -run :fine; $tail"
+    s=${s//STAT/stat_$i.txt}; s=${s//NET/net_$i.v}; s=${s//stat -top $top /stat }; s=${s//DIR/$dir}
+    printf '%s\n' "$s" > "$dir/unit_$i.ys"
+    echo "$i" >> "$dir/runs.txt"
+    i=$((i + 1))
+  done
+  echo "timing: $top: ${#kids[@]} instances' modules and the top, each mapped alone (${RAYCORE_TIMING_JOBS:-2} at a time)" >&2
+  # shellcheck disable=SC2016  # $1 is xargs' argument, expanded by the inner bash
+  xargs -P "${RAYCORE_TIMING_JOBS:-2}" -I{} bash -c \
+    'left=$(( '"$t_end"' - $(date +%s) )); [ $left -gt 0 ] || exit 124
+     timeout $left yosys -q -l "$1/yosys_$2.log" -s "$1/unit_$2.ys" >/dev/null ||
+       { rc=$?; [ $rc -eq 124 ] || { echo "timing: yosys failed on $1/unit_$2.ys:" >&2; tail -20 "$1/yosys_$2.log" >&2; }; exit $rc; }' \
+    _ "$dir" {} < "$dir/runs.txt" || rc=$?
+  # xargs exits 123/124/125 when a command failed; any timeout is a timeout
+  if [ $rc -ne 0 ]; then
+    grep -qs "^ERROR" "$dir"/yosys_*.log && return 1
+    [ "$(date +%s)" -ge "$t_end" ] && return 124
+    return 1
+  fi
+  : > "$dir/net.v"
+  for k in $(cat "$dir/runs.txt"); do cat "$dir/net_$k.v" >> "$dir/net.v"; done
+  cat "$dir"/yosys_*.log > "$dir/yosys.log"
+}
+
 # timing_design NAME MODULE CHPARAM [hier]: map and time one design (CHPARAM: "-set P V ..." or
-# empty; hier keeps the hierarchy: every module mapped once per parameter set, the netlist
-# hierarchical; with RAYCORE_TIMING_WHOLE_FLAT=1 the top's instances are the modules kept, each
-# flattened inside). Needs TIMING_TMP, TIMING_FO4 (timing_fo4's) and TIMING_MACRO (timing_macro_lib's
+# empty; hier keeps the hierarchy: rtu.v whole, RAYCORE_TIMING_WHOLE_MODE units (default: each
+# instance of the top mapped flat in its own run, the top's own logic with them as black boxes) or
+# modules (every module mapped once per parameter set), the netlist hierarchical). Needs
+# TIMING_TMP, TIMING_FO4 (timing_fo4's) and TIMING_MACRO (timing_macro_lib's
 # file). Sets T_STATUS (ok, or timeout: yosys did not finish in TIMING_TIMEOUT s), T_SECS (yosys
-# wall seconds; TIMING_WHOLE_TIMEOUT for hier), T_STA_SECS (the buffering and sta), T_CELLS (standard cells of the netlist, 0 for hier) and T_PATHS (the
+# wall seconds; TIMING_WHOLE_TIMEOUT for hier), T_STA_SECS (the buffering and sta), T_CELLS (standard cells of the netlist, 0 for hier modules) and T_PATHS (the
 # paths.tsv file, see TIMING_PARSE_PY). Exits on a yosys or sta error. Cached in TIMING_CACHE: the
 # netlist (gzip) by a hash of the yosys version, the script, the liberty and the sources; sta's
 # reports by that and sta's version, its Tcl, the buffering and the macro library; the paths by
@@ -545,27 +597,35 @@ print("timing: %d buffers inserted" % nbuf)
 timing_design() {
   local name=$1 mod=$2 chp=$3 hier=${4:-} dir="$TIMING_TMP/$1" srcs script nkey skey pkey t0 rc=0
   local flatten=-flatten stat="stat -liberty $TIMING_LIBERTY" to=$TIMING_TIMEOUT
-  local keep=""
-  [ "$hier" = hier ] && { flatten=""; stat="stat -top $mod -liberty $TIMING_LIBERTY"; to=$TIMING_WHOLE_TIMEOUT; }
-  [ "$hier" = hier ] && [ "${RAYCORE_TIMING_WHOLE_FLAT:-0}" = 1 ] &&
-    { flatten=-flatten; keep="hierarchy -top $mod; setattr -mod -set keep_hierarchy 1 $mod/c:* %M;"; }
+  local wmode=flat head tail
+  if [ "$hier" = hier ]; then
+    wmode=${RAYCORE_TIMING_WHOLE_MODE:-units}
+    case "$wmode" in
+      units|modules) ;;
+      *) echo "timing: RAYCORE_TIMING_WHOLE_MODE must be units or modules, not '$wmode'" >&2; exit 1 ;;
+    esac
+    flatten=""; stat="stat -top $mod -liberty $TIMING_LIBERTY"; to=$TIMING_WHOLE_TIMEOUT
+  fi
   mkdir -p "$dir"
   printf '%s\n' "$TIMING_ABC" > "$dir/abc.script"
   printf '%s\n' "$TIMING_MEM_V" > "$dir/mem_cut.v"
   cp "$TIMING_MACRO" "$dir/raycore_sram.lib"
   srcs=$(srcs_for "$mod")
-  script="read_liberty -lib $TIMING_LIBERTY; read_liberty -lib DIR/raycore_sram.lib; read_verilog $srcs; \
-    ${chp:+chparam $chp $mod;}${keep:+ $keep} \
-    synth -noshare $flatten -top $mod -run :fine; \
-    memory_map r:SIZE<=$TIMING_MEM_WORDS r:WR_PORTS=0; \
+  # head: the sources at the design's parameters; tail: from the mapped RTL to the netlist NET
+  head="read_liberty -lib $TIMING_LIBERTY; read_liberty -lib DIR/raycore_sram.lib; read_verilog $srcs; \
+    ${chp:+chparam $chp $mod;}"
+  tail="memory_map r:SIZE<=$TIMING_MEM_WORDS r:WR_PORTS=0; \
     techmap -map DIR/mem_cut.v t:\$mem_v2; \
     opt -fast -full; memory_map; opt -full; techmap; opt -fast; \
     rename -wire -suffix _reg t:\$_*DFF* t:\$_DLATCH*; \
     dfflibmap -liberty $TIMING_LIBERTY; opt_clean; \
     abc -script DIR/abc.script -liberty $TIMING_LIBERTY; \
     setundef -zero; splitnets -ports; opt_clean -purge; hierarchy -check; check; \
-    tee -q -o DIR/stat.txt $stat; \
-    write_verilog -noexpr -nohex -nodec DIR/net.v"
+    tee -q -o DIR/STAT $stat; \
+    write_verilog -noexpr -nohex -nodec DIR/NET"
+  script="$head synth -noshare $flatten -top $mod -run :fine; $tail"
+  # the key: the same steps, run per instance by timing_yosys_units
+  [ "$wmode" = units ] && script="units: $(declare -f timing_yosys_units) $script"
   # shellcheck disable=SC2086  # srcs: a list of file names without spaces
   nkey=$({ yosys -V; echo "$script"; echo "$TIMING_ABC"; echo "$TIMING_MEM_V"; md5sum < "$TIMING_LIBERTY";
            grep -v '^/\*' "$TIMING_MACRO" | grep -v 'values ("[0-9.]*")' ; cat $srcs; } | sha256sum | cut -c1-16)
@@ -586,7 +646,12 @@ timing_design() {
     return 0
   else
     t0=$(date +%s)
-    timeout "$to" yosys -q -l "$dir/yosys.log" -p "${script//DIR/$dir}" >/dev/null || rc=$?
+    if [ "$wmode" = units ]; then
+      timing_yosys_units "$dir" "$mod" "$to" "$head" "$tail" || rc=$?
+    else
+      script=${script//STAT/stat.txt}; script=${script//NET/net.v}
+      timeout "$to" yosys -q -l "$dir/yosys.log" -p "${script//DIR/$dir}" >/dev/null || rc=$?
+    fi
     T_SECS=$(( $(date +%s) - t0 ))
     if [ $rc -eq 124 ]; then
       T_STATUS=timeout
@@ -594,7 +659,11 @@ timing_design() {
       return 0
     fi
     [ $rc -eq 0 ] || { echo "timing: yosys failed for $name ($mod $chp), see:" >&2; tail -20 "$dir/yosys.log" >&2; exit 1; }
-    T_CELLS=$(awk '$1 == "Number" && $3 == "cells:" { n = $4 } END { print n + 0 }' "$dir/stat.txt")
+    # the cells: the last count of each stat file (flat: the design; units: each instance's module
+    # and the top's own logic, whose black boxes are counted as cells too)
+    T_CELLS=$(for f in "$dir"/stat*.txt; do
+                awk '$1 == "Number" && $3 == "cells:" { n = $4 } END { print n + 0 }' "$f"; done |
+              awk '{ n += $1 } END { print n + 0 }')
     if [ "$TIMING_CACHE" != none ]; then
       mkdir -p "$TIMING_CACHE"
       gzip -c "$dir/net.v" > "$TIMING_CACHE/$nkey.net.v.gz.tmp"
