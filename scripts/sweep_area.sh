@@ -27,6 +27,7 @@ mkdir -p "$CACHE"
 
 # The operators spawn_ops instantiates and what they use (the cache key is their hash).
 srcs=(rtl/fp/fp_add.v rtl/fp/fp_add3.v rtl/fp/fp_mul.v rtl/fp/fp_div.v rtl/fp/fp_round.v rtl/fp/fp_pipe.v
+      rtl/fp/fp_padd.v rtl/fp/fp_mag.v
       rtl/units/spawn.v rtl/units/spawn_ops.v)
 for f in "${srcs[@]}"; do [ -f "$f" ] || { echo "sweep_area: missing $f" >&2; exit 1; }; done
 hash=$(cat "${srcs[@]}" | sha256sum | cut -c1-16)

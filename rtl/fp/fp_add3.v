@@ -148,9 +148,24 @@ module fp_add3 #(
   wire [ACC_W-1:0] tx = {3'b000, c_mx};
   wire [ACC_W-1:0] ty = {3'b000, c_my};
   wire [ACC_W-1:0] tz = {3'b000, c_mz};
-  wire [ACC_W-1:0] sum = (c_sx ? -tx : tx) + (c_sy ? -ty : ty) + (c_sz ? -tz : tz);
+  // sum = (c_sx ? -tx : tx) + (c_sy ? -ty : ty) + (c_sz ? -tz : tz), each -t as ~t + 1: the three
+  // inverted-or-not terms and the three +1s through two carry-save levels (the first level's
+  // carries take c_sx into their free lsb, the second's c_sz; c_sy is the second level's third
+  // input), then one parallel-prefix add (fp_padd) instead of ripple-carry chains.
+  wire [ACC_W-1:0] xx = tx ^ {ACC_W{c_sx}};
+  wire [ACC_W-1:0] xy = ty ^ {ACC_W{c_sy}};
+  wire [ACC_W-1:0] xz = tz ^ {ACC_W{c_sz}};
+  wire [ACC_W-1:0] s1 = xx ^ xy ^ xz;
+  wire [ACC_W-1:0] k1 = {(xx[ACC_W-2:0] & xy[ACC_W-2:0]) | (xx[ACC_W-2:0] & xz[ACC_W-2:0]) |
+                         (xy[ACC_W-2:0] & xz[ACC_W-2:0]), c_sx};
+  wire [ACC_W-1:0] s2 = s1 ^ k1 ^ {{(ACC_W-1){1'b0}}, c_sy};
+  wire [ACC_W-1:0] k2 = {(s1[ACC_W-2:0] & k1[ACC_W-2:0]) |
+                         {{(ACC_W-2){1'b0}}, (s1[0] | k1[0]) & c_sy}, c_sz};
+  wire [ACC_W-1:0] sum;
+  fp_padd #(.WIDTH(ACC_W)) u_sum (.a_i(s2), .b_i(k2), .ci_i(1'b0), .sum_o(sum));
   wire             c_sign = sum[ACC_W-1];
-  wire [ACC_W-2:0] c_mag  = c_sign ? (~sum[ACC_W-2:0] + 1'b1) : sum[ACC_W-2:0];
+  wire [ACC_W-2:0] c_mag;
+  fp_mag #(.WIDTH(ACC_W - 1)) u_mag (.x_i(sum[ACC_W-2:0]), .neg_i(c_sign), .mag_o(c_mag));
 
   localparam integer PC_W = TAG_BITS + W + 1 + E + 1 + (ACC_W - 1);
   wire [PC_W-1:0] pc_out;

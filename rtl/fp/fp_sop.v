@@ -201,15 +201,9 @@ module fp_sop #(
   wire [U_W-1:0]      d_t;
   wire [ACC_W-2:0]    d_sum;
   assign {d_tag, d_zero, d_zsign, d_t, d_sign, d_sum} = pc_out;
-  // |sum| of a negative sum: -d_sum bit i = d_sum[i] ^ (any lower bit of d_sum set), the lower
-  // bits' OR by a log-depth prefix (not ~d_sum + 1's carry chain, once this phase's slowest path).
-  reg [ACC_W-2:0] d_below;
-  integer k;
-  always @* begin
-    d_below = d_sum << 1;
-    for (k = 1; k < ACC_W - 1; k = k * 2) d_below = d_below | (d_below << k);
-  end
-  wire [ACC_W-2:0]    d_mag = d_sign ? (d_sum ^ d_below) : d_sum;
+  // |sum| by fp_mag's prefix OR (not ~d_sum + 1's carry chain, once this phase's slowest path).
+  wire [ACC_W-2:0]    d_mag;
+  fp_mag #(.WIDTH(ACC_W - 1)) u_mag (.x_i(d_sum), .neg_i(d_sign), .mag_o(d_mag));
   // The accumulator's top magnitude bit has weight 2^(T+1): biased exponent U_T - bias + 1.
   wire [EXP_W-1:0] d_exp_top = {{(EXP_W-U_W){1'b0}}, d_t} - EXP_OFF;  // EXP_W > U_W
   wire [W-1:0]     d_rounded;

@@ -21,7 +21,8 @@ iverilog -g2005 -Wall -Wno-timescale -I "$root/tb/rtl" -o "$work/$tag.vvp" -s tb
   -P tb_spawn_slab.RAYCORE=$raycore \
   -P tb_spawn_slab.STAGES=2 -P tb_spawn_slab.STRATEGY=$st -P tb_spawn_slab.N=$n \
   "$root"/rtl/fp/fp_add.v "$root"/rtl/fp/fp_add3.v "$root"/rtl/fp/fp_mul.v "$root"/rtl/fp/fp_div.v "$root"/rtl/fp/fp_rcp.v \
-  "$root"/rtl/fp/fp_round.v "$root"/rtl/fp/fp_pipe.v "$root"/rtl/units/spawn.v "$root"/rtl/units/spawn_ops.v \
+  "$root"/rtl/fp/fp_round.v "$root"/rtl/fp/fp_pipe.v "$root"/rtl/fp/fp_padd.v "$root"/rtl/fp/fp_mag.v \
+  "$root"/rtl/units/spawn.v "$root"/rtl/units/spawn_ops.v \
   "$root/tb/sweep/tb_spawn_slab.v"
 vvp -n "$work/$tag.vvp" +vectors="$vec" +seed=12345 | tee "$work/$tag.log"
 icarus_result "$work/$tag.log" "$n" "spawn STRATEGY=$st $fmt $mode"
