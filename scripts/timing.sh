@@ -21,7 +21,8 @@
 # RAYCORE_TIMING_REV=<commit>: time the rtl/ of that commit instead of the working tree's.
 # RAYCORE_TIMING_CACHED_ONLY=1: the documents from the cached results only (a design not in the
 # cache is reported as not run). RAYCORE_TIMING_CACHE (default out/timing-cache; none: off),
-# RAYCORE_TIMING_SRAM_FO4 (default 40).
+# RAYCORE_TIMING_SRAM_FO4 (default 40). RAYCORE_TIMING_WHOLE_MODE (units, the default, or modules:
+# how rtu.v whole is mapped, above), RAYCORE_TIMING_JOBS (default 2: units mode's yosys runs at a time).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 # shellcheck source=scripts/timing_lib.sh
