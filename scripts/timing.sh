@@ -225,7 +225,7 @@ if whole_mode == "units":
     A("  across the instances. `RAYCORE_TIMING_WHOLE_MODE=modules` maps every module of rtu.v once per")
     A("  parameter set instead (each rtl/fp operator alone, no optimisation across its ports): at rtl/ 8043638")
     A("  10.11 ns = 101.9 FO4 that way against 9.63 ns = 97.1 FO4 unit by unit (the single yosys run")
-    A("  `setattr -mod -set keep_hierarchy 1 rtu/c:* %M; synth -flatten` that would give the same netlist")
+    A("  `setattr -mod -set keep_hierarchy 1 rtu/c:* %M; synth -flatten`, the same kind of netlist,")
     A("  did not finish in 93 minutes).")
 else:
     A("- **rtu.v whole, module by module** (`RAYCORE_TIMING_WHOLE_MODE=modules`): every module of rtu.v")

@@ -586,7 +586,7 @@ timing_yosys_units() {
 # modules (every module mapped once per parameter set), the netlist hierarchical). Needs
 # TIMING_TMP, TIMING_FO4 (timing_fo4's) and TIMING_MACRO (timing_macro_lib's
 # file). Sets T_STATUS (ok, or timeout: yosys did not finish in TIMING_TIMEOUT s), T_SECS (yosys
-# wall seconds; TIMING_WHOLE_TIMEOUT for hier), T_STA_SECS (the buffering and sta), T_CELLS (standard cells of the netlist, 0 for hier modules) and T_PATHS (the
+# wall seconds; TIMING_WHOLE_TIMEOUT for hier), T_STA_SECS (the buffering and sta), T_CELLS (standard cells of the netlist) and T_PATHS (the
 # paths.tsv file, see TIMING_PARSE_PY). Exits on a yosys or sta error. Cached in TIMING_CACHE: the
 # netlist (gzip) by a hash of the yosys version, the script, the liberty and the sources; sta's
 # reports by that and sta's version, its Tcl, the buffering and the macro library; the paths by
@@ -658,7 +658,9 @@ timing_design() {
       if [ "$TIMING_CACHE" != none ]; then mkdir -p "$TIMING_CACHE"; echo "$to" > "$TIMING_CACHE/$nkey.timeout"; fi
       return 0
     fi
-    [ $rc -eq 0 ] || { echo "timing: yosys failed for $name ($mod $chp), see:" >&2; tail -20 "$dir/yosys.log" >&2; exit 1; }
+    # (units mode: the failing run's log was printed by timing_yosys_units; no yosys.log then)
+    [ $rc -eq 0 ] || { echo "timing: yosys failed for $name ($mod $chp), see:" >&2
+                       [ ! -f "$dir/yosys.log" ] || tail -20 "$dir/yosys.log" >&2; exit 1; }
     # the cells: the last count of each stat file (flat: the design; units: each instance's module
     # and the top's own logic, whose black boxes are counted as cells too)
     T_CELLS=$(for f in "$dir"/stat*.txt; do
