@@ -84,8 +84,8 @@ class RtuRtlRunner {
         u.buf[p].assign(size_t(cfg.node_cache.mshrs) * 64, 0);
         bus_.add_requester(&u.req[p], &u, p);
       }
-      vl::async_reset(u.m);
       configure(u.m, k, vtu_cam, hit);
+      vl::async_reset(u.m, 1);  // the edge in the reset loads rtu.v's frame registers
     }
     bus_.bind_rtl(std::move(r));
     cos_.assign(fc.frame->px.size(), 0.0);

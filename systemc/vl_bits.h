@@ -62,13 +62,21 @@ void set_bytes(T& s, unsigned lo, unsigned n, const uint8_t* in) {
 // The asynchronous reset of a model with clk_i and rst_ni (active low): a falling edge of rst_ni
 // (Verilator's inputs start at 0, so driving 0 first would be no edge and reset nothing), then
 // released, the clock low.
+// With edges > 0, the clock rises that many times while the reset is held: the registers without a
+// reset load their inputs (rtu.v's frame registers), the reset ones stay reset.
 template <class M>
-void async_reset(M& m) {
+void async_reset(M& m, int edges = 0) {
   m.clk_i = 0;
   m.rst_ni = 1;
   m.eval();
   m.rst_ni = 0;
   m.eval();
+  for (int e = 0; e < edges; ++e) {
+    m.clk_i = 1;
+    m.eval();
+    m.clk_i = 0;
+    m.eval();
+  }
   m.rst_ni = 1;
   m.eval();
 }

@@ -157,6 +157,82 @@ module rtu #(
     else         now_q <= now_q + 32'd1;
   end
 
+  // ---- the frame registers --------------------------------------------------------------------
+  // The frame's configuration, from the pins into registers at every edge (no reset, no enable):
+  // the chip sets the pins before reset and holds them through the frame, so the units see only
+  // registers, never a pin (no path from outside into a datapath). The host's model clocks the
+  // RTU once before its reset (systemc/rtu_rtl.cpp, tb/rtl/tb_chip.v) to load them.
+  reg  [12*W_-1:0]            cam_q;
+  reg  [COORD_BITS-1:0]       width_q;
+  reg  [COORD_BITS-1:0]       height_q;
+  reg  [RTU_BITS-1:0]         rtu_q;
+  reg  [RTU_BITS-1:0]         rtus_q;
+  reg  [SLOT_BITS:0]          slots_q;
+  reg  [W_-1:0]               tmin_q;
+  reg  [15:0]                 trv_lat_q;
+  reg  [15:0]                 node_hl_q;
+  reg  [15:0]                 list_hl_q;
+  reg  [4:0]                  pipes_q;
+  reg                         fuse_q;
+  reg                         any_hit_q;
+  reg                         empty_q;
+  reg  [6:0]                  depth_q;
+  reg  [6:0]                  widen_q;
+  reg  [6*W_-1:0]             box_q;
+  reg  [W_-1:0]               eps_q;
+  reg  [W_-1:0]               one_eps_q;
+  reg  [15:0]                 qcap_q;
+  reg  [7:0]                  tri_hl_q;
+  reg  [4:0]                  ist_units_q;
+  reg  [3*W_-1:0]             light_q;
+  reg  [2:0]                  strategy_q;
+  reg                         segment_q;
+  reg                         all_q;
+  reg  [31:0]                 back_q;
+  reg  [W_-1:0]               scale_q;
+  reg  [W_-1:0]               fixed_q;
+  reg  [W_-1:0]               slab_scale_q;
+  reg                         vtu_on_q;
+  reg  [3*W_-1:0]             vtu_cam_q;
+  reg  [31:0]                 node_count_q;
+  reg  [31:0]                 tri_count_q;
+  always @(posedge clk_i) begin
+    cam_q <= cam_i;
+    width_q <= width_i;
+    height_q <= height_i;
+    rtu_q <= rtu_i;
+    rtus_q <= rtus_i;
+    slots_q <= slots_i;
+    tmin_q <= tmin_i;
+    trv_lat_q <= trv_lat_i;
+    node_hl_q <= node_hl_i;
+    list_hl_q <= list_hl_i;
+    pipes_q <= pipes_i;
+    fuse_q <= fuse_i;
+    any_hit_q <= any_hit_i;
+    empty_q <= empty_i;
+    depth_q <= depth_i;
+    widen_q <= widen_i;
+    box_q <= box_i;
+    eps_q <= eps_i;
+    one_eps_q <= one_eps_i;
+    qcap_q <= qcap_i;
+    tri_hl_q <= tri_hl_i;
+    ist_units_q <= ist_units_i;
+    light_q <= light_i;
+    strategy_q <= strategy_i;
+    segment_q <= segment_i;
+    all_q <= all_i;
+    back_q <= back_i;
+    scale_q <= scale_i;
+    fixed_q <= fixed_i;
+    slab_scale_q <= slab_scale_i;
+    vtu_on_q <= vtu_on_i;
+    vtu_cam_q <= vtu_cam_i;
+    node_count_q <= node_count_i;
+    tri_count_q <= tri_count_i;
+  end
+
   // ---- wires between the units ------------------------------------------------------------------
   // rgu -> trv, slot_ram
   wire                 r_valid, r_shadow, rgu_busy;
@@ -215,12 +291,12 @@ module rtu #(
              .STAGES(STAGES), .COORD_BITS(COORD_BITS), .TILE_BITS(TILE_BITS),
              .RTU_BITS(RTU_BITS), .SLOT_BITS(SLOT_BITS)) u_rgu (
     .clk_i(clk_i), .rst_ni(rst_ni),
-    .cam_o_x_i(cam_i[11*W +: W]), .cam_o_y_i(cam_i[10*W +: W]), .cam_o_z_i(cam_i[9*W +: W]),
-    .cam_d00_x_i(cam_i[8*W +: W]), .cam_d00_y_i(cam_i[7*W +: W]), .cam_d00_z_i(cam_i[6*W +: W]),
-    .cam_dx_x_i(cam_i[5*W +: W]), .cam_dx_y_i(cam_i[4*W +: W]), .cam_dx_z_i(cam_i[3*W +: W]),
-    .cam_dy_x_i(cam_i[2*W +: W]), .cam_dy_y_i(cam_i[W +: W]), .cam_dy_z_i(cam_i[0 +: W]),
-    .width_i(width_i), .height_i(height_i), .rtu_i(rtu_i), .rtus_i(rtus_i), .tmin_i(tmin_i),
-    .slots_i(slots_i), .start_i(start_i), .busy_o(rgu_busy),
+    .cam_o_x_i(cam_q[11*W +: W]), .cam_o_y_i(cam_q[10*W +: W]), .cam_o_z_i(cam_q[9*W +: W]),
+    .cam_d00_x_i(cam_q[8*W +: W]), .cam_d00_y_i(cam_q[7*W +: W]), .cam_d00_z_i(cam_q[6*W +: W]),
+    .cam_dx_x_i(cam_q[5*W +: W]), .cam_dx_y_i(cam_q[4*W +: W]), .cam_dx_z_i(cam_q[3*W +: W]),
+    .cam_dy_x_i(cam_q[2*W +: W]), .cam_dy_y_i(cam_q[W +: W]), .cam_dy_z_i(cam_q[0 +: W]),
+    .width_i(width_q), .height_i(height_q), .rtu_i(rtu_q), .rtus_i(rtus_q), .tmin_i(tmin_q),
+    .slots_i(slots_q), .start_i(start_i), .busy_o(rgu_busy),
     .free_valid_i(h_free), .free_slot_i(h_slot), .shadow_valid_i(h_spawn),
     .shadow_slot_i(h_slot),
     .out_valid_o(r_valid), .out_slot_o(r_slot), .out_shadow_o(r_shadow), .out_ray_o(r_ray),
@@ -241,10 +317,10 @@ module rtu #(
              .SLOT_BITS(SLOT_BITS), .DEPTH(DEPTH), .PIPES(PIPES), .IST(IST), .WORDS(WORDS),
              .READS(1)) u_trv (
     .clk_i(clk_i), .rst_ni(rst_ni), .now_i(now_q),
-    .lat_i(trv_lat_i), .node_hl_i(node_hl_i), .list_hl_i(list_hl_i),
-    .lwords_i(LIST_WORDS[6:0]), .pipes_i(pipes_i),
-    .fuse_i(fuse_i), .any_hit_i(any_hit_i), .empty_i(empty_i), .depth_i(depth_i),
-    .widen_i(widen_i), .box_i(box_i),
+    .lat_i(trv_lat_q), .node_hl_i(node_hl_q), .list_hl_i(list_hl_q),
+    .lwords_i(LIST_WORDS[6:0]), .pipes_i(pipes_q),
+    .fuse_i(fuse_q), .any_hit_i(any_hit_q), .empty_i(empty_q), .depth_i(depth_q),
+    .widen_i(widen_q), .box_i(box_q),
     .in_valid_i(r_valid), .in_slot_i(r_slot), .in_shadow_i(r_shadow),
     .in_ray_i(r_shadow ? h_ray : r_ray),
     .res_valid_i(i_res_valid), .res_slot_i(i_res_slot), .res_hit_i(i_res_hit),
@@ -385,7 +461,7 @@ module rtu #(
              .STAGES(STAGES), .SLOT_BITS(SLOT_BITS), .IST(IST), .PIPES(PIPES), .WORDS(WORDS),
              .QBITS(QBITS), .RPL(RPL), .HLBITS(HLBITS)) u_ist (
     .clk_i(clk_i), .rst_ni(rst_ni), .now_i(now_q),
-    .eps_i(eps_i), .one_eps_i(one_eps_i), .qcap_i(qcap_i), .hl_i(tri_hl_i), .units_i(ist_units_i),
+    .eps_i(eps_q), .one_eps_i(one_eps_q), .qcap_i(qcap_q), .hl_i(tri_hl_q), .units_i(ist_units_q),
     .hin_n_i(t_ist_n), .hin_slot_i(t_ist_slot), .hin_pos_i(t_ist_pos), .hin_ready_i(t_ist_ready),
     .hin_words_i(t_ist_words), .room_o(i_room),
     .ray_slot_o(i_ray_slot), .ray_i(i_ray),
@@ -401,9 +477,9 @@ module rtu #(
   hit_unit #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE),
              .STAGES(STAGES), .SLOT_BITS(SLOT_BITS), .PIPES(PIPES)) u_hit (
     .clk_i(clk_i), .rst_ni(rst_ni), .now_i(now_q),
-    .light_x_i(light_i[0 +: W]), .light_y_i(light_i[W +: W]), .light_z_i(light_i[2*W +: W]),
-    .tmin_i(tmin_i), .strategy_i(strategy_i), .segment_i(segment_i), .all_i(all_i),
-    .back_i(back_i), .scale_i(scale_i), .fixed_i(fixed_i), .slab_scale_i(slab_scale_i),
+    .light_x_i(light_q[0 +: W]), .light_y_i(light_q[W +: W]), .light_z_i(light_q[2*W +: W]),
+    .tmin_i(tmin_q), .strategy_i(strategy_q), .segment_i(segment_q), .all_i(all_q),
+    .back_i(back_q), .scale_i(scale_q), .fixed_i(fixed_q), .slab_scale_i(slab_scale_q),
     .fin_valid_i(t_fin), .fin_slot_i(t_fin_slot), .fin_ready_i(fin_ready),
     .rd_valid_o(h_rd_valid), .rd_slot_o(h_rd_slot), .rd_i(h_rd),
     .out_valid_o(h_valid), .out_slot_o(h_slot), .out_shadow_o(h_shadow), .out_found_o(h_found),
@@ -467,9 +543,9 @@ module rtu #(
              .STAGES(STAGES), .MSHRS(MSHRS), .NODE_LB(NODE_LB), .LIST_LB(LIST_LB),
              .TRI_LB(TLB), .BEAT_BYTES(BEAT_BYTES), .LEN_BITS(LEN_BITS),
              .LINE_W(LINE_W)) u_vtu (
-    .clk_i(clk_i), .rst_ni(rst_ni), .vtu_on_i(vtu_on_i),
-    .cam_x_i(vtu_cam_i[0 +: W]), .cam_y_i(vtu_cam_i[W +: W]), .cam_z_i(vtu_cam_i[2*W +: W]),
-    .node_count_i(node_count_i), .tri_count_i(tri_count_i),
+    .clk_i(clk_i), .rst_ni(rst_ni), .vtu_on_i(vtu_on_q),
+    .cam_x_i(vtu_cam_q[0 +: W]), .cam_y_i(vtu_cam_q[W +: W]), .cam_z_i(vtu_cam_q[2*W +: W]),
+    .node_count_i(node_count_q), .tri_count_i(tri_count_q),
     .req_take_i(req_valid_o & req_ready_i), .req_line_i(req_line_o), .req_tag_i(req_tag_o),
     .beat_valid_i(b_valid), .beat_tag_i(b_tag), .beat_idx_i(b_idx),
     .beat_last_i(b_last), .beat_data_i(b_data),
@@ -478,7 +554,7 @@ module rtu #(
   wire unused_vtu = ^{v_busy, fill_data};  // a cache's line may be narrower than the widest
 
   // ---- status and counters ----------------------------------------------------------------------
-  assign done_o = !rgu_busy && (free_count == slots_i);
+  assign done_o = !rgu_busy && (free_count == slots_q);
   assign primaries_o = rgu_busy;
   always @* begin
     case (cnt_sel_i)

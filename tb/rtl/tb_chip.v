@@ -72,6 +72,8 @@ module tb_chip;
     pxf = $fopen({`DUMP, ".chip.px"}, "w");
     lw = 0; lr = 0; ld = 0; data_free = 0; now = 0; retired = 0; last_retire = 0;
     #1 rst_n = 1'b0;
+    #1 clk = 1'b1;  // an edge in the reset: rtu.v's frame registers load the pins
+    #1 clk = 1'b0;
     #1 rst_n = 1'b1;
     #1;
     forever begin
