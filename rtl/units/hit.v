@@ -183,6 +183,17 @@ module hit #(
   endfunction
   // hls::add_ulps(p, ulps): p's magnitude bits +- |ulps| (toward larger magnitude when ulps and p
   // agree in sign); below the smallest normal +0, above the largest magnitude saturated.
+  // The moved magnitude m (the 36-bit signed sum of p's magnitude bits and the move) clamped as
+  // hls::add_ulps: below the smallest normal a zero, above the largest magnitude saturated.
+  function [W-1:0] ulps_clamp;
+    input              sign;
+    input signed [35:0] m;
+    begin
+      if (m < $signed(36'd1 << M))                               ulps_clamp = {W{1'b0}};
+      else if (m > $signed({{(36-(W-1)){1'b0}}, {(W-1){1'b1}}})) ulps_clamp = {sign, {(W-1){1'b1}}};
+      else                                                       ulps_clamp = {sign, m[W-2:0]};
+    end
+  endfunction
   function [W-1:0] add_ulps_int;
     input [W-1:0] p;
     input [31:0] ulps;  // signed
@@ -191,9 +202,7 @@ module hit #(
       n = ulps[31] ? -$signed({{4{ulps[31]}}, ulps}) : $signed({4'b0000, ulps});
       m = $signed({{(36-(W-1)){1'b0}}, p[W-2:0]});
       m = (ulps[31] != p[W-1]) ? m - n : m + n;
-      if (m < $signed(36'd1 << M))                               add_ulps_int = {W{1'b0}};
-      else if (m > $signed({{(36-(W-1)){1'b0}}, {(W-1){1'b1}}})) add_ulps_int = {p[W-1], {(W-1){1'b1}}};
-      else                                                       add_ulps_int = {p[W-1], m[W-2:0]};
+      add_ulps_int = ulps_clamp(p[W-1], m);
     end
   endfunction
   // hls::add_ulps(p, hls::to_int_rtz(off)): to_int_rtz saturates at +-(2^31 - 1).
@@ -226,7 +235,15 @@ module hit #(
   wire [TAG_BITS-1:0] tag_0 = in_tag_i;
   wire [31:0] id_0  = in_id_i;
   wire [1:0]  k_0   = in_k_i;
-  wire [W-1:0] th_0  = s_back ? add_ulps_int(in_t_i, back_i) : in_t_i;
+  // skip-back's t, add_ulps_int(in_t_i, back_i) with its sum in a prefix adder (in front of the
+  // first multipliers; the ripple chain `+` maps to was a third of that cycle): moving the value
+  // by back_i ulps moves the magnitude bits by back_i, or by -back_i if t is negative, so
+  // m = |t|'s bits + (back_i ^ s) + s, s = t's sign, with back_i sign-extended.
+  wire [35:0] bk_u = {{4{back_i[31]}}, back_i} ^ {36{in_t_i[W-1]}};
+  wire [35:0] bk_m;
+  fp_padd #(.WIDTH(36)) u_back (
+    .a_i({{(36-(W-1)){1'b0}}, in_t_i[W-2:0]}), .b_i(bk_u), .ci_i(in_t_i[W-1]), .sum_o(bk_m));
+  wire [W-1:0] th_0  = s_back ? ulps_clamp(in_t_i[W-1], bk_m) : in_t_i;
   wire [W-1:0] t_0   = in_t_i;
   wire [W-1:0] at_0  = fabs(in_t_i);
   wire [W-1:0] and_0 = fabs(in_nd_i);
