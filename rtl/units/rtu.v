@@ -160,8 +160,8 @@ module rtu #(
   // ---- the frame registers --------------------------------------------------------------------
   // The frame's configuration, from the pins into registers at every edge (no reset, no enable):
   // the chip sets the pins before reset and holds them through the frame, so the units see only
-  // registers, never a pin (no path from outside into a datapath). The host's model clocks the
-  // RTU once before its reset (systemc/rtu_rtl.cpp, tb/rtl/tb_chip.v) to load them.
+  // registers, never a pin (no path from outside into a datapath). The host clocks the RTU once
+  // while it holds the reset (systemc/rtu_rtl.cpp, tb/rtl/tb_chip.v) to load them.
   reg  [12*W_-1:0]            cam_q;
   reg  [COORD_BITS-1:0]       width_q;
   reg  [COORD_BITS-1:0]       height_q;
