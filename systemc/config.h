@@ -70,8 +70,8 @@ struct SimConfig {
   uint32_t mem_queue_depth = 32;  // requests accepted and not yet returned
   uint64_t seed = 0;              // 0: fixed latency; else latency uniform in [L, 2L] per request
   L2Config l2{256 * 1024};        // shared L2 in front of the memory (size 0: none)
-  // The bus interface: the model (systemc/membus.h) or rtl/units/membus_if.v Verilated
-  // (systemc/membus_rtl.h; without the L2, which has no RTL).
+  // The bus interface: the model (systemc/membus.h) or the RTL Verilated (systemc/membus_rtl.h):
+  // rtl/units/membus_if.v without an L2, rtl/units/membus_l2.v with it.
   UnitView membus_view = UnitView::model;
   // vtu: pipeline depth (four 8-byte nodes or one triangle record per cycle); rtl/units/vtu.v's
   // fp_sops have 2 x STAGES registers (four phases, one register each at STAGES 2): 4 = STAGES 2.

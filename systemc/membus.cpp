@@ -68,21 +68,38 @@ bool Membus::l2_hit(uint64_t addr, uint32_t bytes, Cycle& ready) {
   return true;
 }
 
-void Membus::l2_install(uint64_t addr, uint32_t bytes, Cycle ready) {
+bool Membus::l2_victims(uint64_t addr, uint32_t bytes, Cycle now, std::vector<L2Line*>& out) {
+  out.clear();
   const auto [first, last] = l2_span(addr, bytes);
   for (uint64_t l = first; l <= last; ++l) {
+    if (l2_find(l)) continue;
+    const size_t set = size_t(l % l2_sets_) * l2_.ways;
+    L2Line* x = nullptr;
+    for (uint32_t w = 0; w < l2_.ways; ++w) {
+      L2Line& c = l2_lines_[set + w];
+      if (std::find(out.begin(), out.end(), &c) != out.end()) continue;  // taken by this request
+      if (!c.valid) { x = &c; break; }
+      if (c.ready > now || c.readers != 0) continue;
+      if (!x || c.stamp < x->stamp) x = &c;
+    }
+    if (!x) return false;
+    out.push_back(x);
+  }
+  return true;
+}
+
+void Membus::l2_install(uint64_t addr, uint32_t bytes, Cycle ready,
+                        const std::vector<L2Line*>& victims) {
+  const auto [first, last] = l2_span(addr, bytes);
+  size_t v = 0;
+  for (uint64_t l = first; l <= last; ++l) {
     L2Line* x = l2_find(l);
-    if (!x) {  // the set's invalid way, else its least recently used
-      const size_t set = size_t(l % l2_sets_) * l2_.ways;
-      x = &l2_lines_[set];
-      for (uint32_t w = 0; w < l2_.ways; ++w) {
-        L2Line& c = l2_lines_[set + w];
-        if (!c.valid) { x = &c; break; }
-        if (c.stamp < x->stamp) x = &c;
-      }
+    if (!x) {
+      x = victims.at(v++);
       x->valid = true;
       x->tag = l;
       x->ready = ready;
+      x->readers = 0;
     } else {
       x->ready = std::min(x->ready, ready);
     }
@@ -116,6 +133,8 @@ bool Membus::tick(Cycle now) {
     const Resp r = resp_.top();
     resp_.pop();
     if (r.dram) --dram_out_;
+    else
+      for (uint64_t l = r.l2_first; l <= r.l2_last; ++l) --l2_find(l)->readers;
     reqs_[r.requester].client->mem_resp(reqs_[r.requester].port, r.tag, now);
     active = true;
   }
@@ -134,7 +153,9 @@ bool Membus::tick(Cycle now) {
       const Cycle first = std::max({now + l2_.latency, l2_ready, l2_free_});
       const Cycle arrival = first + beats;
       l2_free_ = arrival;
-      resp_.push({arrival, seq_++, uint32_t(i), q.tag, false});
+      const auto [lf, ll] = l2_span(q.addr, q.bytes);
+      for (uint64_t l = lf; l <= ll; ++l) ++l2_find(l)->readers;
+      resp_.push({arrival, seq_++, uint32_t(i), q.tag, false, lf, ll});
       ++st_.l2_accesses;
       ++(l2_ready > now + l2_.latency ? st_.l2_merges : st_.l2_hits);
       st_.l2_bytes += q.bytes;
@@ -146,13 +167,17 @@ bool Membus::tick(Cycle now) {
       ++st_.queue_full_cycles;
       return true;
     }
+    if (l2_sets_ != 0 && !l2_victims(front.addr, front.bytes, now, victims_)) {
+      ++st_.l2_stall_cycles;
+      return true;
+    }
     const MemReq q = reqs_[i].req->pop();
     copy_line(q);
     const Cycle arrival = dram_accept(q.bytes, now).second;
     resp_.push({arrival, seq_++, uint32_t(i), q.tag, true});
     if (l2_sets_ != 0) {
       ++st_.l2_accesses;
-      l2_install(q.addr, q.bytes, arrival);
+      l2_install(q.addr, q.bytes, arrival, victims_);
     }
     rr_ = i + 1;
     return true;
@@ -183,11 +208,23 @@ Cycle Membus::next_event(Cycle now) const {
 
 // ---- RTL view ----------------------------------------------------------------------------------
 
-void Membus::bind_rtl(std::unique_ptr<MembusRtl> rtl) {
+void Membus::bind_rtl(std::unique_ptr<MembusRtl> rtl, uint64_t mshrs) {
   const std::string n = rtl->name();
-  if (l2_sets_ != 0)
-    throw ConfigError("--rtl membus: the L2 has no RTL (membus_if is the bus without it): use "
-                      "--l2-kb 0");
+  const L2Config b = rtl->l2();
+  if (l2_sets_ != 0 || b.size_bytes != 0) {
+    if (b.size_bytes != l2_.size_bytes || b.ways != l2_.ways || b.line_bytes != l2_.line_bytes ||
+        b.bandwidth != l2_.bandwidth)
+      throw ConfigError("--rtl membus: " + n + " is built for " +
+                        (b.size_bytes ? "--l2-kb " + std::to_string(b.size_bytes / 1024) +
+                                            " --l2-ways " + std::to_string(b.ways) +
+                                            " --l2-bandwidth " + std::to_string(b.bandwidth) + " (" +
+                                            std::to_string(b.line_bytes) + "-byte lines)"
+                                      : std::string("--l2-kb 0")));
+    if (mshrs > rtl->l2_queue())
+      throw ConfigError("--rtl membus: " + n + " queues " + std::to_string(rtl->l2_queue()) +
+                        " L2 responses, the caches have " + std::to_string(mshrs) + " MSHRs");
+    if (l2_.latency > 65535) throw ConfigError("--rtl membus: --l2-latency up to 65535");
+  }
   if (latency_ == 0)
     throw ConfigError("--rtl membus: membus_if takes a line's first beat a cycle after the request "
                       "at the earliest (--mem-latency >= 1)");
@@ -202,13 +239,20 @@ void Membus::bind_rtl(std::unique_ptr<MembusRtl> rtl) {
   rtl_ = std::move(rtl);
 }
 
+void Membus::rtl_done(const Resp& r) {
+  auto at = done_.end();
+  while (at != done_.begin() && *(at - 1) > r) --at;
+  done_.insert(at, r);
+}
+
 bool Membus::tick_rtl(Cycle now) {
   bool active = false;
-  // Lines whose last beat came back at the previous edge go to the requester's vtu port.
+  // Lines whose last beat came back at the previous edge go to the requester's vtu port, in
+  // (arrival, acceptance) order as the transaction model's.
   while (!done_.empty() && done_.front().arrival <= now) {
     const Resp r = done_.front();
     done_.pop_front();
-    --dram_out_;
+    if (r.dram) --dram_out_;
     reqs_[r.requester].client->mem_resp(reqs_[r.requester].port, r.tag, now);
     active = true;
   }
@@ -220,9 +264,16 @@ bool Membus::tick_rtl(Cycle now) {
     if (f.addr + f.bytes > (uint64_t(1) << 32) || f.bytes >= (1u << 12) || f.tag >= 256)
       throw std::runtime_error("--rtl membus: a request beyond membus_if's 32-bit addresses, "
                                "12-bit lengths or 8-bit tags");
+    if (l2_sets_ != 0 && (f.bytes != l2_.line_bytes || f.addr % l2_.line_bytes != 0))
+      throw ConfigError("--rtl membus: membus_l2 takes whole L2 lines (" +
+                        std::to_string(l2_.line_bytes) + " bytes at a multiple of " +
+                        std::to_string(l2_.line_bytes) + "); a cache asked for " +
+                        std::to_string(f.bytes) + " bytes at " + std::to_string(f.addr) +
+                        " (its lines must be the L2's)");
     rtl_->request(unsigned(i), true, uint32_t(f.addr), f.bytes, f.tag);
     any = true;
   }
+  rtl_->l2_inputs(uint32_t(now), l2_.latency);
   // The memory: the next beat of the data bus, if this is its cycle.
   const uint8_t* beat = nullptr;
   if (drive_ < lines_.size()) {
@@ -242,19 +293,33 @@ bool Membus::tick_rtl(Cycle now) {
       throw std::logic_error("--rtl membus: the RTL granted requester " + std::to_string(g) +
                              ", which has no request");
     const MemReq q = reqs_[i].req->pop();
-    const auto [first, arrival] = dram_accept(q.bytes, now);
-    Line l{uint32_t(i), q, first, arrival, uint32_t(arrival - first), 0, 0, {}};
-    l.bytes.assign(size_t(l.beats) * bandwidth_, 0);
-    MemReq staged = q;
-    staged.data = l.bytes.data();
-    copy_line(staged);
-    lines_.push_back(std::move(l));
+    if (l2_sets_ != 0) ++st_.l2_accesses;
+    if (rtl_->hit()) {  // the L2's: the merge is the memory's knowledge of the lines in flight
+      Cycle ready = 0;
+      for (const Line& l : lines_)
+        if (l.q.addr == q.addr) ready = l.arrival;
+      ++(ready > now + l2_.latency ? st_.l2_merges : st_.l2_hits);
+      st_.l2_bytes += q.bytes;
+      st_.l2_busy_cycles += (q.bytes + l2_.bandwidth - 1) / l2_.bandwidth;
+      l2_rsp_.push_back({uint32_t(i), q, seq_++});
+    } else {
+      const auto [first, arrival] = dram_accept(q.bytes, now);
+      Line l{uint32_t(i), q, first, arrival, uint32_t(arrival - first), 0, 0, {}, seq_++};
+      l.bytes.assign(size_t(l.beats) * bandwidth_, 0);
+      MemReq staged = q;
+      staged.data = l.bytes.data();
+      copy_line(staged);
+      lines_.push_back(std::move(l));
+    }
+    active = true;
+  } else if (any && rtl_->stalled()) {
+    ++st_.l2_stall_cycles;
     active = true;
   } else if (any && rtl_->full()) {
     ++st_.queue_full_cycles;
     active = true;
   }
-  if (!any && !beat) return active;
+  if (!any && !beat && !rtl_->l2_busy()) return active;
   const MembusRtl::Rsp r = rtl_->edge();
   if (beat) {  // its beat comes back routed, in the next cycle
     if (!r.valid || lines_.empty())
@@ -276,9 +341,34 @@ bool Membus::tick_rtl(Cycle now) {
                              std::to_string(now + 1) + ", the memory's timing says " +
                              std::to_string(f.arrival));
     if (r.last) {
-      done_.push_back({f.arrival, seq_++, f.requester, f.q.tag, true});
+      rtl_done({f.arrival, f.seq, f.requester, f.q.tag, true});
       lines_.pop_front();
       --drive_;
+    }
+  } else if (r.valid) {
+    throw std::logic_error("--rtl membus: a beat came back that the memory did not drive");
+  }
+  const MembusRtl::Rsp h = rtl_->l2_rsp();
+  if (h.valid) {  // the L2's beat, seen by its requester in the next cycle
+    if (l2_rsp_.empty()) throw std::logic_error("--rtl membus: an L2 beat with no L2 hit accepted");
+    L2Rsp& f = l2_rsp_.front();
+    if (h.port != f.requester || h.tag != f.q.tag || h.beat != f.got)
+      throw std::logic_error("--rtl membus: L2 beat " + std::to_string(h.beat) + " of requester " +
+                             std::to_string(h.port) + " (tag " + std::to_string(h.tag) +
+                             ") came back; expected beat " + std::to_string(f.got) + " of " +
+                             std::to_string(f.requester) + " (tag " + std::to_string(f.q.tag) +
+                             ")");
+    const uint32_t bw = l2_.bandwidth, off = f.got * bw;
+    std::memcpy(f.q.data + off, h.data, std::min<uint32_t>(bw, f.q.bytes - off));
+    reqs_[f.requester].client->mem_beat(reqs_[f.requester].port, f.q.tag, f.got, h.last, h.data,
+                                        bw, now + 1);
+    ++f.got;
+    if (h.last != (f.got * bw >= f.q.bytes))
+      throw std::logic_error("--rtl membus: the L2's last beat of a line came after " +
+                             std::to_string(f.got) + " beats");
+    if (h.last) {
+      rtl_done({now + 1, f.seq, f.requester, f.q.tag, false});
+      l2_rsp_.pop_front();
     }
   }
   return active;
@@ -286,6 +376,7 @@ bool Membus::tick_rtl(Cycle now) {
 
 Cycle Membus::next_event_rtl(Cycle now) const {
   Cycle t = done_.empty() ? kNever : done_.front().arrival;
+  if (rtl_->l2_busy()) t = std::min(t, now + 1);  // the L2's responses move every cycle
   if (drive_ < lines_.size()) t = std::min(t, lines_[drive_].first + lines_[drive_].driven);
   for (const auto& r : reqs_)
     if (!r.req->empty()) t = std::min(t, std::max(now + 1, r.req->head_ready()));

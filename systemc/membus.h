@@ -48,6 +48,9 @@ struct MembusStats {
   // L2 (when configured): every request is an access; a hit (or a merge with a line still on its
   // way from memory) is served by the L2 and costs no memory traffic.
   uint64_t l2_accesses = 0, l2_hits = 0, l2_merges = 0, l2_bytes = 0, l2_busy_cycles = 0;
+  // Cycles a missing request waited because no way of its L2 set could take its line: every way
+  // still being filled from memory or still to be read by an accepted hit (the victim rule below).
+  uint64_t l2_stall_cycles = 0;
 };
 
 class Membus : public sc_core::sc_module {
@@ -59,10 +62,11 @@ class Membus : public sc_core::sc_module {
   void add_requester(TimedFifo<MemReq>* req, MemClient* client, uint32_t port);
   void set_l2(const L2Config& c);
   // Binds the Verilated bus interface (systemc/membus_rtl.h, raycore simulate --rtl membus): from
-  // now on it arbitrates the requests and routes the beats; this class is the memory behind it.
-  // Throws ConfigError if it cannot run this bus (L2, more requesters than its ports, another
-  // queue depth or bandwidth).
-  void bind_rtl(std::unique_ptr<MembusRtl> rtl);
+  // now on it arbitrates the requests, looks them up in its L2 and routes the beats; this class is
+  // the memory behind it. Throws ConfigError if it cannot run this bus (another L2, more
+  // requesters than its ports, another queue depth or bandwidth, or more MSHRs than its L2's
+  // response queue holds: `mshrs`, the requesters' outstanding line requests at most).
+  void bind_rtl(std::unique_ptr<MembusRtl> rtl, uint64_t mshrs = 0);
 
   bool tick(Cycle now);        // true if anything happened
   Cycle next_event(Cycle now) const;
@@ -80,6 +84,7 @@ class Membus : public sc_core::sc_module {
     uint64_t seq;
     uint32_t requester, tag;
     bool dram;  // holds one of the memory queue's places until it returns
+    uint64_t l2_first = 0, l2_last = 0;  // an L2 hit: the L2 lines it reads (readers until then)
     bool operator>(const Resp& o) const {
       return arrival != o.arrival ? arrival > o.arrival : seq > o.seq;
     }
@@ -92,6 +97,7 @@ class Membus : public sc_core::sc_module {
   struct L2Line {
     uint64_t tag = 0, stamp = 0;
     Cycle ready = 0;  // when its data is in the L2 (a line on its way from memory: later)
+    uint32_t readers = 0;  // L2 hits accepted whose responses have not been delivered yet
     bool valid = false;
   };
   // The L2 lines covering [addr, addr + bytes), first and last.
@@ -99,7 +105,14 @@ class Membus : public sc_core::sc_module {
   // Whether all of them are in the L2 (ready: when the last of them has its data); if so they
   // become the most recently used.
   bool l2_hit(uint64_t addr, uint32_t bytes, Cycle& ready);
-  void l2_install(uint64_t addr, uint32_t bytes, Cycle ready);
+  // The victim rule: a missing line takes its set's first invalid way, else the least recently
+  // used of the ways that are neither being filled (ready > now) nor still to be read (readers):
+  // the data a filling or a waiting response needs is never overwritten (in RTL, membus_l2.v, the
+  // L2's data array is what the responses read). False if some missing line of [addr, addr +
+  // bytes) finds no such way: the request waits (l2_stall_cycles); fills arrive and responses
+  // drain without any request, so it is accepted later.
+  bool l2_victims(uint64_t addr, uint32_t bytes, Cycle now, std::vector<L2Line*>& out);
+  void l2_install(uint64_t addr, uint32_t bytes, Cycle ready, const std::vector<L2Line*>& victims);
   L2Line* l2_find(uint64_t line);
   const L2Line* l2_find(uint64_t line) const;
 
@@ -112,13 +125,23 @@ class Membus : public sc_core::sc_module {
     Cycle first, arrival;
     uint32_t beats, driven = 0, got = 0;
     std::vector<uint8_t> bytes;  // the memory's data, beats x beat bytes
+    uint64_t seq = 0;            // acceptance order (responses of one cycle go in this order)
   };
+  // An L2 hit the RTL accepted: its beats come back on the L2's channel, in acceptance order.
+  struct L2Rsp {
+    uint32_t requester;
+    MemReq q;
+    uint64_t seq;
+    uint32_t got = 0;
+  };
+  void rtl_done(const Resp& r);  // into done_, in (arrival, seq) order
   bool tick_rtl(Cycle now);
   Cycle next_event_rtl(Cycle now) const;
   std::unique_ptr<MembusRtl> rtl_;
   std::deque<Line> lines_;
   size_t drive_ = 0;
   std::deque<Resp> done_;
+  std::deque<L2Rsp> l2_rsp_;
 
   const std::vector<uint8_t>& mem_;
   uint32_t latency_, bandwidth_, depth_;
@@ -135,6 +158,7 @@ class Membus : public sc_core::sc_module {
   std::vector<L2Line> l2_lines_;  // l2_sets_ x ways
   uint64_t l2_clock_ = 0;
   Cycle l2_free_ = 0;
+  std::vector<L2Line*> victims_;  // l2_victims' answer for the request being accepted
 };
 
 }  // namespace raycore::sc

@@ -1,6 +1,6 @@
 // systemc/membus_rtl.cpp - the Verilated membus_if bound into the frame (see membus_rtl.h). Built
 // with the Verilated models (RAYCORE_RTL=ON); the variants are rtl/units/membus_if.cmake's frame
-// list.
+// list (membus_if.v, membus_l2.v).
 #include "systemc/membus_rtl.h"
 
 #include <type_traits>
@@ -18,9 +18,13 @@ namespace {
 using vl::get_bits;
 using vl::set_bits;
 
-template <class M, unsigned N, unsigned DEPTH, unsigned BEAT>
+// membus_if.v (L2B 0) or membus_l2.v (SETS x WAYS x LINE bytes, L2B bytes per cycle, QD
+// responses queued at most).
+template <class M, unsigned N, unsigned DEPTH, unsigned BEAT, unsigned SETS = 0, unsigned WAYS = 0,
+          unsigned LINE = 0, unsigned L2B = 0, unsigned QD = 0>
 class MembusRtlT final : public MembusRtl {
   static constexpr unsigned kAddr = 32, kLen = 12, kTag = 8;
+  static constexpr bool kL2 = L2B != 0;
 
  public:
   MembusRtlT() { vl::async_reset(m_); }
@@ -28,9 +32,61 @@ class MembusRtlT final : public MembusRtl {
   unsigned ports() const override { return N; }
   unsigned depth() const override { return DEPTH; }
   unsigned beat_bytes() const override { return BEAT; }
+  L2Config l2() const override {
+    if (!kL2) return L2Config{};
+    return L2Config{SETS * WAYS * LINE, WAYS, LINE, 0, L2B};
+  }
+  unsigned l2_queue() const override { return QD; }
   std::string name() const override {
-    return "Verilated membus_if (" + std::to_string(N) + " requesters, " + std::to_string(DEPTH) +
-           " outstanding, " + std::to_string(BEAT) + "-byte beats)";
+    std::string s = std::string(kL2 ? "Verilated membus_l2" : "Verilated membus_if") + " (" +
+                    std::to_string(N) + " requesters, " + std::to_string(DEPTH) +
+                    " outstanding, " + std::to_string(BEAT) + "-byte beats";
+    if (kL2)
+      s += ", an L2 of " + std::to_string(SETS * WAYS * LINE / 1024) + " KB: " +
+           std::to_string(SETS) + " sets x " + std::to_string(WAYS) + " ways x " +
+           std::to_string(LINE) + " bytes, " + std::to_string(L2B) + " bytes per cycle";
+    return s + ")";
+  }
+  void l2_inputs(uint32_t now, uint32_t latency) override {
+    if constexpr (kL2) {
+      m_.now_i = now;
+      m_.lat_i = uint16_t(latency);
+    }
+  }
+  bool hit() const override {
+    if constexpr (kL2)
+      return m_.acc_valid_o && m_.acc_hit_o;
+    else
+      return false;
+  }
+  bool stalled() const override {
+    if constexpr (kL2)
+      return m_.stall_o;
+    else
+      return false;
+  }
+  bool l2_busy() const override {
+    if constexpr (kL2)
+      return m_.l2_busy_o;
+    else
+      return false;
+  }
+  Rsp l2_rsp() const override {
+    Rsp r;
+    if constexpr (kL2) {
+      bool any = false;
+      for (unsigned i = 0; i < N; ++i) any |= get_bits(m_.l2_valid_o, i, 1) != 0;
+      if (any) {
+        r.valid = true;
+        r.last = m_.l2_last_o;
+        r.port = m_.l2_port_o;
+        r.tag = m_.l2_tag_o;
+        r.beat = m_.l2_beat_o;
+        vl::get_bytes(m_.l2_data_o, 0, L2B, l2_data_);
+        r.data = l2_data_;
+      }
+    }
+    return r;
   }
 
   void request(unsigned i, bool valid, uint32_t addr, uint32_t bytes, uint32_t tag) override {
@@ -48,7 +104,10 @@ class MembusRtlT final : public MembusRtl {
   int accept() override {
     m_.mem_ready_i = 1;
     m_.eval();
-    return m_.mem_valid_o ? int(m_.mem_port_o) : -1;
+    if constexpr (kL2)
+      return m_.acc_valid_o ? int(m_.acc_port_o) : -1;
+    else
+      return m_.mem_valid_o ? int(m_.mem_port_o) : -1;
   }
   bool full() const override { return m_.outstanding_o == DEPTH; }
   Rsp edge() override {
@@ -76,16 +135,24 @@ class MembusRtlT final : public MembusRtl {
  private:
   M m_;
   uint8_t data_[BEAT] = {};
+  mutable uint8_t l2_data_[L2B ? L2B : 1] = {};
 };
 
 }  // namespace
 
-std::unique_ptr<MembusRtl> make_rtl_membus(unsigned requesters, unsigned depth, unsigned beat_bytes) {
-#define RAYCORE_RTL_MEMBUS_FRAME_VARIANT(prefix, n, d, b) \
-  if (requesters <= n && depth == d && beat_bytes == b)   \
+std::unique_ptr<MembusRtl> make_rtl_membus(unsigned requesters, unsigned depth, unsigned beat_bytes,
+                                           const L2Config& l2) {
+#define RAYCORE_RTL_MEMBUS_FRAME_VARIANT(prefix, n, d, b)                      \
+  if (l2.size_bytes == 0 && requesters <= n && depth == d && beat_bytes == b) \
     return std::make_unique<MembusRtlT<prefix, n, d, b>>();
+#define RAYCORE_RTL_MEMBUS_L2_FRAME_VARIANT(prefix, n, d, b, s_, w_, lb_, l2b_, qd_) \
+  if (requesters <= n && depth == d && beat_bytes == b &&                           \
+      l2.size_bytes == uint64_t(s_) * w_ * lb_ && l2.ways == w_ &&                  \
+      l2.line_bytes == lb_ && l2.bandwidth == l2b_)                                 \
+    return std::make_unique<MembusRtlT<prefix, n, d, b, s_, w_, lb_, l2b_, qd_>>();
 #include "rtl_membus_if_frame_variants.h"
 #undef RAYCORE_RTL_MEMBUS_FRAME_VARIANT
+#undef RAYCORE_RTL_MEMBUS_L2_FRAME_VARIANT
   return nullptr;
 }
 
@@ -94,8 +161,13 @@ std::string rtl_membus_built() {
 #define RAYCORE_RTL_MEMBUS_FRAME_VARIANT(prefix, n, d, b) \
   s += std::string(s.empty() ? "" : ", ") + "up to " #n " requesters (" + std::to_string(n / 3) + \
        " RTUs), " #d " outstanding, " #b "-byte beats";
+#define RAYCORE_RTL_MEMBUS_L2_FRAME_VARIANT(prefix, n, d, b, s_, w_, lb_, l2b_, qd_)            \
+  s += std::string(s.empty() ? "" : ", ") + "up to " #n " requesters, " #d " outstanding, " #b   \
+       "-byte beats with an L2 of " + std::to_string(s_ * w_ * lb_ / 1024) + " KB (" #w_ " ways, " \
+       #lb_ "-byte lines, " #l2b_ " bytes per cycle)";
 #include "rtl_membus_if_frame_variants.h"
 #undef RAYCORE_RTL_MEMBUS_FRAME_VARIANT
+#undef RAYCORE_RTL_MEMBUS_L2_FRAME_VARIANT
   return s.empty() ? "none" : s;
 }
 

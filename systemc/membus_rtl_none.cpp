@@ -4,7 +4,9 @@
 
 namespace raycore::sc {
 
-std::unique_ptr<MembusRtl> make_rtl_membus(unsigned, unsigned, unsigned) { return nullptr; }
+std::unique_ptr<MembusRtl> make_rtl_membus(unsigned, unsigned, unsigned, const L2Config&) {
+  return nullptr;
+}
 std::string rtl_membus_built() { return "none (built with RAYCORE_RTL=OFF)"; }
 
 }  // namespace raycore::sc

@@ -246,7 +246,9 @@ class RtuRtlRunner {
              " (an inner node's split is written back " + std::to_string(kTrvRtlMinLoop - 1) +
              " cycles after its pass)");
     need(cfg_.mailbox == 0, "--mailbox 0");
-    need(cfg_.l2.size_bytes == 0, "--l2-kb 0 (the L2 has no RTL)");
+    need(cfg_.l2.size_bytes == 0,
+         "--l2-kb 0 (the L2 is RTL with --rtl membus, membus_l2.v, but rtu.v takes the memory's "
+         "16-byte beats only: the L2's 32-byte beats need a second beat port)");
     need(cfg_.rtus >= 1 && cfg_.rtus <= 16, "--rtus <= 16");
     need(uint32_t(fc_.width) <= 65535 && uint32_t(fc_.height) <= 65535,
          "frames up to 65535 pixels a side");

@@ -265,6 +265,7 @@ nlohmann::json hardware_json(const SimResult& r, const SimConfig& cfg) {
         {"accesses", r.bus.l2_accesses},
         {"hits", r.bus.l2_hits},
         {"merges", r.bus.l2_merges},
+        {"stall_cycles", r.bus.l2_stall_cycles},
         {"hit_rate", ratio(r.bus.l2_hits + r.bus.l2_merges, r.bus.l2_accesses)},
         {"bytes", r.bus.l2_bytes},
         {"bandwidth_gb_s", cyc ? double(r.bus.l2_bytes) / cyc * cfg.clock_mhz * 1e-3 : 0.0},

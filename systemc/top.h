@@ -52,8 +52,9 @@ class Top : public sc_core::sc_module {
     if (cfg.membus_view == UnitView::twin)
       throw ConfigError("membus has no pin-level twin in the frame: use --rtl membus");
     if (cfg.membus_view == UnitView::rtl) {  // after the RTUs: their caches are its requesters
-      auto r = make_rtl_membus_for(cfg.rtus, cfg.mem_queue_depth, cfg.mem_bandwidth);
-      bus.bind_rtl(std::move(r));
+      auto r = make_rtl_membus_for(cfg.rtus, cfg.mem_queue_depth, cfg.mem_bandwidth, cfg.l2);
+      bus.bind_rtl(std::move(r), uint64_t(cfg.rtus) * (cfg.node_cache.mshrs +
+                                                      cfg.list_cache.mshrs + cfg.tri_cache.mshrs));
     }
     if (!cfg.trace_file.empty()) {
       std::string base = cfg.trace_file;

@@ -135,6 +135,9 @@ module chip #(
     end
   endgenerate
 
+  wire                take, take_last;
+  wire [MB_-1:0]      take_tag;
+  wire [LEN_BITS-1:0] take_beat;
   membus_if #(.N(N), .ADDR_BITS(ADDR_BITS), .LEN_BITS(LEN_BITS), .TAG_BITS(MB_),
               .DEPTH(BUS_DEPTH), .BEAT_BYTES(BEAT_BYTES)) u_bus (
     .clk_i(clk_i), .rst_ni(rst_ni),
@@ -144,8 +147,10 @@ module chip #(
     .mem_bytes_o(mem_bytes_o), .mem_port_o(mem_port_o), .mem_tag_o(mem_tag_o),
     .beat_valid_i(beat_valid_i), .beat_data_i(beat_data_i),
     .rsp_valid_o(rsp_valid), .rsp_port_o(rsp_port), .rsp_tag_o(rsp_tag), .rsp_data_o(rsp_data),
-    .rsp_beat_o(rsp_beat), .rsp_last_o(rsp_last), .outstanding_o(outstanding_o));
+    .rsp_beat_o(rsp_beat), .rsp_last_o(rsp_last), .outstanding_o(outstanding_o),
+    .take_o(take), .take_tag_o(take_tag), .take_beat_o(take_beat), .take_last_o(take_last));
   wire unused_port = ^rsp_port;  // rsp_valid_o is one-hot by requester already
+  wire unused_take = ^{take, take_tag, take_beat, take_last};  // membus_l2.v's
 
   genvar r;
   generate

@@ -18,7 +18,10 @@
 //     edge that takes its last beat, so with the memory timed as Membus (beats on cycles first ..
 //     first+beats-1, first = max(accept + latency, end of the previous line)) rsp_last_o is high
 //     in the cycle Membus calls mem_resp (arrival = first + beats), and a request can be accepted
-//     in that cycle again. A beat while nothing is outstanding is ignored.
+//     in that cycle again. A beat while nothing is outstanding is ignored. take_*_o show the beat
+//     taken in the cycle (its request's tag, its index, whether it is the line's last).
+// The round-robin is rr_arb.v (shared with membus_l2.v, which uses this module as its memory
+// side).
 // Parameters: N requesters (systemc/rtu.h: node, list, tri cache of each RTU), ADDR_BITS,
 // LEN_BITS (request length in bytes), TAG_BITS (the requester's MSHR index), DEPTH (outstanding
 // requests), BEAT_BYTES (the data bus width, Membus's bandwidth).
@@ -55,44 +58,37 @@ module membus_if #(
   output wire [8*BEAT_BYTES-1:0] rsp_data_o,
   output wire [LEN_BITS-1:0]     rsp_beat_o,
   output wire                    rsp_last_o,
-  output wire [$clog2(DEPTH + 1)-1:0] outstanding_o  // CNT_BITS: accepted, last beat not taken
+  output wire [$clog2(DEPTH + 1)-1:0] outstanding_o, // CNT_BITS: accepted, last beat not taken
+  // The memory's beat taken in this cycle (combinational, before its register): its request's
+  // tag and beat index, and whether it is the line's last (membus_l2.v writes it into the L2).
+  output wire                    take_o,
+  output wire [TAG_BITS-1:0]     take_tag_o,
+  output wire [LEN_BITS-1:0]     take_beat_o,
+  output wire                    take_last_o
 );
 
   localparam integer PORT_BITS = (N > 1) ? $clog2(N) : 1;
   localparam integer PTR_BITS  = (DEPTH > 1) ? $clog2(DEPTH) : 1;
   localparam integer CNT_BITS  = $clog2(DEPTH + 1);
   localparam integer ENT_W     = PORT_BITS + TAG_BITS + LEN_BITS;
-  localparam integer LAST_PORT_I = N - 1;
   localparam integer LAST_PTR_I  = DEPTH - 1;
   localparam integer BEAT_I      = BEAT_BYTES;
   localparam integer FULL_I      = DEPTH;
-  localparam [PORT_BITS-1:0] LAST_PORT = LAST_PORT_I[PORT_BITS-1:0];
   localparam [PTR_BITS-1:0]  LAST_PTR  = LAST_PTR_I[PTR_BITS-1:0];
   localparam [CNT_BITS-1:0]  FULL      = FULL_I[CNT_BITS-1:0];
   localparam [LEN_BITS:0]    BEAT_B    = BEAT_I[LEN_BITS:0];
 
   // ---- round-robin arbiter ----------------------------------------------------------------------
-  reg  [PORT_BITS-1:0] rr_q, rr_d;  // the requester searched first
-  reg  [PORT_BITS-1:0] grant;
-  reg                  found;
-  reg  [PORT_BITS-1:0] idx;
-  integer k;
-  always @* begin
-    found = 1'b0;
-    grant = {PORT_BITS{1'b0}};
-    idx   = rr_q;
-    for (k = 0; k < N; k = k + 1) begin
-      if (!found && req_valid_i[idx]) begin
-        found = 1'b1;
-        grant = idx;
-      end
-      idx = (idx == LAST_PORT) ? {PORT_BITS{1'b0}} : idx + 1'b1;
-    end
-  end
+  wire                 found;
+  wire [PORT_BITS-1:0] grant;
 
   reg  [CNT_BITS-1:0] count_q, count_d;
   wire room   = (count_q != FULL);
   wire accept = found && room && mem_ready_i;
+  rr_arb #(.N(N)) u_rr (
+    .clk_i(clk_i), .rst_ni(rst_ni), .valid_i(req_valid_i), .adv_i(accept), .found_o(found),
+    .grant_o(grant)
+  );
 
   assign mem_valid_o = found && room;
   assign mem_addr_o  = req_addr_i[grant*ADDR_BITS +: ADDR_BITS];
@@ -123,16 +119,12 @@ module membus_if #(
   wire                pop        = take && last;
 
   always @* begin
-    rr_d    = rr_q;
     wr_d    = wr_q;
     rd_d    = rd_q;
     done_d  = done_q;
     beat_d  = beat_q;
     count_d = count_q;
-    if (accept) begin
-      rr_d = (grant == LAST_PORT) ? {PORT_BITS{1'b0}} : grant + 1'b1;
-      wr_d = (wr_q == LAST_PTR) ? {PTR_BITS{1'b0}} : wr_q + 1'b1;
-    end
+    if (accept) wr_d = (wr_q == LAST_PTR) ? {PTR_BITS{1'b0}} : wr_q + 1'b1;
     if (take) begin
       done_d = last ? {(LEN_BITS + 1){1'b0}} : done_next;
       beat_d = last ? {LEN_BITS{1'b0}} : beat_q + 1'b1;
@@ -144,14 +136,12 @@ module membus_if #(
 
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
-      rr_q    <= {PORT_BITS{1'b0}};
       wr_q    <= {PTR_BITS{1'b0}};
       rd_q    <= {PTR_BITS{1'b0}};
       done_q  <= {(LEN_BITS + 1){1'b0}};
       beat_q  <= {LEN_BITS{1'b0}};
       count_q <= {CNT_BITS{1'b0}};
     end else begin
-      rr_q    <= rr_d;
       wr_q    <= wr_d;
       rd_q    <= rd_d;
       done_q  <= done_d;
@@ -200,5 +190,9 @@ module membus_if #(
   assign rsp_beat_o    = rsp_beat_q;
   assign rsp_last_o    = rsp_last_q;
   assign outstanding_o = count_q;
+  assign take_o        = take;
+  assign take_tag_o    = head_tag;
+  assign take_beat_o   = beat_q;
+  assign take_last_o   = last;
 
 endmodule

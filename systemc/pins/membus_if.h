@@ -7,7 +7,8 @@
 // one request accepted per cycle, round-robin from the requester after the last one accepted,
 // only while fewer than DEPTH are outstanding (and the memory is ready); lines come back in
 // acceptance order as max(1, ceil(bytes / BEAT_BYTES)) beats, each routed (one register) to its
-// requester, rsp_last_o on the last one, whose edge frees the slot. See rtl/units/membus_if.v.
+// requester, rsp_last_o on the last one, whose edge frees the slot; take_*_o show the beat taken
+// in the cycle (its request's tag, index, last), before its register. See rtl/units/membus_if.v.
 #pragma once
 
 #include <systemc>
@@ -95,11 +96,11 @@ struct MembusIfSignals {
   sc_core::sc_signal<typename T::addr_t> req_addr;
   sc_core::sc_signal<typename T::bytes_t> req_bytes;
   sc_core::sc_signal<typename T::tags_t> req_tag;
-  sc_core::sc_signal<bool> mem_valid, mem_ready, beat_valid, rsp_last;
+  sc_core::sc_signal<bool> mem_valid, mem_ready, beat_valid, rsp_last, take, take_last;
   sc_core::sc_signal<typename T::maddr_t> mem_addr;
-  sc_core::sc_signal<typename T::len_t> mem_bytes, rsp_beat;
+  sc_core::sc_signal<typename T::len_t> mem_bytes, rsp_beat, take_beat;
   sc_core::sc_signal<typename T::port_idx_t> mem_port, rsp_port;
-  sc_core::sc_signal<typename T::tag_t> mem_tag, rsp_tag;
+  sc_core::sc_signal<typename T::tag_t> mem_tag, rsp_tag, take_tag;
   sc_core::sc_signal<typename T::data_t> beat_data, rsp_data;
   sc_core::sc_signal<typename T::cnt_t> outstanding;
 };
@@ -129,6 +130,10 @@ void bind_membus_if(M& m, S& s, sc_core::sc_signal<bool>& clk, sc_core::sc_signa
   m.rsp_beat_o(s.rsp_beat);
   m.rsp_last_o(s.rsp_last);
   m.outstanding_o(s.outstanding);
+  m.take_o(s.take);
+  m.take_tag_o(s.take_tag);
+  m.take_beat_o(s.take_beat);
+  m.take_last_o(s.take_last);
 }
 
 // The SystemC twin of rtl/units/membus_if.v with the same parameters.
@@ -161,6 +166,10 @@ class MembusIfTwin : public sc_core::sc_module {
   sc_core::sc_out<typename T::len_t> rsp_beat_o;
   sc_core::sc_out<bool> rsp_last_o;
   sc_core::sc_out<typename T::cnt_t> outstanding_o;
+  sc_core::sc_out<bool> take_o;
+  sc_core::sc_out<typename T::tag_t> take_tag_o;
+  sc_core::sc_out<typename T::len_t> take_beat_o;
+  sc_core::sc_out<bool> take_last_o;
 
   SC_HAS_PROCESS(MembusIfTwin);
   explicit MembusIfTwin(sc_core::sc_module_name name) : sc_core::sc_module(name) {
@@ -168,7 +177,8 @@ class MembusIfTwin : public sc_core::sc_module {
     sensitive << clk_i.pos() << rst_ni.neg();
     dont_initialize();
     SC_METHOD(comb);
-    sensitive << req_valid_i << req_addr_i << req_bytes_i << req_tag_i << mem_ready_i << changed_;
+    sensitive << req_valid_i << req_addr_i << req_bytes_i << req_tag_i << mem_ready_i << beat_valid_i
+              << changed_;
   }
 
  private:
@@ -248,6 +258,13 @@ class MembusIfTwin : public sc_core::sc_module {
     rsp_beat_o.write(to_port<typename T::len_t>(rsp_beat_));
     rsp_last_o.write(rsp_last_);
     outstanding_o.write(to_port<typename T::cnt_t>(fifo_.size()));
+    const bool take = beat_valid_i.read() && !fifo_.empty();
+    take_o.write(take);
+    // The head's fields (the RTL's register file reads its head whatever the beat): only the
+    // taken beat's are compared.
+    take_tag_o.write(to_port<typename T::tag_t>(take ? fifo_.front().tag : 0u));
+    take_beat_o.write(to_port<typename T::len_t>(beat_));
+    take_last_o.write(take && done_ + BEAT_BYTES >= fifo_.front().bytes);
   }
 
   uint32_t rr_ = 0;

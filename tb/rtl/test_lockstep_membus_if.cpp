@@ -13,7 +13,8 @@
 //     accepted request and the cycle, port and tag of every response (mem_resp) must equal the
 //     RTL's (mem_valid_o && mem_ready_i; rsp_last_o), and Membus's copied line the beats' bytes.
 // Checked every cycle, twin vs RTL: req_ready_o, mem_valid_o (and mem_addr/bytes/port/tag while
-// valid), rsp_valid_o (and rsp_port/tag/data/beat/last while valid), outstanding_o. Every output
+// valid), rsp_valid_o (and rsp_port/tag/data/beat/last while valid), outstanding_o, take_o (and
+// take_tag/beat/last while taken). Every output
 // transaction is also checked against the stimulus: the accepted request is the granted
 // requester's, each routed beat is the memory's beat of the previous cycle for the right
 // requester and tag. The first difference is printed and the run stops. Prints LOCKSTEP lines with
@@ -194,6 +195,15 @@ class Lockstep : public sc_core::sc_module {
         << " last=" << sr_.rsp_last.read() << " data=" << sr_.rsp_data.read();
     } else if (st_.outstanding.read() != sr_.outstanding.read()) {
       s << "outstanding_o twin=" << st_.outstanding.read() << " rtl=" << sr_.outstanding.read();
+    } else if (st_.take.read() != sr_.take.read() ||
+               (sr_.take.read() &&
+                (st_.take_tag.read() != sr_.take_tag.read() ||
+                 st_.take_beat.read() != sr_.take_beat.read() ||
+                 st_.take_last.read() != sr_.take_last.read()))) {
+      s << "take_*: twin take=" << st_.take.read() << " tag=" << st_.take_tag.read()
+        << " beat=" << st_.take_beat.read() << " last=" << st_.take_last.read()
+        << ", rtl take=" << sr_.take.read() << " tag=" << sr_.take_tag.read()
+        << " beat=" << sr_.take_beat.read() << " last=" << sr_.take_last.read();
     } else {
       return true;
     }

@@ -41,6 +41,8 @@ struct Summary {
   uint64_t mismatches = 0, bad_retire = 0;  // pixels retired other than exactly once per ray
   uint64_t hash = 0;                        // of every pixel's results
   uint64_t tri_tests = 0, bus_bytes = 0;
+  // The bus's L2 (if any) and its queue: accesses, hits, merges, stalled and queue-full cycles.
+  uint64_t l2_accesses = 0, l2_hits = 0, l2_merges = 0, l2_stalls = 0, queue_full = 0;
   // The work counters of every RTU summed (stack_max: the largest), in kWorkNames' order.
   static constexpr int kWork = 23;
   uint64_t work[kWork] = {};
@@ -114,6 +116,11 @@ inline Summary run_child(const Case& c, const sim::Frame& golden) {
       s.shadow = r.shadow_rays;
       s.hash = frame_hash(r.frame);
       s.bus_bytes = r.bus.bytes;
+      s.l2_accesses = r.bus.l2_accesses;
+      s.l2_hits = r.bus.l2_hits;
+      s.l2_merges = r.bus.l2_merges;
+      s.l2_stalls = r.bus.l2_stall_cycles;
+      s.queue_full = r.bus.queue_full_cycles;
       for (const auto& u : r.rtus) {
         s.tri_tests += u.tri_tests;
         sum_work(u, s.work);
@@ -222,6 +229,11 @@ inline void expect_same_counts(const Summary& model, const Summary& p, const std
   EXPECT_EQ(p.cycles, model.cycles) << what;
   EXPECT_EQ(p.hash, model.hash) << what;
   EXPECT_EQ(p.bus_bytes, model.bus_bytes) << what;
+  EXPECT_EQ(p.l2_accesses, model.l2_accesses) << what;
+  EXPECT_EQ(p.l2_hits, model.l2_hits) << what;
+  EXPECT_EQ(p.l2_merges, model.l2_merges) << what;
+  EXPECT_EQ(p.l2_stalls, model.l2_stalls) << what;
+  EXPECT_EQ(p.queue_full, model.queue_full) << what;
   EXPECT_EQ(p.tri_tests, model.tri_tests) << what;
   for (int i = 0; i < Summary::kWork; ++i)
     EXPECT_EQ(p.work[i], model.work[i]) << what << ": " << kWorkNames[i];

@@ -773,18 +773,20 @@ TEST(RtlWaveform, AllRtlFrameHasEveryUnitOfRtu0) {
   std::remove(vcd.c_str());
 }
 
-// ---- the bus interface in RTL (rtl/units/membus_if.v, --rtl membus, no L2) --------------------
+// ---- the bus interface in RTL (rtl/units/membus_if.v, --rtl membus; membus_l2.v with the L2) ---
 // The frame with membus_if arbitrating the caches' requests and routing the memory's beats (the
-// memory's timing stays in Membus): the transaction model's cycles, bus bytes, frame and work
-// counters; the binding checks every grant, every beat routed back and each line's last beat
-// against the cycle the transaction model answers in.
-void expect_membus_rtl(const scenes::Scene& s, const sim::TraceConfig& tc, sc::SimConfig cfg,
-                       const char* what) {
-  cfg.l2.size_bytes = 0;
+// memory's timing stays in Membus): the transaction model's cycles, bus bytes, L2 and queue
+// counters, frame and work counters; the binding checks every grant, every beat routed back and
+// each line's last beat against the cycle the transaction model answers in. Without `l2`, the
+// frame has no L2 (membus_if.v); with it, the configuration's (membus_l2.v).
+Summary expect_membus_rtl(const scenes::Scene& s, const sim::TraceConfig& tc, sc::SimConfig cfg,
+                          const char* what, bool l2 = false) {
+  if (!l2) cfg.l2.size_bytes = 0;
   const Summary model = expect_match(s, tc, cfg);
   cfg.membus_view = UnitView::rtl;
   const Summary p = expect_match(s, tc, cfg);
   expect_same_counts(model, p, what);
+  return model;
 }
 TEST(MembusRtlFrame, DefaultsSixRtus) {
   expect_membus_rtl(corridor(), config(FormatId::fp24, Rounding::rtz, true, 48, 30), {},
@@ -798,8 +800,32 @@ TEST(MembusRtlFrame, RandomLatencySmallCachesSixteenRtus) {
   cfg.list_cache = {512, 2, 32, 2, 2};
   expect_membus_rtl(corridor(), margins_config(Rounding::rne, true), cfg, "16 RTUs, random latency");
 }
-// Every unit of the RTUs and the bus interface in RTL (--rtl all,membus --l2-kb 0), 3 RTUs,
-// randomised latency.
+// The model's default L2 (256 KB, 8 ways, 32 bytes per cycle) in RTL, 6 RTUs: hits and merges.
+TEST(MembusRtlFrame, DefaultL2SixRtus) {
+  const Summary m = expect_membus_rtl(corridor(), config(FormatId::fp24, Rounding::rtz, true, 48, 30),
+                                      {}, "6 RTUs, the default L2", true);
+  EXPECT_GT(m.l2_hits, 0u);
+  EXPECT_GT(m.l2_merges, 0u);
+}
+// A 1 KB L2 (8 sets x 2 ways), small L1 caches, 4 RTUs and randomised memory latency: evictions and
+// misses that wait for a way being filled or read (l2_stall_cycles; with 16 ways, at most 16
+// misses are in flight, so the memory queue of 32 never fills here: RandomLatencySmallCaches-
+// SixteenRtus has that case).
+TEST(MembusRtlFrame, TinyL2RandomLatency) {
+  sc::SimConfig cfg;
+  cfg.rtus = 4;
+  cfg.seed = 5;
+  cfg.l2 = {1024, 2, 64, 3, 32};
+  cfg.node_cache = {1024, 2, 64, 2, 1};
+  cfg.list_cache = {512, 2, 64, 2, 2};
+  const Summary m = expect_membus_rtl(corridor(), margins_config(Rounding::rne, true), cfg,
+                                      "4 RTUs, 1 KB L2, random latency", true);
+  EXPECT_GT(m.l2_hits, 0u);
+  EXPECT_GT(m.l2_merges, 0u);
+  EXPECT_GT(m.l2_stalls, 0u);
+}
+// Every unit of the RTUs and the bus interface in RTL (--rtl all,membus), 3 RTUs, randomised
+// latency, the default L2.
 TEST(MembusRtlFrame, WithEveryUnitRtl) {
   sc::SimConfig cfg;
   cfg.rtus = 3;
@@ -807,7 +833,7 @@ TEST(MembusRtlFrame, WithEveryUnitRtl) {
   cfg.vtu_view = cfg.ist_view = cfg.trv_view = cfg.ascache_view = cfg.hit_view = cfg.rgu_view =
       UnitView::rtl;
   expect_membus_rtl(corridor(), config(FormatId::fp24, Rounding::rne, true, 40, 24), cfg,
-                    "every unit rtl");
+                    "every unit rtl, the default L2", true);
 }
 // FP32 (rne) with every unit and the bus in RTL, 2 RTUs, randomised latency, skip-back shadow
 // rays: vtu.v, ist_unit, trv_unit, the caches' 48-byte triangle lines, hit_unit and rgu_unit at 32
@@ -827,8 +853,11 @@ TEST(MembusRtlFrame, Fp32WithEveryUnitRtl) {
 TEST(MembusRtlFrame, RefusesWhatItCannotRun) {
   const auto tc = config(FormatId::fp24, Rounding::rtz, false, 8, 8);
   sc::SimConfig cfg;
-  cfg.membus_view = UnitView::rtl;  // the default L2
-  expect_refused(tiny_scene(), tc, cfg, "the L2 has no RTL");
+  cfg.membus_view = UnitView::rtl;
+  cfg.l2.size_bytes = 128 * 1024;  // membus_l2 is built for 256 KB and 1 KB
+  const Summary l2 = expect_refused(tiny_scene(), tc, cfg, "--l2-kb 128");
+  EXPECT_NE(std::string(l2.error).find("an L2 of 256 KB (8 ways, 64-byte lines, 32 bytes per cycle)"),
+            std::string::npos) << l2.error;
   cfg.l2.size_bytes = 0;
   cfg.mem_bandwidth = 8;
   const Summary r = expect_refused(tiny_scene(), tc, cfg, "no Verilated membus_if");
@@ -1006,7 +1035,7 @@ TEST(RtuRtlFrame, RefusesWhatItCannotRun) {
   const auto tc = config(FormatId::fp24, Rounding::rtz, true, 8, 8);
   sc::SimConfig cfg;
   cfg.rtu_view = UnitView::rtl;
-  expect_refused(tiny_scene(), tc, cfg, "--l2-kb 0 (the L2 has no RTL)");
+  expect_refused(tiny_scene(), tc, cfg, "--l2-kb 0 (the L2 is RTL with --rtl membus");
   cfg.l2.size_bytes = 0;
   expect_refused(tiny_scene(), config(FormatId::fp24, Rounding::rne, true, 8, 8), cfg,
                  "no Verilated rtu for fp24 rne in this build; built: rtu FP24 rtz");

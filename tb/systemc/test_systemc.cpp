@@ -505,6 +505,36 @@ TEST(Membus, L2HitMergeAndEviction) {
   EXPECT_THROW(bus.set_l2({100, 1, 64, 5, 64}), std::invalid_argument);
 }
 
+// The L2's victim rule (issue 26 part 6: the data a fill writes or a response reads is never
+// another line's): a miss does not evict a way still being filled or still to be read by an
+// accepted hit; it waits (l2_stall_cycles) until the way is free, and then evicts it.
+TEST(Membus, L2VictimNeitherFillingNorRead) {
+  std::vector<uint8_t> mem(4096);
+  for (size_t i = 0; i < mem.size(); ++i) mem[i] = uint8_t(i * 3);
+  sc::Membus bus("bus", mem, 50, 16, 8, 0);
+  bus.set_l2({64, 1, 64, 5, 64});  // 1 set x 1 way x 64 B, hit latency 5, 64 B/cycle
+  Recorder rec;
+  sc::TimedFifo<sc::MemReq> q(8);
+  bus.add_requester(&q, &rec, 0);
+  static uint8_t buf[4][64];
+  q.push({0, 64, 0, buf[0]}, 0);     // miss at 0: 50 + 4 beats -> 54
+  q.push({64, 64, 1, buf[1]}, 0);    // the only way is filling until 54: accepted at 54 -> 108
+  q.push({64, 64, 2, buf[2]}, 110);  // hit: 110 + 5 + 1 -> 116, reads the way until then
+  q.push({0, 64, 3, buf[3]}, 111);   // the way is read until 116: accepted at 116 -> 170
+  for (sc::Cycle t = 0; t < 300; ++t) bus.tick(t);
+  ASSERT_EQ(rec.ev.size(), 4u);
+  EXPECT_EQ(rec.ev[0].at, 54u);
+  EXPECT_EQ(rec.ev[1].at, 108u);
+  EXPECT_EQ(rec.ev[2].at, 116u);
+  EXPECT_EQ(rec.ev[3].at, 170u);
+  EXPECT_EQ(buf[2][5], mem[69]);
+  EXPECT_EQ(buf[3][7], mem[7]);
+  const sc::MembusStats& s = bus.stats();
+  EXPECT_EQ(s.l2_stall_cycles, 53u + 5u);  // cycles 1..53 and 111..115
+  EXPECT_EQ(s.requests, 3u);
+  EXPECT_EQ(s.l2_hits, 1u);
+}
+
 TEST(Membus, RandomLatencyWithinBounds) {
   std::vector<uint8_t> mem(1024);
   sc::Membus bus("bus", mem, 20, 1024, 64, 99);
