@@ -2,12 +2,17 @@
 #include "sim/errors.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
+#include <tuple>
+#include <unordered_map>
 
 #include "hls/ist.h"
 #include "hls/vtu.h"
@@ -181,7 +186,93 @@ StageBudget stage_budget(const Frame& f, const scenes::Scene& scene, const hls::
   // One error pixel: the first partial pipeline that is an error against P0 (and, for
   // traversal_intersection with the VTU on, whether the exact trace of the same ray against the
   // datapath's geometry already departs: vtu set).
-  auto charge = [&](size_t i, bool& vtu) -> Stage {
+  // What the primary hit got wrong (TraversalKind), for a pixel charged at P3. Distances in world
+  // units against the format's ulp at the magnitude of o + t d in the hardware's frame (the largest
+  // coordinate of the hit point and of the ray's origin: the camera at the origin with the VTU on,
+  // the world's without).
+  const int man_bits = cfg.format == hls::FormatId::fp24 ? 16 : 23;
+  auto tolerance = [&](const reference::Ray& ray, double t) {
+    double m = 0;  // the largest of the point's and the ray origin's coordinates (o + t d)
+    for (int k = 0; k < 3; ++k) {
+      const double p = ray.org[k] + t * ray.dir[k];
+      m = std::max(m, cfg.vtu ? std::fabs(p - ray.org[k]) : std::max(std::fabs(p), std::fabs(ray.org[k])));
+    }
+    return kEdgeUlps * std::ldexp(1.0, std::ilogb(std::max(m, 1e-300)) - man_bits);
+  };
+  // The signed distance of the exact hit h on triangle tri to its nearest edge (negative: outside),
+  // and that edge (the index of the vertex opposite it).
+  auto edge_distance = [&](int32_t tri, const reference::TriHit& h, int* edge = nullptr) {
+    const hls::Tri& v = stored.bvh().triangle(tri);
+    double e[3][3], len[3];
+    for (int i = 0; i < 3; ++i) {
+      for (int k = 0; k < 3; ++k) e[i][k] = double(v[(i + 2) % 3][k]) - double(v[(i + 1) % 3][k]);
+      len[i] = std::sqrt(e[i][0] * e[i][0] + e[i][1] * e[i][1] + e[i][2] * e[i][2]);
+    }
+    const double cx = e[1][1] * e[2][2] - e[1][2] * e[2][1], cy = e[1][2] * e[2][0] - e[1][0] * e[2][2],
+                 cz = e[1][0] * e[2][1] - e[1][1] * e[2][0];
+    const double twice_area = std::sqrt(cx * cx + cy * cy + cz * cz);
+    const double w[3] = {h.b0, h.b1, h.b2};  // w_i: the weight of vertex i, 0 on the edge opposite it
+    double d = std::numeric_limits<double>::infinity();
+    for (int i = 0; i < 3; ++i)
+      if (len[i] > 0 && w[i] * twice_area / len[i] < d) {
+        d = w[i] * twice_area / len[i];
+        if (edge) *edge = i;
+      }
+    return d;
+  };
+  // The scene's edges (its own vertices, as the glTF shares them): the triangles on each.
+  struct EdgeKey {
+    std::array<double, 6> p;
+    bool operator==(const EdgeKey& o) const { return p == o.p; }
+  };
+  struct EdgeHash {
+    size_t operator()(const EdgeKey& k) const {
+      size_t h = 0;
+      for (double x : k.p) h = h * 1000003u ^ std::hash<double>()(x);
+      return h;
+    }
+  };
+  auto edge_key = [&](int32_t tri, int opposite) {
+    const hls::Tri& t = scene.tris[size_t(tri)];
+    const hls::Vec3 &a = t[size_t((opposite + 1) % 3)], &c = t[size_t((opposite + 2) % 3)];
+    const bool swap = std::make_tuple(c[0], c[1], c[2]) < std::make_tuple(a[0], a[1], a[2]);
+    const hls::Vec3 &lo = swap ? c : a, &hi = swap ? a : c;
+    return EdgeKey{{lo[0], lo[1], lo[2], hi[0], hi[1], hi[2]}};
+  };
+  std::unordered_map<EdgeKey, std::vector<int32_t>, EdgeHash> edges;
+  std::once_flag edges_built;
+  auto neighbours = [&](int32_t tri, int opposite) -> const std::vector<int32_t>& {
+    std::call_once(edges_built, [&] {
+      for (size_t i = 0; i < scene.tris.size(); ++i)
+        for (int j = 0; j < 3; ++j) edges[edge_key(int32_t(i), j)].push_back(int32_t(i));
+    });
+    return edges.at(edge_key(tri, opposite));
+  };
+  auto kind_of = [&](const PixelResult& hw, const PixelResult& p2, const reference::Ray& ray) {
+    if (hw.tri == p2.tri) return TraversalKind::same;
+    reference::TriHit ha_hit, hb_hit;
+    const bool ha = p2.tri >= 0 && plane_hit(stored, ray, p2.tri, &ha_hit);
+    const bool hb = hw.tri >= 0 && plane_hit(stored, ray, hw.tri, &hb_hit);
+    int edge = 0;
+    if (ha && edge_distance(p2.tri, ha_hit, &edge) <= tolerance(ray, ha_hit.t)) {  // A missed near an edge
+      bool shared = false, hit_other = false;
+      for (int32_t nb : neighbours(p2.tri, edge))
+        if (nb != p2.tri) {
+          shared = true;
+          hit_other |= nb == hw.tri;
+        }
+      return shared && !hit_other ? TraversalKind::crack : TraversalKind::silhouette;
+    }
+    if (hb) {
+      const double d = edge_distance(hw.tri, hb_hit);
+      if (d < 0 && d >= -tolerance(ray, hb_hit.t)) return TraversalKind::silhouette;  // B just outside
+      if (ha && d >= 0 && hb_hit.t >= ha_hit.t &&
+          hb_hit.t - ha_hit.t <= kEdgeUlps * std::ldexp(1.0, std::ilogb(hb_hit.t) - man_bits))
+        return TraversalKind::order;
+    }
+    return TraversalKind::deep;
+  };
+  auto charge = [&](size_t i, bool& vtu, TraversalKind& kind) -> Stage {
     const PixelResult& hw = f.px[i];
     if (departs(ref_stored.px[i], i)) return Stage::storage;  // P1
     const int x = int(i % size_t(f.width)), y = int(i / size_t(f.width));
@@ -208,6 +299,7 @@ StageBudget stage_budget(const Frame& f, const scenes::Scene& scene, const hls::
     }
     if (departs(p3, i)) {
       vtu = datapath && departs(exact_pixel(*datapath, primary, r.tmin, r.tmax), i);
+      kind = kind_of(hw, p2, primary);
       return Stage::traversal_primary;
     }
     // P4: the hardware's shadow ray traced exactly.
@@ -230,13 +322,14 @@ StageBudget stage_budget(const Frame& f, const scenes::Scene& scene, const hls::
   };
   std::vector<Stage> st(err.size());
   std::vector<uint8_t> by_vtu(err.size(), 0);
+  std::vector<TraversalKind> kinds(err.size(), TraversalKind::same);
   constexpr int kChunk = 64;
   const int chunks = int((err.size() + kChunk - 1) / kChunk);
   if (chunks > 0)
     reference::parallel_rows(chunks, cfg.threads, [&](int c) {
       for (size_t j = size_t(c) * kChunk; j < std::min(err.size(), size_t(c + 1) * kChunk); ++j) {
         bool vtu = false;
-        st[j] = charge(err[j], vtu);
+        st[j] = charge(err[j], vtu, kinds[j]);
         by_vtu[j] = vtu;
       }
     });
@@ -252,6 +345,7 @@ StageBudget stage_budget(const Frame& f, const scenes::Scene& scene, const hls::
       case Stage::traversal_primary:
         c = &b.traversal_intersection;
         if (!primary) ++b.traversal_shadow_by_primary_ray;
+        ++b.traversal_kind[size_t(kinds[j])];
         break;
       case Stage::spawn: c = &b.spawn; break;
       case Stage::traversal_shadow:
@@ -320,6 +414,9 @@ nlohmann::json stages_json(const StageBudget& b) {
   j["traversal_intersection"]["shadow_by_shadow_ray"] = b.traversal_shadow_by_shadow_ray;
   j["traversal_intersection"]["vtu_primary"] = b.traversal_vtu_primary;
   j["traversal_intersection"]["vtu_shadow"] = b.traversal_vtu_shadow;
+  j["traversal_intersection"]["by_primary_ray"] = {
+      {"crack", b.traversal_kind[0]}, {"silhouette", b.traversal_kind[1]}, {"order", b.traversal_kind[2]},
+      {"deep", b.traversal_kind[3]}, {"same", b.traversal_kind[4]}};
   j["spawn"] = c(b.spawn);
   j["primary_errors"] = b.primary_errors;
   j["shadow_errors"] = b.shadow_errors;
@@ -363,11 +460,15 @@ void print_errors(const FrameErrors& e, bool any_hit) {
   };
   std::printf("          by stage (primary + shadow):  storage %s, ray generation %s, traversal/intersection "
               "%s (shadow: %llu by the primary ray's hit, %llu by the shadow ray's; the VTU's geometry "
-              "%llu + %llu), spawn %s\n",
+              "%llu + %llu; the primary ray's: crack %llu, silhouette %llu, order %llu, deep %llu, same "
+              "triangle %llu), spawn %s\n",
               two(b.storage).c_str(), two(b.ray_generation).c_str(), two(b.traversal_intersection).c_str(),
               (unsigned long long)b.traversal_shadow_by_primary_ray,
               (unsigned long long)b.traversal_shadow_by_shadow_ray, (unsigned long long)b.traversal_vtu_primary,
-              (unsigned long long)b.traversal_vtu_shadow, two(b.spawn).c_str());
+              (unsigned long long)b.traversal_vtu_shadow, (unsigned long long)b.traversal_kind[0],
+              (unsigned long long)b.traversal_kind[1], (unsigned long long)b.traversal_kind[2],
+              (unsigned long long)b.traversal_kind[3], (unsigned long long)b.traversal_kind[4],
+              two(b.spawn).c_str());
 }
 
 }  // namespace raycore::sim

@@ -90,6 +90,32 @@ scenes::Scene datapath_scene(const scenes::Scene& scene, const hls::Image& image
 // grazing light); P4 traces the hardware's shadow ray with its own interval only.
 enum class Stage : uint8_t { none = 0, storage, ray_generation, traversal_primary, spawn, traversal_shadow };
 
+// What the hardware's primary hit got wrong, for an error charged to traversal_intersection by the
+// primary ray (Stage::traversal_primary), against the exact trace of the same ray (P2: triangle A,
+// or none) and the hardware's (B, or none), with the exact ray's hit points on them (long double):
+// tol = kEdgeUlps ulps of the format at the largest coordinate of the hit point and the ray's
+// origin in the hardware's frame (relative to the camera with the VTU on): the size of the
+// rounding of the point o + t d the ist decides.
+//   crack       A's exact hit lies within tol of an edge that A shares with another triangle N of
+//               the scene (the same two vertices), and the hardware hit neither A nor N: the ray
+//               went through the seam (the lever: a watertight test, which decides a shared edge
+//               once for both triangles);
+//   silhouette  A's exact hit lies within tol of an edge that no other triangle shares, or B's
+//               exact plane point lies outside B by at most tol: an outline decided at the
+//               format's precision (a watertight test does not change it; exact or wider
+//               arithmetic near edges would);
+//   order       the exact ray hits B too, inside, behind A by at most kEdgeUlps ulps of t: the
+//               hardware's t (or its comparison) put the farther one first (the lever: t
+//               precision);
+//   deep        the rest: A missed, or B hit, farther than tol from an edge, or B behind A by
+//               more: the test's rounding amplified by the triangle's shape (a sliver's edge
+//               constants scale with 1 / its width), the VTU's rounding of the geometry (with it
+//               on), or the traversal's interval;
+//   same        the hardware's triangle is A (the error is in t or what follows from it).
+enum class TraversalKind : uint8_t { crack = 0, silhouette, order, deep, same };
+inline constexpr int kTraversalKinds = 5;
+inline constexpr double kEdgeUlps = 16;
+
 struct StageCount {
   uint64_t primary = 0, shadow = 0;
   uint64_t total() const { return primary + shadow; }
@@ -103,6 +129,9 @@ struct StageBudget {
   // hardware ray against the datapath's geometry (datapath_scene: the VTU's translated records)
   // already departs: the VTU's rounding of the geometry, not the trv's or ist's (0 with the VTU off).
   uint64_t traversal_vtu_primary = 0, traversal_vtu_shadow = 0;
+  // The errors charged to traversal_intersection by the primary ray (its primary errors and
+  // traversal_shadow_by_primary_ray), by TraversalKind: crack, silhouette, order, deep, same.
+  uint64_t traversal_kind[kTraversalKinds] = {};
   uint64_t primary_errors = 0, shadow_errors = 0;  // = the totals' (errors.primary_errors, shadow_errors)
   std::vector<Stage> pixel;                        // per pixel (row-major): the stage charged, none if no error
   double seconds = 0;                              // wall time (measure_errors: with the datapath scene's BVH)

@@ -80,6 +80,11 @@ void expect_adds_up(const sim::FrameErrors& e, const std::string& what) {
       << what;
   EXPECT_LE(b.traversal_vtu_primary, b.traversal_intersection.primary) << what;
   EXPECT_LE(b.traversal_vtu_shadow, b.traversal_intersection.shadow) << what;
+  // The primary ray's traversal errors by kind (edge, order, deep, same) are all of them.
+  EXPECT_EQ(b.traversal_kind[0] + b.traversal_kind[1] + b.traversal_kind[2] + b.traversal_kind[3] +
+                b.traversal_kind[4],
+            b.traversal_intersection.primary + b.traversal_shadow_by_primary_ray)
+      << what;
   uint64_t charged = 0;
   for (Stage s : b.pixel) charged += s != Stage::none;
   EXPECT_EQ(charged, e.total.primary_errors + e.total.shadow_errors) << what;
@@ -90,13 +95,18 @@ void expect_adds_up(const sim::FrameErrors& e, const std::string& what) {
 bool same(const Vec3& a, const Vec3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
 
 std::string budget_line(const sim::StageBudget& b) {
-  char buf[256];
-  std::snprintf(buf, sizeof buf, "storage %llu+%llu raygen %llu+%llu trav %llu+%llu (vtu %llu+%llu) spawn %llu+%llu",
+  char buf[320];
+  std::snprintf(buf, sizeof buf,
+                "storage %llu+%llu raygen %llu+%llu trav %llu+%llu (vtu %llu+%llu; primary ray's crack %llu "
+                "silhouette %llu order %llu deep %llu same %llu) spawn %llu+%llu",
                 (unsigned long long)b.storage.primary, (unsigned long long)b.storage.shadow,
                 (unsigned long long)b.ray_generation.primary, (unsigned long long)b.ray_generation.shadow,
                 (unsigned long long)b.traversal_intersection.primary,
                 (unsigned long long)b.traversal_intersection.shadow, (unsigned long long)b.traversal_vtu_primary,
-                (unsigned long long)b.traversal_vtu_shadow, (unsigned long long)b.spawn.primary,
+                (unsigned long long)b.traversal_vtu_shadow, (unsigned long long)b.traversal_kind[0],
+                (unsigned long long)b.traversal_kind[1], (unsigned long long)b.traversal_kind[2],
+                (unsigned long long)b.traversal_kind[3], (unsigned long long)b.traversal_kind[4],
+                (unsigned long long)b.spawn.primary,
                 (unsigned long long)b.spawn.shadow);
   return buf;
 }
@@ -361,6 +371,11 @@ TEST(ErrorStages, ConstructedTraversalIntersection) {
   EXPECT_GE(m.e.stages.traversal_intersection.primary, 1u);
   EXPECT_EQ(m.e.stages.storage.total(), 0u);
   EXPECT_EQ(m.e.stages.traversal_vtu_primary, 0u) << "VTU off";
+  // The exact ray is inside by less than an FP24 ulp of the hit point, next to an edge no other
+  // triangle shares: the outline, decided at the format's precision.
+  EXPECT_GE(m.e.stages.traversal_kind[size_t(sim::TraversalKind::silhouette)], 1u) << budget_line(m.e.stages);
+  EXPECT_EQ(m.e.stages.traversal_kind[size_t(sim::TraversalKind::crack)], 0u) << budget_line(m.e.stages);
+  EXPECT_EQ(m.e.stages.traversal_kind[size_t(sim::TraversalKind::deep)], 0u) << budget_line(m.e.stages);
   expect_adds_up(m.e, "traversal");
 }
 
