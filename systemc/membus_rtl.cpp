@@ -72,21 +72,11 @@ class MembusRtlT final : public MembusRtl {
       return false;
   }
   Rsp l2_rsp() const override {
-    Rsp r;
-    if constexpr (kL2) {
-      bool any = false;
-      for (unsigned i = 0; i < N; ++i) any |= get_bits(m_.l2_valid_o, i, 1) != 0;
-      if (any) {
-        r.valid = true;
-        r.last = m_.l2_last_o;
-        r.port = m_.l2_port_o;
-        r.tag = m_.l2_tag_o;
-        r.beat = m_.l2_beat_o;
-        vl::get_bytes(m_.l2_data_o, 0, L2B, l2_data_);
-        r.data = l2_data_;
-      }
-    }
-    return r;
+    if constexpr (kL2)
+      return read_rsp<L2B>(m_.l2_valid_o, m_.l2_last_o, m_.l2_port_o, m_.l2_tag_o, m_.l2_beat_o,
+                           m_.l2_data_o, l2_data_);
+    else
+      return Rsp{};
   }
 
   void request(unsigned i, bool valid, uint32_t addr, uint32_t bytes, uint32_t tag) override {
@@ -115,24 +105,31 @@ class MembusRtlT final : public MembusRtl {
     m_.eval();
     m_.clk_i = 0;
     m_.eval();
-    Rsp r;
-    bool any = false;
-    for (unsigned i = 0; i < N; ++i) any |= get_bits(m_.rsp_valid_o, i, 1) != 0;
-    if (any) {
-      r.valid = true;
-      r.last = m_.rsp_last_o;
-      r.port = m_.rsp_port_o;
-      r.tag = m_.rsp_tag_o;
-      r.beat = m_.rsp_beat_o;
-      vl::get_bytes(m_.rsp_data_o, 0, BEAT, data_);
-      r.data = data_;
-    }
+    const Rsp r = read_rsp<BEAT>(m_.rsp_valid_o, m_.rsp_last_o, m_.rsp_port_o, m_.rsp_tag_o,
+                                 m_.rsp_beat_o, m_.rsp_data_o, data_);
     m_.beat_valid_i = 0;  // the next cycle's inputs start idle
     for (unsigned i = 0; i < N; ++i) set_bits(m_.req_valid_i, i, 1, 0);
     return r;
   }
 
  private:
+  // A channel's routed beat (rsp_* or l2_*): valid if any requester's bit is set.
+  template <unsigned BYTES, class V, class D>
+  static Rsp read_rsp(const V& valid, bool last, uint32_t port, uint32_t tag, uint32_t beat,
+                      const D& data, uint8_t* buf) {
+    Rsp r;
+    bool any = false;
+    for (unsigned i = 0; i < N; ++i) any |= get_bits(valid, i, 1) != 0;
+    if (!any) return r;
+    r.valid = true;
+    r.last = last;
+    r.port = port;
+    r.tag = tag;
+    r.beat = beat;
+    vl::get_bytes(data, 0, BYTES, buf);
+    r.data = buf;
+    return r;
+  }
   M m_;
   uint8_t data_[BEAT] = {};
   mutable uint8_t l2_data_[L2B ? L2B : 1] = {};
