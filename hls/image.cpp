@@ -27,6 +27,12 @@ const char* rounding_name(Rounding r) {
   }
   return "?";
 }
+const char* ist_kind_name(IstKind k) { return k == IstKind::wald ? "wald" : "watertight"; }
+IstKind ist_kind_from_string(const std::string& s) {
+  if (s == "wald") return IstKind::wald;
+  if (s == "watertight") return IstKind::watertight;
+  throw std::invalid_argument("unknown intersection test '" + s + "' (wald or watertight)");
+}
 Rounding rounding_from_string(const std::string& s) {
   if (s == "rtz") return Rounding::rtz;
   if (s == "rne") return Rounding::rne;
@@ -57,7 +63,7 @@ ImageHeader ImageHeader::read(const uint8_t* p) {
   h.rounding = p[12];
   h.tri_bytes = p[13];
   h.flags = p[14];
-  h.reserved = p[15];
+  h.ist = p[15];
   h.node_count = get32(p + 16);
   h.list_count = get32(p + 20);
   h.tri_count = get32(p + 24);
@@ -80,7 +86,7 @@ void ImageHeader::write(uint8_t* p) const {
   p[12] = rounding;
   p[13] = tri_bytes;
   p[14] = flags;
-  p[15] = reserved;
+  p[15] = ist;
   put32(p + 16, node_count);
   put32(p + 20, list_count);
   put32(p + 24, tri_count);
@@ -139,19 +145,20 @@ std::string num(uint64_t v) { return std::to_string(v); }
 template <class F>
 void check_records(const Image& img, const std::string& what) {
   const ImageHeader h = img.header();
-  constexpr size_t rb = tri_record_bytes<F>();
+  const IstKind kind = img.ist_kind();
+  const size_t rb = tri_record_bytes<F>(kind), kfo = tri_kflags_offset<F>(kind), ido = tri_id_offset<F>(kind);
   for (uint32_t i = 0; i < h.tri_count; ++i) {
     const uint8_t* r = img.tri(i);
-    const uint32_t kf = r[tri_kflags_offset<F>()];
+    const uint32_t kf = r[kfo];
     if ((kf & 3u) == 3u) fail(what, "triangle " + num(i) + ": projection axis k = 3");
     if ((kf & ~3u & ~tri_flags_known) != 0)
       fail(what, "triangle " + num(i) + ": unknown flag bits " + num(kf & ~3u & ~tri_flags_known));
-    for (size_t b = tri_kflags_offset<F>() + 1; b < rb; ++b) {
-      if (b >= tri_id_offset<F>() && b < tri_id_offset<F>() + 4) continue;
+    for (size_t b = kfo + 1; b < rb; ++b) {
+      if (b >= ido && b < ido + 4) continue;
       if (r[b] != 0) fail(what, "triangle " + num(i) + ": nonzero padding byte " + num(b));
     }
     if (F::width < 8 * int(tri_const_bytes<F>()))
-      for (int c = 0; c < 9; ++c) {
+      for (int c = 0; c < tri_const_count(kind); ++c) {
         const uint64_t v = detail::get_le(r + size_t(c) * tri_const_bytes<F>(), tri_const_bytes<F>());
         if (v & ~uint64_t(F::mask)) fail(what, "triangle " + num(i) + ": constant " + num(c) + " has bits beyond the format");
       }
@@ -173,10 +180,13 @@ void Image::check(const std::string& what) const {
   else fail(what, "unsupported number format " + num(h.exp_bits) + "/" + num(h.man_bits) + " (exponent/mantissa bits)");
   if (h.rounding > 2) fail(what, "unknown rounding code " + num(h.rounding));
   if (h.rounding == 2 && fmt != FormatId::fp24) fail(what, "rounding raycore (code 2) is fp24 only");
-  const uint64_t rb = fmt == FormatId::fp24 ? tri_record_bytes<FP24>() : tri_record_bytes<FP32>();
+  if (h.ist > uint8_t(IstKind::watertight)) fail(what, "unknown triangle record kind " + num(h.ist));
+  const IstKind kind = IstKind(h.ist);
+  const uint64_t rb = fmt == FormatId::fp24 ? tri_record_bytes<FP24>(kind) : tri_record_bytes<FP32>(kind);
   if (h.tri_bytes != rb)
-    fail(what, "triangle record size " + num(h.tri_bytes) + " (" + format_name(fmt) + " needs " + num(rb) + ")");
-  if ((h.flags & ~image_flag_vtu) != 0 || h.reserved != 0) fail(what, "unknown header flags");
+    fail(what, "triangle record size " + num(h.tri_bytes) + " (" + format_name(fmt) + " " + ist_kind_name(kind) +
+                   " records need " + num(rb) + ")");
+  if ((h.flags & ~image_flag_vtu) != 0) fail(what, "unknown header flags");
   if (h.node_count == 0) fail(what, "no nodes (the root is node 0)");
   if (h.node_count > node_index_mask + 1u || h.list_count > node_index_mask + 1u)
     fail(what, "node or list count beyond the 24-bit index");
@@ -239,7 +249,7 @@ Image build_t(const std::vector<Tri>& tris, const BuildOptions& opt, TreeStats* 
   TreeStats st;
   for (size_t i = 0; i < tris.size(); ++i) {
     WaldInfo info;
-    recs[i] = make_wald<F, R>(tris[i], uint32_t(i), &info);
+    recs[i] = make_wald<F, R>(tris[i], uint32_t(i), opt.ist, &info);
     skip[i] = info.degenerate;
     st.degenerate += info.degenerate;
     st.saturated_constants += uint64_t(info.saturated);
@@ -254,7 +264,8 @@ Image build_t(const std::vector<Tri>& tris, const BuildOptions& opt, TreeStats* 
   h.exp_bits = uint8_t(F::exp_bits);
   h.man_bits = uint8_t(F::man_bits);
   h.rounding = R == Rounding::raycore ? 2 : (R == Rounding::rne ? 1 : 0);
-  h.tri_bytes = uint8_t(tri_record_bytes<F>());
+  h.tri_bytes = uint8_t(tri_record_bytes<F>(opt.ist));
+  h.ist = uint8_t(opt.ist);
   h.node_count = uint32_t(tree.nodes.size());
   h.list_count = uint32_t(tree.list.size());
   h.tri_count = uint32_t(tris.size());

@@ -96,7 +96,9 @@ constexpr uint8_t image_flag_vtu = 1u << 0;  // the image was translated by the 
 //    0  magic "RCIMAGE1"        8  version (u16)      10 exp_bits (u8)     11 man_bits (u8)
 //   12  rounding (u8: 0 rtz, 1 rne, 2 raycore (fp24 only); the policy the constants and splits
 //       were rounded with, and so the arithmetic the image is traced with)
-//   13  triangle record bytes (u8: 32 fp24, 48 fp32)   14 flags (u8, image_flag_*)   15 zero
+//   13  triangle record bytes (u8: hls/wald.h's tri_record_bytes: wald 32 fp24, 48 fp32; watertight
+//       48 fp24, 64 fp32)   14 flags (u8, image_flag_*)   15 triangle record kind (u8: IstKind, 0
+//       wald, 1 watertight; --ist)
 //   16  node count (u32)      20  list count (u32)      24  triangle count (u32)
 //   28  node offset (u32)     32  list offset (u32)     36  triangle offset (u32)
 //   40  scene box lo x, y, z  52  scene box hi x, y, z  (u32 format bits each, rounded outward)
@@ -107,7 +109,7 @@ struct ImageHeader {
   uint8_t rounding = 0;
   uint8_t tri_bytes = 0;
   uint8_t flags = 0;
-  uint8_t reserved = 0;
+  uint8_t ist = 0;  // IstKind
   uint32_t node_count = 0, list_count = 0, tri_count = 0;
   uint32_t node_offset = 0, list_offset = 0, tri_offset = 0;
   uint32_t box_lo[3] = {}, box_hi[3] = {};
@@ -140,10 +142,12 @@ class Image {
     return bytes[12] == 2 ? Rounding::raycore : (bytes[12] ? Rounding::rne : Rounding::rtz);
   }
   bool vtu_applied() const { return (bytes[14] & image_flag_vtu) != 0; }
+  IstKind ist_kind() const { return IstKind(bytes[15]); }
+  size_t tri_bytes() const { return bytes[13]; }
   void box(uint32_t lo[3], uint32_t hi[3]) const;
   template <class F>
   WaldTri<F> wald(uint32_t i) const {
-    return decode_tri<F>(tri(i));
+    return decode_tri<F>(tri(i), ist_kind());
   }
 
   void save(const std::string& path) const;     // throws std::runtime_error naming the file

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "hls/geom.h"
+#include "hls/wald.h"
 
 namespace raycore::hls {
 
@@ -34,6 +35,7 @@ struct BuildOptions {
   int max_depth = 0;             // <= 0: automatic, round(8 + 1.3 log2 N) (pbrt); capped at 64
   double split_ratio = 1.0;      // split only when its cost is below split_ratio x the leaf's cost
                                  //   (RayCore's driver: 0.8, with costs 1.7072 / 3.4623)
+  IstKind ist = IstKind::wald;   // the triangle records' kind (hls/wald.h; --ist); not the tree's
 };
 
 // RayCore's driver builder (reference.md): node cost 1.7072, triangle cost 3.4623, leaves of at

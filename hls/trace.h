@@ -28,6 +28,9 @@ struct TraceConfig {
   // trv_widen ulps. 0 and 0: none (today's frames bit for bit).
   double bary_margin = 0;
   int32_t trv_widen = 0;
+  // --ist: the intersection test and so the image's triangle records (hls/wald.h, hls/ist.h):
+  // Wald's (with the margins above), or the watertight test (no margins: it needs none).
+  IstKind ist = IstKind::wald;
   int width = 800, height = 480;
   int threads = 0;            // 0: all hardware threads
 };

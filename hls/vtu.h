@@ -9,6 +9,9 @@
 //             b_d' = sop(b_d, -0, b_nu * c_u, b_nv * c_v)
 //             c_d' = sop(c_d, -0, c_nu * c_u, c_nv * c_v)
 //             n_u, n_v, b_nu, b_nv, c_nu, c_nv, k, flags and id unchanged
+//   watertight n_d' as above; each vertex coordinate x' = sop(x, -c[axis], -0*0, -0*0) (9 shifts);
+//   record     n_u, n_v, k, flags and id unchanged (a shared vertex shifts to the same bits in
+//              every triangle: the translated mesh stays closed)
 //   box/light x' = sop(x, -c, -0*0, -0*0)   (box_outward: one more step outward, see below)
 // (-0 and -0*0 are absent terms: they leave an all-zero sum's sign to the others.) For rtz and
 // rne a two-term sop is sub(x, c) bit for bit (tb/fp/test_fp_sop.cpp, Sop.*TwoTermsAreAdd); for
@@ -65,13 +68,17 @@ struct Vtu {
     const uint32_t cu = c[u], cv = c[v];
     constexpr uint32_t absent = F::sign_mask;  // -0
     o.c[W::ND] = A::sop(t.c[W::ND], A::neg(c[k]), A::neg(t.c[W::NU]), cu, A::neg(t.c[W::NV]), cv);
+    if (t.kind == IstKind::watertight) {
+      for (int i = W::VA; i < W::VA + 9; ++i) o.c[i] = shift(t.c[i], c[i % 3]);
+      return o;
+    }
     o.c[W::BD] = A::sop(t.c[W::BD], absent, t.c[W::BNU], cu, t.c[W::BNV], cv);
     o.c[W::CD] = A::sop(t.c[W::CD], absent, t.c[W::CNU], cu, t.c[W::CNV], cv);
     return o;
   }
 
-  // A record in place, as the fill path sees it (bytes in, bytes out).
-  void tri_record(uint8_t* rec) const { encode_tri<F>(tri(decode_tri<F>(rec)), rec); }
+  // A record of the given kind in place, as the fill path sees it (bytes in, bytes out).
+  void tri_record(uint8_t* rec, IstKind kind) const { encode_tri<F>(tri(decode_tri<F>(rec, kind)), rec); }
 
   // The scene box, in place: x' = x - c (shift).
   void box(uint32_t lo[3], uint32_t hi[3]) const {
@@ -114,7 +121,7 @@ Image transform_image(const Image& img, const Vtu<F, R>& vtu) {
   for (uint32_t i = 0; i < h.node_count; ++i)
     detail::put_le(p + h.node_offset + size_t(i) * 8, vtu.node(img.node(i)), 8);
   for (uint32_t i = 0; i < h.tri_count; ++i)
-    vtu.tri_record(p + h.tri_offset + size_t(i) * tri_record_bytes<F>());
+    vtu.tri_record(p + h.tri_offset + size_t(i) * h.tri_bytes, img.ist_kind());
   ImageHeader nh = h;
   vtu.box_outward(nh.box_lo, nh.box_hi);
   nh.flags = uint8_t(nh.flags | image_flag_vtu);

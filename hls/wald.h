@@ -1,7 +1,9 @@
-// hls/wald.h - the triangle record of the memory image: Wald's projection form, the nine constants
-// computed in double precision from the scene's vertices and rounded once to the format.
+// hls/wald.h - the triangle record of the memory image, of one of two kinds (IstKind, the image
+// header's byte 15; --ist): Wald's projection form for Wald's test, or the plane and the three
+// vertices for the watertight test (hls/ist.h). Every constant is computed in double precision from
+// the scene's vertices and rounded once to the format.
 //
-// Convention (the project's, NOT Wald's original naming; see docs/image.md):
+// Wald's constants (the project's convention, NOT Wald's original naming; see docs/image.md):
 //   k = dominant axis of n = (B-A) x (C-A), u = (k+1) % 3, v = (k+2) % 3
 //   t     = (n_d - o_k - n_u o_u - n_v o_v) / (d_k + n_u d_u + n_v d_v)
 //   beta  = b_nu h_u + b_nv h_v + b_d     weight of vertex B  (b_nu multiplies h_u)
@@ -12,20 +14,25 @@
 //   b_nu =  e2_v / n_k   b_nv = -e2_u / n_k   b_d = (e2_u A_v - e2_v A_u) / n_k
 //   c_nu = -e1_v / n_k   c_nv =  e1_u / n_k   c_d = (e1_v A_u - e1_u A_v) / n_k
 //
-// Record layout (little endian):
-//   FP24, 32 bytes: nine 3-byte constants at 0, 3, ..., 24; byte 27 = k (bits 1:0) | flags;
-//                   bytes 28..31 = scene index (uint32).
-//   FP32, 48 bytes: nine 4-byte constants at 0, 4, ..., 32; byte 36 = k | flags; 37..39 zero;
-//                   bytes 40..43 = scene index; 44..47 zero. (Nine 4-byte constants are 36 bytes:
-//                   they cannot fit in 32, so FP32 records are 48 bytes, a multiple of 16.)
+// Kinds and layouts (little endian; cb = 3 bytes per constant in FP24, 4 in FP32):
+//   wald        nine constants n_u, n_v, n_d, b_nu, b_nv, b_d, c_nu, c_nv, c_d
+//   watertight  twelve: the same plane n_u, n_v, n_d (what the hit unit reads: the side, the spawn),
+//               then the vertices A, B, C as x, y, z each (what the watertight test reads)
+//   the constants at 0, cb, 2 cb, ...; then one byte k (bits 1:0) | flags; the scene index (uint32)
+//   at the next multiple of 4; the record padded with zeros to a multiple of 16:
+//     FP24 wald 32 bytes (id at 28)   FP24 watertight 48 (id at 40)
+//     FP32 wald 48 bytes (id at 40)   FP32 watertight 64 (id at 52)
 // Flags: bit 2 = degenerate (zero area in double, or constants beyond the format's range). A
-// degenerate record holds n_u=n_v=n_d=0, b_nu=b_nv=0, b_d=-1, c_nu=c_nv=c_d=0: finite, and
-// beta = -1 < 0 for every hit point, before and after the VTU transform (b_d' = -1 + 0 + 0).
+// degenerate Wald record holds n_u=n_v=n_d=0, b_nu=b_nv=0, b_d=-1, c_nu=c_nv=c_d=0: finite, and
+// beta = -1 < 0 for every hit point, before and after the VTU transform (b_d' = -1 + 0 + 0); a
+// degenerate watertight record is all zeros: three equal vertices, before and after the VTU, whose
+// edge functions are all exactly zero, which the test rejects (det = 0).
 #pragma once
 
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <string>
 
 #include "hls/fp.h"
 #include "hls/geom.h"
@@ -35,42 +42,57 @@ namespace raycore::hls {
 constexpr uint32_t tri_flag_degenerate = 1u << 2;  // in byte 27 (FP24) / 36 (FP32), above k
 constexpr uint32_t tri_flags_known = tri_flag_degenerate;
 
+// The triangle record's kind, and so the intersection test (hls/ist.h): --ist wald|watertight.
+enum class IstKind : uint8_t { wald = 0, watertight = 1 };
+const char* ist_kind_name(IstKind k);                // "wald" / "watertight"
+IstKind ist_kind_from_string(const std::string& s);  // throws std::invalid_argument
+
+// Constants per record: 9 (wald), 12 (watertight).
+constexpr int tri_const_count(IstKind kind) { return kind == IstKind::wald ? 9 : 12; }
+
 template <class F>
 struct WaldTri {
-  enum { NU = 0, NV, ND, BNU, BNV, BD, CNU, CNV, CD };
-  uint32_t k = 0;      // projection axis 0/1/2
-  uint32_t flags = 0;  // tri_flag_* bits (bit positions as in the record byte; bits 1:0 are k's)
-  uint32_t c[9] = {};  // the nine constants, format bit patterns, in the order above
-  uint32_t id = 0;     // the triangle's index in the scene
+  enum { NU = 0, NV, ND, BNU, BNV, BD, CNU, CNV, CD };  // wald; watertight: NU, NV, ND, then VA..
+  enum { VA = 3, VB = 6, VC = 9 };                      // watertight: vertex j's x at VA + 3 j
+  IstKind kind = IstKind::wald;
+  uint32_t k = 0;       // projection axis 0/1/2
+  uint32_t flags = 0;   // tri_flag_* bits (bit positions as in the record byte; bits 1:0 are k's)
+  uint32_t c[12] = {};  // the constants, format bit patterns, in the order above (9 or 12 used)
+  uint32_t id = 0;      // the triangle's index in the scene
   bool degenerate() const { return (flags & tri_flag_degenerate) != 0; }
+  int count() const { return tri_const_count(kind); }
 };
 
 template <class F>
 constexpr bool operator==(const WaldTri<F>& a, const WaldTri<F>& b) {
-  for (int i = 0; i < 9; ++i)
+  for (int i = 0; i < 12; ++i)
     if (a.c[i] != b.c[i]) return false;
-  return a.k == b.k && a.flags == b.flags && a.id == b.id;
+  return a.kind == b.kind && a.k == b.k && a.flags == b.flags && a.id == b.id;
 }
 
-// Bytes per constant, and the offsets inside a record.
+// Bytes per constant, and the offsets inside a record of a kind.
 template <class F>
 constexpr size_t tri_const_bytes() {
   return F::width <= 24 ? 3 : 4;
 }
 template <class F>
-constexpr size_t tri_kflags_offset() {
-  return 9 * tri_const_bytes<F>();
+constexpr size_t tri_kflags_offset(IstKind kind) {
+  return size_t(tri_const_count(kind)) * tri_const_bytes<F>();
 }
 template <class F>
-constexpr size_t tri_id_offset() {
-  return (tri_kflags_offset<F>() + 1 + 3) & ~size_t(3);
+constexpr size_t tri_id_offset(IstKind kind) {
+  return (tri_kflags_offset<F>(kind) + 1 + 3) & ~size_t(3);
 }
 template <class F>
-constexpr size_t tri_record_bytes() {
-  return (tri_id_offset<F>() + 4 + 15) & ~size_t(15);
+constexpr size_t tri_record_bytes(IstKind kind) {
+  return (tri_id_offset<F>(kind) + 4 + 15) & ~size_t(15);
 }
-static_assert(tri_record_bytes<FP24>() == 32 && tri_id_offset<FP24>() == 28, "FP24 layout");
-static_assert(tri_record_bytes<FP32>() == 48 && tri_id_offset<FP32>() == 40, "FP32 layout");
+static_assert(tri_record_bytes<FP24>(IstKind::wald) == 32 && tri_id_offset<FP24>(IstKind::wald) == 28, "FP24 layout");
+static_assert(tri_record_bytes<FP32>(IstKind::wald) == 48 && tri_id_offset<FP32>(IstKind::wald) == 40, "FP32 layout");
+static_assert(tri_record_bytes<FP24>(IstKind::watertight) == 48 && tri_id_offset<FP24>(IstKind::watertight) == 40,
+              "FP24 watertight layout");
+static_assert(tri_record_bytes<FP32>(IstKind::watertight) == 64 && tri_id_offset<FP32>(IstKind::watertight) == 52,
+              "FP32 watertight layout");
 
 namespace detail {
 inline void put_le(uint8_t* p, uint64_t v, size_t n) {
@@ -83,25 +105,27 @@ inline uint64_t get_le(const uint8_t* p, size_t n) {
 }
 }  // namespace detail
 
-// Writes the whole record (tri_record_bytes<F>() bytes, padding zeroed).
+// Writes the whole record (tri_record_bytes<F>(t.kind) bytes, padding zeroed).
 template <class F>
 void encode_tri(const WaldTri<F>& t, uint8_t* out) {
   constexpr size_t cb = tri_const_bytes<F>();
-  for (size_t i = 0; i < tri_record_bytes<F>(); ++i) out[i] = 0;
-  for (size_t i = 0; i < 9; ++i) detail::put_le(out + i * cb, t.c[i] & F::mask, cb);
-  out[tri_kflags_offset<F>()] = uint8_t((t.k & 3u) | (t.flags & ~3u));
-  detail::put_le(out + tri_id_offset<F>(), t.id, 4);
+  for (size_t i = 0; i < tri_record_bytes<F>(t.kind); ++i) out[i] = 0;
+  for (size_t i = 0; i < size_t(t.count()); ++i) detail::put_le(out + i * cb, t.c[i] & F::mask, cb);
+  out[tri_kflags_offset<F>(t.kind)] = uint8_t((t.k & 3u) | (t.flags & ~3u));
+  detail::put_le(out + tri_id_offset<F>(t.kind), t.id, 4);
 }
 
+// A record of the given kind (the image's: Image::ist_kind()).
 template <class F>
-WaldTri<F> decode_tri(const uint8_t* in) {
+WaldTri<F> decode_tri(const uint8_t* in, IstKind kind) {
   constexpr size_t cb = tri_const_bytes<F>();
   WaldTri<F> t;
-  for (size_t i = 0; i < 9; ++i) t.c[i] = uint32_t(detail::get_le(in + i * cb, cb)) & F::mask;
-  const uint32_t kf = in[tri_kflags_offset<F>()];
+  t.kind = kind;
+  for (size_t i = 0; i < size_t(t.count()); ++i) t.c[i] = uint32_t(detail::get_le(in + i * cb, cb)) & F::mask;
+  const uint32_t kf = in[tri_kflags_offset<F>(kind)];
   t.k = kf & 3u;
   t.flags = kf & ~3u;
-  t.id = uint32_t(detail::get_le(in + tri_id_offset<F>(), 4));
+  t.id = uint32_t(detail::get_le(in + tri_id_offset<F>(kind), 4));
   return t;
 }
 
@@ -148,40 +172,50 @@ struct WaldInfo {
   int flushed = 0;    // nonzero constants that flushed to zero (below the smallest normal)
 };
 
-// The degenerate record: never hits (beta = -1), finite, unchanged in meaning by the VTU.
+// The degenerate record: never hits (wald: beta = -1; watertight: three equal vertices, det = 0),
+// finite, unchanged in meaning by the VTU.
 template <class F>
-WaldTri<F> degenerate_wald(uint32_t k, uint32_t id) {
+WaldTri<F> degenerate_wald(uint32_t k, uint32_t id, IstKind kind = IstKind::wald) {
   WaldTri<F> w;
+  w.kind = kind;
   w.k = k;
   w.flags = tri_flag_degenerate;
-  w.c[WaldTri<F>::BD] = neg<F>(F::one);
+  if (kind == IstKind::wald) w.c[WaldTri<F>::BD] = neg<F>(F::one);
   w.id = id;
   return w;
 }
 
-// The record of triangle t with scene index id: the constants computed in double and rounded once
-// with policy R. A constant whose magnitude exceeds the format's largest number makes the triangle
+// The record of triangle t with scene index id, of the given kind: the constants computed in double
+// (wald_double's; watertight: its plane n_u, n_v, n_d, then the vertices) and rounded once with
+// policy R. A constant whose magnitude exceeds the format's largest number makes the triangle
 // degenerate (it could only saturate to a meaningless value); a constant that rounds up to the
 // largest magnitude (rne, within half an ulp of it) keeps that value and is counted as saturated.
+// A shared vertex rounds to the same bits in every triangle that has it: watertight records keep
+// the scene's mesh closed, which the watertight test then keeps closed for every ray.
 template <class F, Rounding R>
-WaldTri<F> make_wald(const Tri& t, uint32_t id, WaldInfo* info = nullptr) {
+WaldTri<F> make_wald(const Tri& t, uint32_t id, IstKind kind = IstKind::wald, WaldInfo* info = nullptr) {
   const WaldDouble d = wald_double(t);
+  double x[12] = {};
+  const int n = tri_const_count(kind);
+  for (int i = 0; i < 3; ++i) x[i] = d.c[i];
+  for (int i = 3; i < n; ++i) x[i] = kind == IstKind::wald ? d.c[i] : t[size_t(i / 3 - 1)][i % 3];
   const double maxv = to_double<F>(F::max_mag);
   bool degenerate = d.degenerate;
-  for (double x : d.c)
-    if (!(std::fabs(x) <= maxv)) degenerate = true;
+  for (int i = 0; i < n; ++i)
+    if (!(std::fabs(x[i]) <= maxv)) degenerate = true;
   WaldInfo local;
   WaldTri<F> w;
   if (degenerate) {
-    w = degenerate_wald<F>(d.k, id);
+    w = degenerate_wald<F>(d.k, id, kind);
     local.degenerate = true;
   } else {
+    w.kind = kind;
     w.k = d.k;
     w.id = id;
-    for (int i = 0; i < 9; ++i) {
-      w.c[i] = from_double<F, R>(d.c[i]);
+    for (int i = 0; i < n; ++i) {
+      w.c[i] = from_double<F, R>(x[i]);
       if ((w.c[i] & F::max_mag) == F::max_mag) ++local.saturated;
-      if (is_zero<F>(w.c[i]) && d.c[i] != 0) ++local.flushed;
+      if (is_zero<F>(w.c[i]) && x[i] != 0) ++local.flushed;
     }
   }
   if (info) *info = local;

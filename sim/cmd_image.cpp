@@ -20,12 +20,15 @@ struct ImageArgs {
 template <class F>
 void print_tris(const hls::Image& img, int n) {
   using W = hls::WaldTri<F>;
-  static const char* names[9] = {"n_u", "n_v", "n_d", "b_nu", "b_nv", "b_d", "c_nu", "c_nv", "c_d"};
+  static const char* wald[9] = {"n_u", "n_v", "n_d", "b_nu", "b_nv", "b_d", "c_nu", "c_nv", "c_d"};
+  static const char* watertight[12] = {"n_u", "n_v", "n_d", "A_x", "A_y", "A_z",
+                                       "B_x", "B_y", "B_z", "C_x", "C_y", "C_z"};
+  const char* const* names = img.ist_kind() == hls::IstKind::wald ? wald : watertight;
   for (uint32_t i = 0; i < img.tri_count() && i < uint32_t(n); ++i) {
     const W w = img.wald<F>(i);
     std::printf("  tri %" PRIu32 ": id %" PRIu32 " k %" PRIu32 "%s\n", i, w.id, w.k,
                 w.degenerate() ? " degenerate" : "");
-    for (int j = 0; j < 9; ++j)
+    for (int j = 0; j < w.count(); ++j)
       std::printf("    %-5s 0x%0*" PRIX32 "  %.9g\n", names[j], (F::width + 3) / 4, w.c[j],
                   hls::to_double<F>(w.c[j]));
   }
@@ -41,9 +44,9 @@ void info(const ImageArgs& a) {
   const hls::ImageHeader h = img.header();
   const bool fp24 = img.format() == hls::FormatId::fp24;
   auto value = [&](uint32_t b) { return fp24 ? hls::to_double<hls::FP24>(b) : hls::to_double<hls::FP32>(b); };
-  std::printf("%s: memory image version %u, %s (%u/%u), constants rounded %s%s\n", a.file.c_str(),
+  std::printf("%s: memory image version %u, %s (%u/%u), constants rounded %s, %s records%s\n", a.file.c_str(),
               unsigned(h.version), hls::format_name(img.format()), unsigned(h.exp_bits),
-              unsigned(h.man_bits), hls::rounding_name(img.rounding()),
+              unsigned(h.man_bits), hls::rounding_name(img.rounding()), hls::ist_kind_name(img.ist_kind()),
               img.vtu_applied() ? ", VTU-translated" : "");
   std::printf("  %-10s 0x%08x .. 0x%08x  64 bytes\n", "header", 0u, 63u);
   auto range = [](const char* name, uint32_t off, uint64_t count, uint64_t each) {

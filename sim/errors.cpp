@@ -24,7 +24,8 @@ namespace raycore::sim {
 namespace {
 
 // The triangles of `image`'s records (each recovered from its Wald constants taken as exact
-// numbers), plus `offset` (in long double), into s.tris by scene index.
+// numbers, or a watertight record's vertices as they are), plus `offset` (in long double), into
+// s.tris by scene index.
 template <class A>
 void records_to_tris(scenes::Scene& s, const scenes::Scene& scene, const hls::Image& image, const hls::Vec3& offset) {
   using F = typename A::Fmt;
@@ -33,10 +34,20 @@ void records_to_tris(scenes::Scene& s, const scenes::Scene& scene, const hls::Im
                                 " triangle records, the scene " + std::to_string(scene.tris.size()));
   auto ld = [](uint32_t x) { return static_cast<long double>(A::to_double(x)); };
   for (uint32_t i = 0; i < image.tri_count(); ++i) {
-    const hls::WaldTri<F> w = hls::decode_tri<F>(image.tri(i));
+    const hls::WaldTri<F> w = image.template wald<F>(i);
     if (w.id >= s.tris.size()) throw std::invalid_argument("stored_scene: record id out of range");
     hls::Tri& t = s.tris[w.id];
     const hls::Vec3 fallback = scene.tris[w.id][0];
+    if (w.kind == hls::IstKind::watertight) {
+      if (w.degenerate()) {
+        t = {fallback, fallback, fallback};
+        continue;
+      }
+      for (int j = 0; j < 3; ++j)
+        for (int a = 0; a < 3; ++a)
+          t[size_t(j)][a] = double(ld(w.c[hls::WaldTri<F>::VA + 3 * j + a]) + static_cast<long double>(offset[a]));
+      continue;
+    }
     const long double nu = ld(w.c[hls::kNU]), nv = ld(w.c[hls::kNV]), nd = ld(w.c[hls::kND]);
     const long double bu = ld(w.c[hls::kBNU]), bv = ld(w.c[hls::kBNV]), bd = ld(w.c[hls::kBD]);
     const long double cu = ld(w.c[hls::kCNU]), cv = ld(w.c[hls::kCNV]), cd = ld(w.c[hls::kCD]);

@@ -70,6 +70,13 @@ void add_run_options(CLI::App& c, RunOptions& o) {
   c.add_option("--trv-widen", o.trv_widen,
                "watertightness margin of the trv: its interval comparisons see [tnear, tfar] widened "
                "by N ulps on each side (0..64; default 0: none)");
+  c.add_option("--ist", o.ist,
+               "intersection test and triangle record: wald (Wald's projection test on 9 constants, "
+               "RayCore's; 32-byte fp24 records) or watertight (Woop, Benthin and Wald's test on "
+               "the plane and the three vertices: no ray passes between triangles that share an "
+               "edge; 48-byte fp24 records; no --bary-margin)")
+      ->check(CLI::IsMember({"wald", "watertight"}))
+      ->capture_default_str();
   c.add_option("--width", o.width, "image width")->check(CLI::Range(1, 16384))->capture_default_str();
   c.add_option("--height", o.height, "image height")->check(CLI::Range(1, 16384))->capture_default_str();
   c.add_option("--threads", o.threads, "host threads (0: all cores)")->check(CLI::Range(0, 1024));
@@ -133,6 +140,10 @@ TraceConfig trace_config(const RunOptions& o) {
                          " ulps, not " + std::to_string(o.trv_widen));
   c.bary_margin = o.bary_margin;
   c.trv_widen = o.trv_widen;
+  c.ist = hls::ist_kind_from_string(o.ist);
+  if (c.ist == hls::IstKind::watertight && c.bary_margin != 0)
+    throw cli::UserError("--bary-margin is Wald's test's margin: --ist watertight has none (give "
+                         "--bary-margin 0 or --ist wald)");
   c.width = o.width;
   c.height = o.height;
   c.threads = o.threads;
@@ -174,6 +185,9 @@ Prepared prepare(const RunOptions& o, TraceConfig& cfg) {
       throw cli::UserError("image '" + o.image_in + "' is " + hls::format_name(p.image.format()) +
                            "/" + hls::rounding_name(p.image.rounding()) + ", the run asks for " +
                            hls::format_name(cfg.format) + "/" + hls::rounding_name(cfg.rounding));
+    if (p.image.ist_kind() != cfg.ist)
+      throw cli::UserError("image '" + o.image_in + "' holds " + hls::ist_kind_name(p.image.ist_kind()) +
+                           " triangle records, the run asks for --ist " + hls::ist_kind_name(cfg.ist));
     if (p.image.vtu_applied())
       throw cli::UserError("image '" + o.image_in + "' is already VTU-translated; dump images with the VTU off");
     p.tree = hls::analyze_image(p.image);
@@ -182,6 +196,7 @@ Prepared prepare(const RunOptions& o, TraceConfig& cfg) {
                            " triangles, the scene " + std::to_string(p.scene.tris.size()));
   } else {
     hls::BuildOptions bo = build_options(o);
+    bo.ist = cfg.ist;
     cfg.anchor = {};
     if (cfg.anchored) {
       cfg.anchor = hls::store_anchor(p.scene.tris);
@@ -198,7 +213,8 @@ Prepared prepare(const RunOptions& o, TraceConfig& cfg) {
 std::string config_tag(const TraceConfig& c) {
   return std::string(hls::format_name(c.format)) + "-" + hls::rounding_name(c.rounding) +
          (c.vtu ? "-vtu-" : "-novtu-") + to_string(c.spawn.spawn) + (c.spawn.spawn_all ? "-all" : "") +
-         (c.anchored ? "-anchored" : "") + margins_tag(c);
+         (c.anchored ? "-anchored" : "") + (c.ist == hls::IstKind::watertight ? "-watertight" : "") +
+         margins_tag(c);
 }
 
 std::string margins_tag(const TraceConfig& c) {
@@ -242,6 +258,7 @@ nlohmann::json config_json(const TraceConfig& c) {
                       {"anchor", vec(c.anchor)},
                       {"bary_margin", c.bary_margin},
                       {"trv_widen", c.trv_widen},
+                      {"ist", hls::ist_kind_name(c.ist)},
                       {"width", c.width},
                       {"height", c.height}};
   if (spawn_uses_ulps(c.spawn.spawn)) j["spawn_ulps"] = c.spawn.ulps;

@@ -27,6 +27,7 @@ struct RunOptions {
   double tmin = 1.0 / 4096;
   double bary_margin = 0;  // --bary-margin: the ist's barycentric margin eps (hls/margins.h)
   int trv_widen = 0;       // --trv-widen: the trv's interval widening in ulps
+  std::string ist = "wald";  // --ist: wald or watertight (hls/ist.h)
   int width = 800, height = 480, threads = 0;
   int leaf_size = 8;
   std::string kd = "ours";  // kd-tree cost preset: ours (hls::BuildOptions) or raycore

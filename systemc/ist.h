@@ -1,4 +1,5 @@
-// systemc/ist.h - the intersection unit: one Wald test (hls::ist_wald) issued per cycle into a
+// systemc/ist.h - the intersection unit: one test (hls::ist_test: Wald's, or the watertight one
+// with --ist watertight, the image's record kind) issued per cycle into a
 // pipeline of ist_latency cycles (the sum of its stage latencies; an early exit frees the slot but
 // the result still leaves after the full latency). The triangle record comes from the triangle
 // cache; on a miss the request loops to the back of the input queue, at the end of the next
@@ -144,7 +145,7 @@ class Ist : public sc_core::sc_module {
   // Unit u issues the test at the head of the queue (false: none ready).
   bool issue(Cycle now, uint32_t u) {
     if (!ch_.ist_q.can_pop(now)) return false;
-    constexpr uint32_t rb = uint32_t(hls::tri_record_bytes<F>());
+    const uint32_t rb = fc_.header.tri_bytes;
     const IstReq q = ch_.ist_q.front();
     const uint32_t lb = ch_.tri->line_bytes();
     const uint64_t byte = uint64_t(q.tri) * rb;
@@ -161,7 +162,7 @@ class Ist : public sc_core::sc_module {
       return true;
     }
     ++st_.ist_busy;
-    const hls::WaldTri<F> w = hls::decode_tri<F>(line + byte % lb);
+    const hls::WaldTri<F> w = hls::decode_tri<F>(line + byte % lb, hls::IstKind(fc_.header.ist));
     const Slot& r = ch_.slots[q.slot];
     if (!ports_.empty()) {
       drive_pins(*ports_[u], q, w, r);
@@ -172,7 +173,7 @@ class Ist : public sc_core::sc_module {
     o.pos = q.pos;
     if (w.id != r.skip_id) {
       ++st_.tri_tests;
-      const hls::IstOut x = hls::ist_wald<A>(w.k, w.c, r.ray.o, r.ray.d, r.ray.tmin, r.tmax, fc_.margins);
+      const hls::IstOut x = hls::ist_test<A>(w, r.ray.o, r.ray.d, r.ray.tmin, r.tmax, fc_.margins);
       if (x.exit == hls::IstExit::hit) {
         o.hit = true;
         o.t = x.t;

@@ -41,7 +41,7 @@ class Rtu : public sc_core::sc_module {
         node("node_cache", cfg.node_cache, fc.header.node_offset, cfg.node_cache.line_bytes),
         list("list_cache", cfg.list_cache, fc.header.list_offset, cfg.list_cache.line_bytes),
         tri("tri_cache", cfg.tri_cache, fc.header.tri_offset,
-            fc.tri_line_records * uint32_t(hls::tri_record_bytes<F>())),
+            fc.tri_line_records * uint32_t(fc.header.tri_bytes)),
         vtu_unit("vtu", vtu_on, vtu, cfg.vtu_depth, fc.header, {&node, &list, &tri},
                  cfg.node_cache.mshrs + cfg.list_cache.mshrs + cfg.tri_cache.mshrs),
         ch_(make_channels(cfg)),

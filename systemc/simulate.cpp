@@ -28,6 +28,17 @@ SimResult run(const hls::Image& image, const scenes::Camera& cam, const scenes::
   const auto w0 = std::chrono::steady_clock::now();
   const double u0 = user_cpu_seconds();
   if (image.vtu_applied()) throw std::invalid_argument("simulate: the image is already VTU-translated");
+  if (image.ist_kind() != tc.ist)
+    throw std::invalid_argument(std::string("simulate: the image holds ") + hls::ist_kind_name(image.ist_kind()) +
+                                " triangle records, the configuration asks for " + hls::ist_kind_name(tc.ist));
+  if (tc.ist != hls::IstKind::wald)
+    for (const auto& [view, unit] : {std::pair{cfg.vtu_view, "vtu"}, {cfg.ascache_view, "ascache"},
+                                     {cfg.ist_view, "ist"}, {cfg.rtu_view, "rtu"}})
+      if (view != UnitView::model)
+        throw ConfigError(std::string("--ist watertight is in the golden tracer and the transaction model: ") +
+                          unit + " has no " + (view == UnitView::twin ? "pin-level twin" : "RTL") +
+                          " for its 48-byte records yet (rtl/units/ist.v and vtu.v are Wald's; use "
+                          "--ist wald for --rtl/--pins " + unit + ")");
   SimResult res;
   res.frame.width = tc.width;
   res.frame.height = tc.height;
@@ -66,7 +77,7 @@ SimResult run(const hls::Image& image, const scenes::Camera& cam, const scenes::
   fc.stack_depth = cfg.stack_depth;
   if (cfg.mailbox > 64) throw std::invalid_argument("mailbox must be 0..64 entries");
   fc.mailbox = cfg.mailbox;
-  const uint32_t rb = uint32_t(hls::tri_record_bytes<F>());
+  const uint32_t rb = fc.header.tri_bytes;
   fc.tri_line_records = std::max<uint32_t>(1, (cfg.tri_cache.line_bytes + rb / 2) / rb);
   res.tri_line_bytes = fc.tri_line_records * rb;
 

@@ -72,11 +72,11 @@ class VtuUnit : public sc_core::sc_module, public MemClient {
         ++records;
       }
     } else if (port == kTriPort) {
-      constexpr uint32_t rb = uint32_t(hls::tri_record_bytes<F>());
+      const uint32_t rb = h_.tri_bytes;
       const uint64_t first = line * lb / rb;
       for (uint32_t i = 0; i < lb / rb; ++i) {
         if (first + i >= h_.tri_count) break;
-        vtu_.tri_record(p + size_t(i) * rb);
+        vtu_.tri_record(p + size_t(i) * rb, hls::IstKind(h_.ist));
         ++records;
       }
     }
@@ -127,7 +127,7 @@ class VtuUnit : public sc_core::sc_module, public MemClient {
     const uint64_t line = c.mshr_line(tag);
     const uint32_t lb = c.line_bytes();
     const bool node = port == kNodePort;
-    const uint32_t rb = node ? 8u : uint32_t(hls::tri_record_bytes<F>());
+    const uint32_t rb = node ? 8u : uint32_t(h_.tri_bytes);
     const uint64_t first = line * lb / rb, count = node ? h_.node_count : h_.tri_count;
     uint32_t n = 0;
     const uint32_t lanes = node ? pins::kVtuNodeLanes : 1u;
@@ -140,7 +140,7 @@ class VtuUnit : public sc_core::sc_module, public MemClient {
           r.rec.nmask |= 1u << j;
         }
       } else {
-        const hls::WaldTri<F> t = hls::decode_tri<F>(p + r.offset);
+        const hls::WaldTri<F> t = hls::decode_tri<F>(p + r.offset, hls::IstKind::wald);  // simulate refuses the rest
         r.rec.k = t.k;
         r.rec.flags = t.flags;
         for (int j = 0; j < 9; ++j) r.rec.c[j] = t.c[j];

@@ -38,7 +38,7 @@ class Tracer {
     lists_.resize(h.list_count);
     for (uint32_t i = 0; i < h.list_count; ++i) lists_[i] = img.list(i);
     tris_.resize(h.tri_count);
-    for (uint32_t i = 0; i < h.tri_count; ++i) tris_[i] = hls::decode_tri<F>(img.tri(i));
+    for (uint32_t i = 0; i < h.tri_count; ++i) tris_[i] = img.template wald<F>(i);
     img.box(lo_, hi_);
     if (depth() >= kStackDepth)
       throw std::runtime_error("kd-tree deeper than the traversal stack (" +
@@ -90,7 +90,7 @@ class Tracer {
         const auto& tri = tris_[ti];
         if (tri.id == skip_id) continue;
         ++st.tri_tests;
-        const hls::IstOut o = hls::ist_wald<A>(tri.k, tri.c, r.o, r.d, r.tmin, tmax, m_);
+        const hls::IstOut o = hls::ist_test<A>(tri, r.o, r.d, r.tmin, tmax, m_);
         if (o.exit == hls::IstExit::hit) {
           best = {true, o.t, ti, o.den};
           tmax = o.t;
@@ -250,7 +250,7 @@ class RaysT final : public HardwareRays::Impl {
     const hls::Image& img = cfg.vtu ? moved : image;
     const uint32_t n = img.tri_count();
     for (uint32_t i = 0; i < n; ++i) {
-      const hls::WaldTri<F> w = hls::decode_tri<F>(img.tri(i));
+      const hls::WaldTri<F> w = img.template wald<F>(i);
       if (w.id >= tris_.size()) tris_.resize(size_t(w.id) + 1);
       tris_[w.id] = w;
     }
@@ -265,7 +265,7 @@ class RaysT final : public HardwareRays::Impl {
     if (size_t(p.tri) >= tris_.size())
       throw std::runtime_error("hardware rays: pixel's triangle " + std::to_string(p.tri) + " has no record");
     const hls::WaldTri<F>& tri = tris_[size_t(p.tri)];
-    const hls::IstOut o = hls::ist_wald<A>(tri.k, tri.c, pr.o, pr.d, pr.tmin, pr.tmax, margins_);
+    const hls::IstOut o = hls::ist_test<A>(tri, pr.o, pr.d, pr.tmin, pr.tmax, margins_);
     if (o.t != p.t_bits)
       throw std::runtime_error("hardware rays: pixel (" + std::to_string(x) + ", " + std::to_string(y) +
                                "): the ist gives another t for its triangle than the frame holds");

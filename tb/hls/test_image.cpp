@@ -42,23 +42,55 @@ TEST(ImageNode, RoundTrip) {
 }
 
 template <class F>
-void tri_round_trip() {
+void tri_round_trip(IstKind kind) {
   Rng r(2);
-  std::vector<uint8_t> buf(tri_record_bytes<F>() + 8, 0xEE);
+  std::vector<uint8_t> buf(tri_record_bytes<F>(kind) + 8, 0xEE);
   for (int i = 0; i < 20000; ++i) {
     WaldTri<F> t;
+    t.kind = kind;
     t.k = uint32_t(r() % 3);
     t.flags = (r() & 1) ? tri_flag_degenerate : 0u;
-    for (uint32_t& c : t.c) c = uint32_t(r()) & F::mask;
+    for (int j = 0; j < t.count(); ++j) t.c[j] = uint32_t(r()) & F::mask;
     t.id = uint32_t(r());
     encode_tri<F>(t, buf.data());
-    ASSERT_EQ(buf[tri_record_bytes<F>()], 0xEE) << "wrote past the record";
-    const WaldTri<F> d = decode_tri<F>(buf.data());
+    ASSERT_EQ(buf[tri_record_bytes<F>(kind)], 0xEE) << "wrote past the record";
+    const WaldTri<F> d = decode_tri<F>(buf.data(), kind);
     ASSERT_TRUE(d == t) << "record " << i;
   }
 }
-TEST(ImageTri, RoundTripFp24) { tri_round_trip<FP24>(); }
-TEST(ImageTri, RoundTripFp32) { tri_round_trip<FP32>(); }
+TEST(ImageTri, RoundTripFp24) { tri_round_trip<FP24>(IstKind::wald); }
+TEST(ImageTri, RoundTripFp32) { tri_round_trip<FP32>(IstKind::wald); }
+TEST(ImageTri, RoundTripWatertightFp24) { tri_round_trip<FP24>(IstKind::watertight); }
+TEST(ImageTri, RoundTripWatertightFp32) { tri_round_trip<FP32>(IstKind::watertight); }
+
+// A watertight record: the plane (Wald's n_u, n_v, n_d, bit for bit), then the vertices rounded
+// once; 48 bytes in FP24 with the id at 40; a shared vertex has the same bits in both triangles.
+TEST(ImageTri, WatertightRecord) {
+  const Tri a{Vec3{0.1, 0.2, 0.3}, Vec3{1.7, 0.25, 0.35}, Vec3{0.15, 1.9, 0.4}};
+  const Tri b{a[1], a[2], Vec3{1.8, 2.0, 0.2}};
+  const WaldTri<FP24> wa = make_wald<FP24, Rounding::rne>(a, 3, IstKind::watertight);
+  const WaldTri<FP24> wb = make_wald<FP24, Rounding::rne>(b, 4, IstKind::watertight);
+  const WaldTri<FP24> wald = make_wald<FP24, Rounding::rne>(a, 3);
+  EXPECT_EQ(wa.kind, IstKind::watertight);
+  EXPECT_EQ(wa.k, wald.k);
+  for (int i = 0; i < 3; ++i) EXPECT_EQ(wa.c[i], wald.c[i]) << i;
+  for (int j = 0; j < 3; ++j)
+    for (int x = 0; x < 3; ++x) EXPECT_EQ(wa.c[3 + 3 * j + x], (from_double<FP24, Rounding::rne>(a[size_t(j)][x])));
+  for (int x = 0; x < 3; ++x) {
+    EXPECT_EQ(wa.c[WaldTri<FP24>::VB + x], wb.c[WaldTri<FP24>::VA + x]);
+    EXPECT_EQ(wa.c[WaldTri<FP24>::VC + x], wb.c[WaldTri<FP24>::VB + x]);
+  }
+  uint8_t rec[48];
+  encode_tri<FP24>(wa, rec);
+  EXPECT_EQ(rec[36], wa.k);
+  EXPECT_EQ(rec[40], 3);
+  EXPECT_TRUE(decode_tri<FP24>(rec, IstKind::watertight) == wa);
+  // Degenerate (zero area): all-zero constants, the flag set.
+  const Tri z{Vec3{1, 1, 1}, Vec3{2, 2, 2}, Vec3{3, 3, 3}};
+  const WaldTri<FP24> wz = make_wald<FP24, Rounding::rtz>(z, 9, IstKind::watertight);
+  EXPECT_TRUE(wz.degenerate());
+  for (uint32_t c : wz.c) EXPECT_EQ(c, 0u);
+}
 
 TEST(ImageTri, ByteLayout) {
   WaldTri<FP24> t;
@@ -74,7 +106,7 @@ TEST(ImageTri, ByteLayout) {
   EXPECT_EQ(b[27], 2 | 4);
   EXPECT_EQ(b[28], 0xD4);
   EXPECT_EQ(b[31], 0xA1);
-  static_assert(tri_record_bytes<FP24>() == 32 && tri_record_bytes<FP32>() == 48, "sizes");
+  static_assert(tri_record_bytes<FP24>(IstKind::wald) == 32 && tri_record_bytes<FP32>(IstKind::wald) == 48, "sizes");
   WaldTri<FP32> f;
   f.k = 1;
   f.id = 0x01020304u;

@@ -106,7 +106,7 @@ void analyse(const sim::RunOptions& o, bool literal, bool stored, const std::vec
   const hls::Image img = cfg.vtu ? hls::transform_image(p.image, setup.vtu) : p.image;
   std::unordered_map<uint32_t, hls::WaldTri<F>> wt;
   for (uint32_t i = 0; i < img.tri_count(); ++i) {
-    const auto t = hls::decode_tri<F>(img.tri(i));
+    const auto t = img.template wald<F>(i);
     wt[t.id] = t;
   }
   const uint32_t tmin = A::from_double(cfg.tmin);
@@ -137,7 +137,7 @@ void analyse(const sim::RunOptions& o, bool literal, bool stored, const std::vec
       if (wi == wt.end()) continue;  // not in the image (degenerate): cannot have been hit
       const auto& w = wi->second;
       const hls::HitTri ht{w.id, w.k, w.c[hls::kNU], w.c[hls::kNV], w.c[hls::kND],
-                           hls::ist_wald<A>(w.k, w.c, pr.o, pr.d, pr.tmin, pr.tmax).den};
+                           hls::ist_test<A>(w, pr.o, pr.d, pr.tmin, pr.tmax).den};
       const hls::ShadowSetup ss = hls::hit_shadow<A>(pr, a.t_bits, ht, setup.light, tmin, sp);
       std::string cls;
       char buf[768];
@@ -169,7 +169,7 @@ void analyse(const sim::RunOptions& o, bool literal, bool stored, const std::vec
         const auto woi = wt.find(uint32_t(a.shadow_tri));
         if (woi != wt.end()) {
           const auto& wo = woi->second;
-          const hls::IstOut io = hls::ist_wald<A>(wo.k, wo.c, ss.ray.o, ss.ray.d, ss.ray.tmin, ss.ray.tmax);
+          const hls::IstOut io = hls::ist_test<A>(wo, ss.ray.o, ss.ray.d, ss.ray.tmin, ss.ray.tmax);
           tw = A::to_double(io.t) * (sp.segment ? hls::length(wdir) : 1.0);
         }
         near = tw * std::fabs(cosl) < near_dist;  // crossed within 64 ulps of the plane
@@ -190,8 +190,8 @@ void analyse(const sim::RunOptions& o, bool literal, bool stored, const std::vec
         hls::IstOut io{hls::IstExit::distance, 0, 0}, io0 = io;
         if (woi != wt.end()) {
           const auto& wo = woi->second;
-          io = hls::ist_wald<A>(wo.k, wo.c, ss.ray.o, ss.ray.d, ss.ray.tmin, ss.ray.tmax);
-          io0 = hls::ist_wald<A>(wo.k, wo.c, ss.ray.o, ss.ray.d, 0, ss.ray.tmax);
+          io = hls::ist_test<A>(wo, ss.ray.o, ss.ray.d, ss.ray.tmin, ss.ray.tmax);
+          io0 = hls::ist_test<A>(wo, ss.ray.o, ss.ray.d, 0, ss.ray.tmax);
         }
         if (woi == wt.end())
           cls = "leak occluder-not-in-image";

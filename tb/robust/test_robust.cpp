@@ -119,7 +119,7 @@ bool reintersect_one(Rng& rng, double mag, const std::vector<hls::SpawnParams>& 
   const uint32_t tmin = A::from_double(1.0 / 4096);
   pr.tmin = tmin;
   pr.tmax = F::max_mag;
-  const hls::IstOut h = hls::ist_wald<A>(w.k, w.c, pr.o, pr.d, pr.tmin, pr.tmax);
+  const hls::IstOut h = hls::ist_test<A>(w, pr.o, pr.d, pr.tmin, pr.tmax);
   if (h.exit != hls::IstExit::hit) return false;
   const uint32_t light[3] = {A::from_double(lp.x), A::from_double(lp.y), A::from_double(lp.z)};
   const hls::HitTri ht{w.id, w.k, w.c[hls::kNU], w.c[hls::kNV], w.c[hls::kND], h.den};
@@ -127,7 +127,7 @@ bool reintersect_one(Rng& rng, double mag, const std::vector<hls::SpawnParams>& 
     const hls::ShadowSetup ss = hls::hit_shadow<A>(pr, h.t, ht, light, tmin, sps[s]);
     if (!ss.front) return false;  // decided before the spawn: the same for every strategy
     const bool hit = ss.skip_id != w.id &&
-                     hls::ist_wald<A>(w.k, w.c, ss.ray.o, ss.ray.d, ss.ray.tmin, ss.ray.tmax).exit ==
+                     hls::ist_test<A>(w, ss.ray.o, ss.ray.d, ss.ray.tmin, ss.ray.tmax).exit ==
                          hls::IstExit::hit;
     rehit[s] = hit;
     if (hit && detail && detail[s].empty()) {
@@ -314,16 +314,16 @@ FoldOutcome fold_outcome(const FoldCase& fc, bool wall, const hls::SpawnParams& 
   const uint32_t tmin = A::from_double(1.0 / 4096);
   pr.tmin = tmin;
   pr.tmax = F::max_mag;
-  const hls::IstOut h = hls::ist_wald<A>(wa.k, wa.c, pr.o, pr.d, pr.tmin, pr.tmax);
+  const hls::IstOut h = hls::ist_test<A>(wa, pr.o, pr.d, pr.tmin, pr.tmax);
   if (h.exit != hls::IstExit::hit) return FoldOutcome::skipped;
-  const hls::IstOut hb = hls::ist_wald<A>(wb.k, wb.c, pr.o, pr.d, pr.tmin, h.t);
+  const hls::IstOut hb = hls::ist_test<A>(wb, pr.o, pr.d, pr.tmin, h.t);
   if (hb.exit == hls::IstExit::hit) return FoldOutcome::skipped;  // the camera would see B there
   const uint32_t light[3] = {A::from_double(fc.light.x), A::from_double(fc.light.y), A::from_double(fc.light.z)};
   const hls::HitTri ht{wa.id, wa.k, wa.c[hls::kNU], wa.c[hls::kNV], wa.c[hls::kND], h.den};
   const hls::ShadowSetup ss = hls::hit_shadow<A>(pr, h.t, ht, light, tmin, sp);
   if (!ss.front) return FoldOutcome::skipped;  // the light-side decision (same for every strategy)
   const bool hit = ss.skip_id != wb.id &&
-                   hls::ist_wald<A>(wb.k, wb.c, ss.ray.o, ss.ray.d, ss.ray.tmin, ss.ray.tmax).exit ==
+                   hls::ist_test<A>(wb, ss.ray.o, ss.ray.d, ss.ray.tmin, ss.ray.tmax).exit ==
                        hls::IstExit::hit;
   return (wall ? !hit : hit) ? FoldOutcome::error : FoldOutcome::ok;
 }

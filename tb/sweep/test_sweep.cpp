@@ -525,6 +525,31 @@ TEST(Cli, BadOptionsFailClearly) {
   }
 }
 
+// --ist: a bad name, Wald's margin with the watertight test, a unit view without a watertight
+// datapath, and a dumped image whose records are not the kind asked for.
+TEST(Cli, IstOptionsFailClearly) {
+  const std::string rc = RAYCORE_BIN;
+  const fs::path img = fs::temp_directory_path() / ("raycore_test_ist_" + std::to_string(::getpid()) + ".img");
+  const Result dump = run(rc + " render corridor --ist watertight --width 8 --height 8 -q --no-reference --out-dir " +
+                          fs::temp_directory_path().string() + " --dump-image " + img.string());
+  ASSERT_EQ(dump.status, 0) << dump.out;
+  struct Case {
+    std::string args, want;
+  } cases[] = {
+      {"render corridor --ist magic", "--ist"},
+      {"render corridor --ist watertight --bary-margin 0.01", "--bary-margin is Wald's test's margin"},
+      {"simulate corridor --width 8 --height 8 --ist watertight --pins vtu", "vtu has no pin-level twin"},
+      {"render corridor --width 8 --height 8 --image " + img.string(),
+       "holds watertight triangle records, the run asks for --ist wald"},
+  };
+  for (const auto& c : cases) {
+    const Result r = run(rc + " " + c.args);
+    EXPECT_NE(r.status, 0) << c.args << ":\n" << r.out;
+    EXPECT_NE(r.out.find(c.want), std::string::npos) << c.args << ": expected '" << c.want << "' in:\n" << r.out;
+  }
+  fs::remove(img);
+}
+
 TEST(Pipeline, TinySweepEndToEnd) {
   if (run("command -v parallel").status != 0) GTEST_SKIP() << "GNU parallel is not installed (make deps)";
   const fs::path out = fs::temp_directory_path() / ("raycore_test_sweep_" + std::to_string(::getpid()));

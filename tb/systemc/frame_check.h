@@ -199,19 +199,22 @@ inline scenes::Scene tiny_scene() {
 // Golden tracer in this process, cycle model in a child; asserts golden_match and that every ray
 // retired exactly once.
 inline Summary expect_match(const scenes::Scene& s, const sim::TraceConfig& tc, sc::SimConfig cfg = {}) {
-  static std::map<std::string, hls::Image> images;  // built once per scene, format and policy
+  static std::map<std::string, hls::Image> images;  // built once per scene, format, policy, record kind
   const std::string key = s.name + hls::format_name(tc.format) + hls::rounding_name(tc.rounding) +
-                          (tc.anchored ? "anchored" : "");
+                          (tc.anchored ? "anchored" : "") + hls::ist_kind_name(tc.ist);
+  hls::BuildOptions bo;
+  bo.ist = tc.ist;
   if (!images.count(key))  // --store anchored: relative to tc.anchor (the caller's store_anchor)
     images[key] = hls::build_image(tc.anchored ? hls::relative_to(s.tris, tc.anchor) : s.tris, tc.format,
-                                   tc.rounding);
+                                   tc.rounding, bo);
   const hls::Image& img = images[key];
   const sim::Frame golden = sim::trace_golden(img, s.camera, s.light, tc);
   const Summary r = run_child({&s, &img, tc, cfg}, golden);
   const std::string what = s.name + " " + hls::format_name(tc.format) + "-" + hls::rounding_name(tc.rounding) +
                            (tc.vtu ? "-vtu-" : "-novtu-") + sim::to_string(tc.spawn.spawn) +
                            (tc.spawn.segment ? "-segment" : "") + (tc.spawn.spawn_all ? "-all" : "") +
-                           (tc.anchored ? "-anchored" : "") + " seed " + std::to_string(cfg.seed) +
+                           (tc.anchored ? "-anchored" : "") + "-" + hls::ist_kind_name(tc.ist) + " seed " +
+                           std::to_string(cfg.seed) +
                            " rtus " + std::to_string(cfg.rtus);
   EXPECT_TRUE(r.ok) << what << ": " << r.error;
   EXPECT_EQ(r.mismatches, 0u) << what << ": first differing pixel (" << r.first_x << ", "
@@ -242,7 +245,9 @@ inline void expect_same_counts(const Summary& model, const Summary& p, const std
 // The cycle model refuses cfg (in the child) with an error that contains `message`.
 inline Summary expect_refused(const scenes::Scene& s, const sim::TraceConfig& tc,
                               const sc::SimConfig& cfg, const std::string& message) {
-  const hls::Image img = hls::build_image(s.tris, tc.format, tc.rounding);
+  hls::BuildOptions bo;
+  bo.ist = tc.ist;
+  const hls::Image img = hls::build_image(s.tris, tc.format, tc.rounding, bo);
   const sim::Frame golden = sim::trace_golden(img, s.camera, s.light, tc);
   const Summary r = run_child({&s, &img, tc, cfg}, golden);
   EXPECT_FALSE(r.ok) << "expected refusal: " << message;

@@ -123,6 +123,36 @@ TEST(GoldenMatch, Margins) {
     expect_match(corridor(), tc);
   }
 }
+// The watertight test (--ist watertight: 48-byte fp24 records, the VTU shifting their vertices):
+// the cycle model's ist and VTU use the golden tracer's functions, in every format and policy; the
+// units without a watertight view refuse it.
+TEST(GoldenMatch, Watertight) {
+  struct Case {
+    FormatId f;
+    Rounding r;
+    bool vtu;
+    hls::Spawn sp;
+  };
+  for (const Case& k : {Case{FormatId::fp24, Rounding::rtz, true, hls::Spawn::none},
+                        Case{FormatId::fp24, Rounding::rne, false, hls::Spawn::skip_back},
+                        Case{FormatId::fp24, Rounding::raycore, true, hls::Spawn::skip_slab},
+                        Case{FormatId::fp32, Rounding::rne, true, hls::Spawn::none}}) {
+    auto tc = config(k.f, k.r, k.vtu, 48, 30);
+    tc.spawn.spawn = k.sp;
+    tc.spawn.ulps = sim::default_spawn_ulps(tc.format, k.sp);
+    tc.ist = hls::IstKind::watertight;
+    const Summary r = expect_match(corridor(), tc);
+    EXPECT_GT(r.tri_tests, 0u);
+  }
+  auto tc = config(FormatId::fp24, Rounding::rtz, true, 16, 8);
+  tc.ist = hls::IstKind::watertight;
+  sc::SimConfig cfg;
+  cfg.ist_view = sc::UnitView::rtl;
+  expect_refused(corridor(), tc, cfg, "--ist watertight is in the golden tracer and the transaction model");
+  cfg = {};
+  cfg.vtu_view = sc::UnitView::twin;
+  expect_refused(corridor(), tc, cfg, "vtu has no pin-level twin");
+}
 // Any-hit shadow rays: the same lit/shadowed decisions as closest-hit (so the same image), fewer
 // triangle tests; the golden tracer and the cycle model end the walk at the same leaf.
 TEST(GoldenMatch, AnyHitShadowRays) {
