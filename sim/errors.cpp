@@ -266,13 +266,22 @@ StageBudget stage_budget(const Frame& f, const scenes::Scene& scene, const hls::
     const bool hb = hw.tri >= 0 && plane_hit(stored, ray, hw.tri, &hb_hit);
     int edge = 0;
     if (ha && edge_distance(p2.tri, ha_hit, &edge) <= tolerance(ray, ha_hit.t)) {  // A missed near an edge
-      bool shared = false, hit_other = false;
+      // A seam only where a neighbour continues the surface across the edge as the ray sees it:
+      // the ray meets its plane just outside it (by at most tol) or on its edge, the mirror of A's
+      // just inside. A neighbour on A's side of the edge (a fold seen nearly edge-on: the ray meets
+      // it inside too) leaves an outline there, which the ray's side of the edge decides: a
+      // silhouette.
+      bool seam = false, hit_other = false;
       for (int32_t nb : neighbours(p2.tri, edge))
         if (nb != p2.tri) {
-          shared = true;
+          reference::TriHit hn;
+          if (plane_hit(stored, ray, nb, &hn)) {
+            const double dn = edge_distance(nb, hn);
+            seam |= dn <= 0 && dn >= -tolerance(ray, hn.t);
+          }
           hit_other |= nb == hw.tri;
         }
-      return shared && !hit_other ? TraversalKind::crack : TraversalKind::silhouette;
+      return seam && !hit_other ? TraversalKind::crack : TraversalKind::silhouette;
     }
     if (hb) {
       const double d = edge_distance(hw.tri, hb_hit);

@@ -97,13 +97,16 @@ enum class Stage : uint8_t { none = 0, storage, ray_generation, traversal_primar
 // origin in the hardware's frame (relative to the camera with the VTU on): the size of the
 // rounding of the point o + t d the ist decides.
 //   crack       A's exact hit lies within tol of an edge that A shares with another triangle N of
-//               the scene (the same two vertices), and the hardware hit neither A nor N: the ray
+//               the scene (the same two vertices) that continues the surface across the edge as the
+//               ray sees it (its exact plane point on N lies outside N by at most tol, or on its
+//               edge: the mirror of A's, just inside), and the hardware hit neither A nor N: the ray
 //               went through the seam (the lever: a watertight test, which decides a shared edge
 //               once for both triangles);
-//   silhouette  A's exact hit lies within tol of an edge that no other triangle shares, or B's
-//               exact plane point lies outside B by at most tol: an outline decided at the
-//               format's precision (a watertight test does not change it; exact or wider
-//               arithmetic near edges would);
+//   silhouette  A's exact hit lies within tol of an edge that no other triangle shares, or whose
+//               neighbours do not continue the surface for this ray (a fold: the ray meets the
+//               neighbour inside too, or far outside), or B's exact plane point lies outside B by
+//               at most tol: an outline decided at the format's precision (a watertight test does
+//               not change it; exact or wider arithmetic near edges would);
 //   order       the exact ray hits B too, inside, behind A by at most kEdgeUlps ulps of t: the
 //               hardware's t (or its comparison) put the farther one first (the lever: t
 //               precision);
