@@ -19,7 +19,7 @@ AREA_TIMEOUT=${RAYCORE_AREA_TIMEOUT:-1200}
 #   trv_pass (trv_unit: one traversal pass, no arithmetic of its own), rr_arb (membus_if).
 # trv is the traversal datapath alone (STAGES 2, the pin-level twin's); trv_unit the whole
 # traversal unit (slots, stacks, ready queue, PIPES passes, the ist result reduction).
-AREA_UNITS=(ascache hit ist membus_if membus_l2 rgu spawn trv trv_unit vtu)
+AREA_UNITS=(ascache hit ist ist_watertight membus_if membus_l2 rgu spawn trv trv_unit vtu)
 # The tops: rtu (one RTU whole: every unit above, slot_ram, vtu_unit and the wiring) is
 # synthesised by scripts/area_rtu.sh at the cycle model's defaults; chip (RTUS rtu + membus_if) is
 # only linted and elaborated (scripts/lint.sh): its area is RTUS x the RTU's + membus_if's.

@@ -16,26 +16,27 @@ namespace raycore::rtltest {
 
 using hls::Rounding;
 
-// ---- ist: one Wald test's inputs ----
+// ---- ist: one test's inputs (Wald's 9 constants, or a watertight record's 12) ----
 struct IstIn {
   uint32_t k = 0;
-  uint32_t c[9] = {};
+  uint32_t c[12] = {};
   uint32_t o[3] = {}, d[3] = {};
   uint32_t tmin = 0, tmax = 0;
 };
 
-// Random Wald-test inputs: mostly a ray aimed at a chosen barycentric point of a random triangle.
+// Random test inputs for records of a kind (Wald's by default): mostly a ray aimed at a chosen
+// barycentric point of a random triangle.
 template <class F, Rounding R>
 class Stimulus {
  public:
-  explicit Stimulus(uint64_t seed) : rng_(seed) {}
+  explicit Stimulus(uint64_t seed, hls::IstKind kind = hls::IstKind::wald) : rng_(seed), kind_(kind) {}
 
   IstIn next() {
     IstIn x;
     const uint32_t kind = uint32_t(rng_() % 100);
     if (kind < 10) {  // fully random bit patterns
       x.k = uint32_t(rng_() % 3);
-      for (uint32_t& c : x.c) c = bits();
+      for (int i = 0; i < hls::tri_const_count(kind_); ++i) x.c[i] = bits();
       for (int i = 0; i < 3; ++i) {
         x.o[i] = bits();
         x.d[i] = bits();
@@ -48,9 +49,12 @@ class Stimulus {
     hls::Tri tri;
     for (hls::Vec3& p : tri) p = {uni(-scale, scale), uni(-scale, scale), uni(-scale, scale)};
     if (kind < 13) tri[2] = tri[0] + (tri[1] - tri[0]) * uni(-1, 2);  // degenerate (collinear)
-    const hls::WaldTri<F> w = hls::make_wald<F, R>(tri, 0);
+    // Watertight records: also a repeated vertex (zero area in double: the all-zero degenerate
+    // record, whose edge functions are exactly zero: the det = 0 exit).
+    if (kind < 12 && kind_ == hls::IstKind::watertight) tri[2] = tri[1];
+    const hls::WaldTri<F> w = hls::make_wald<F, R>(tri, 0, kind_);
     x.k = w.k;
-    for (int i = 0; i < 9; ++i) x.c[i] = w.c[i];
+    for (int i = 0; i < w.count(); ++i) x.c[i] = w.c[i];
     // The aimed-at barycentric point: inside, outside, or on an edge.
     double b = uni(0, 1), g = uni(0, 1);
     switch (rng_() % 6) {
@@ -122,6 +126,7 @@ class Stimulus {
   double uni(double a, double b) { return a + (b - a) * (double(rng_() >> 11) * 0x1p-53); }
   uint32_t bits() { return uint32_t(rng_()) & F::mask; }
   std::mt19937_64 rng_;
+  hls::IstKind kind_;
 };
 
 // ---- vtu: one record (node or triangle) with the camera and enable it is sent with ----
