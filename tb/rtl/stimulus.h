@@ -166,7 +166,7 @@ class Gen {
       r.t.k = uint32_t(rng_() % 3u);
       r.t.flags = uint32_t(rng_() & 0xFFu);
       r.t.id = uint32_t(rng_());
-      for (uint32_t& c : r.t.c) c = value();
+      for (int i = 0; i < r.t.count(); ++i) r.t.c[i] = value();  // Wald's 9 (vtu.v's record)
     } else {
       const uint64_t axis = rng_() & 3u;
       uint64_t hi = (uint64_t(rng_()) << 32) & ~(uint64_t(3) << 56);
