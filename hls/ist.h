@@ -63,33 +63,43 @@ inline IstOut ist_wald(uint32_t k, const uint32_t c[9], const uint32_t o[3], con
   return ist_wald<A>(k, c, o, d, tmin, tmax, margins_none<A>());
 }
 
-// The watertight test (Woop, Benthin and Wald 2013) on a watertight record: c = the plane n_u,
-// n_v, n_d (only for den, which the hit unit needs) and the vertices A, B, C at c[3..11]. The ray is
-// sheared to +z: kz = the axis of the largest |d| (ties to the lower axis), kx = kz + 1, ky = kz + 2
-// (mod 3); the sheared coordinates are scaled by d_kz instead of divided by it (no per-ray
-// reciprocal; the edge functions scale by d_kz^2 > 0, so their signs are the paper's):
+// The watertight test (Woop, Benthin and Wald 2013's inside test) on a watertight record: c = the
+// plane n_u, n_v, n_d and the vertices A, B, C at c[3..11]. The distance is Wald's phase 1 on the
+// record's plane, bit for bit (so a hit point is the one Wald's test gives for the same triangle,
+// and the hit unit and every spawn rule see today's points: on an axis-aligned plane, where n_u =
+// n_v = 0, a shadow ray's own t is then exactly 0 as with Wald's record); the inside test is the
+// paper's, on the vertices. The ray is sheared to +z: kz = the axis of the largest |d| (ties to the
+// lower axis), kx = kz + 1, ky = kz + 2 (mod 3); the sheared coordinates are scaled by d_kz instead
+// of divided by it (no per-ray reciprocal; the edge functions scale by d_kz^2 > 0, so their signs
+// are the paper's):
+//   phase 1 (exit distance)  den, t as ist_wald (den = add3(d_k, n_u d_u, n_v d_v), t = num rcp(den))
 //   the ray's origin   ox = sop(-0, -0, d_kz, o_kx, -d_kx, o_kz)   oy likewise with ky
 //   a vertex P         px = sop(-ox, -0, d_kz, P_kx, -d_kx, P_kz)  = d_kz (P - o)_kx - d_kx (P - o)_kz,
-//                      py likewise, pz = P_kz - o_kz               one rounding (and the ray's ox)
+//                      py likewise                                 one rounding (and the ray's ox)
 //   an edge            E(P, Q) = sop(-0, -0, qx, py, -qy, px) = qx py - qy px, rounded once
 //   U = E(B, C), V = E(C, A), W = E(A, B); outside (exit beta) when some are < 0 and some > 0;
-//   det = add3(U, V, W), zero: no hit (exit sum: edge-on, or a degenerate record's equal vertices);
-//   T = sop(mul(W, cz), -0, U, az, V, bz), t = T * rcp(det * d_kz); tmin < t < tmax (exit distance).
+//   det = add3(U, V, W) = 0: no hit (exit sum: edge-on, or a degenerate record's equal vertices).
 // Why it is watertight: a vertex's (px, py) depends on the vertex and the ray only, so two
 // triangles sharing an edge see the same two points, and E(Q, P) has exactly the negated terms of
 // E(P, Q), rounded once by a sign-symmetric rounding (rtz, rne, raycore's truncation): its exact
 // negation. A ray through the shared edge is inside one of the two triangles or on the edge of
 // both (E = 0, inside for both); no ray passes between them, nor through a shared vertex. The sop
 // rounds an edge function once from exact products, so its sign is the exact sign for the sheared
-// points. Per test: 2 + 6 + 3 sops (22 exact products), 3 subs, 1 add3, 4 muls, 1 reciprocal, and
-// Wald's den (2 muls, 1 add3).
+// points. Per test: Wald's phase 1 (4 muls, 1 add, 2 subs, 1 add3, 1 reciprocal, 1 mul), 2 + 6 + 3
+// sops (22 exact products) and 1 add3.
 template <class A>
 inline IstOut ist_watertight(uint32_t k, const uint32_t c[12], const uint32_t o[3], const uint32_t d[3],
                              uint32_t tmin, uint32_t tmax) {
   using F = typename A::Fmt;
   constexpr uint32_t absent = F::sign_mask;  // -0: an absent sop term
   const int u = axis_u(k), v = axis_v(k);
+  // Phase 1: distance, on the record's plane (ist_wald's).
   const uint32_t den = A::add3(d[k], A::mul(c[kNU], d[u]), A::mul(c[kNV], d[v]));
+  const uint32_t num =
+      A::sub(A::sub(c[kND], o[k]), A::add(A::mul(c[kNU], o[u]), A::mul(c[kNV], o[v])));
+  const uint32_t t = A::mul(num, A::rcp(den));
+  if (!(A::lt(tmin, t) && A::lt(t, tmax))) return {IstExit::distance, t, den};
+  // Phase 2: the edge functions on the sheared vertices.
   int kz = 0;
   if (A::lt(A::abs(d[0]), A::abs(d[1]))) kz = 1;
   if (A::lt(A::abs(d[kz]), A::abs(d[2]))) kz = 2;
@@ -97,24 +107,20 @@ inline IstOut ist_watertight(uint32_t k, const uint32_t c[12], const uint32_t o[
   const uint32_t dz = d[kz], ndx = A::neg(d[kx]), ndy = A::neg(d[ky]);
   const uint32_t ox = A::sop(absent, absent, dz, o[kx], ndx, o[kz]);
   const uint32_t oy = A::sop(absent, absent, dz, o[ky], ndy, o[kz]);
-  uint32_t px[3], py[3], pz[3];
+  uint32_t px[3], py[3];
   for (int j = 0; j < 3; ++j) {
     const uint32_t* p = c + 3 + 3 * j;
     px[j] = A::sop(A::neg(ox), absent, dz, p[kx], ndx, p[kz]);
     py[j] = A::sop(A::neg(oy), absent, dz, p[ky], ndy, p[kz]);
-    pz[j] = A::sub(p[kz], o[kz]);
   }
   auto edge = [&](int p, int q) { return A::sop(absent, absent, px[q], py[p], A::neg(py[q]), px[p]); };
   const uint32_t U = edge(1, 2), V = edge(2, 0), W = edge(0, 1);
   auto negative = [](uint32_t x) { return A::sign(x) && !A::is_zero(x); };
   auto positive = [](uint32_t x) { return !A::sign(x) && !A::is_zero(x); };
   if ((negative(U) || negative(V) || negative(W)) && (positive(U) || positive(V) || positive(W)))
-    return {IstExit::beta, 0, den};
-  const uint32_t det = A::add3(U, V, W);
-  if (A::is_zero(det)) return {IstExit::sum, 0, den};
-  const uint32_t T = A::sop(A::mul(W, pz[2]), absent, U, pz[0], V, pz[1]);
-  const uint32_t t = A::mul(T, A::rcp(A::mul(det, dz)));
-  if (!(A::lt(tmin, t) && A::lt(t, tmax))) return {IstExit::distance, t, den};
+    return {IstExit::beta, t, den};
+  // Phase 3: a triangle seen edge-on (or the degenerate record) has no inside.
+  if (A::is_zero(A::add3(U, V, W))) return {IstExit::sum, t, den};
   return {IstExit::hit, t, den};
 }
 

@@ -103,7 +103,7 @@ struct SimConfig {
                                  //   a miss misses again, a hit is not closer than the best)
   uint32_t ist_units = 2;        // intersection pipelines per RTU (tests issued per cycle),
                                  //   sharing the triangle cache's ports
-  uint32_t ist_latency = 20;     // rtl/units/ist.v: 10 operator levels x STAGES 2
+  uint32_t ist_latency = 20;     // rtl/units/ist.v (and ist_watertight.v): 10 levels x STAGES 2
   UnitView ist_view = UnitView::model;
   // trv: the transaction model (systemc/trv.h) or rtl/units/trv_unit.v Verilated (no pin-level
   // twin: the transaction model is its twin; systemc/trv_rtl.h).

@@ -21,11 +21,12 @@ using vl::get_bits;
 using vl::set_bits;
 
 template <class M, unsigned W, unsigned SLOT_BITS, unsigned IST, unsigned PIPES, unsigned WORDS,
-          unsigned QBITS, unsigned RPL, unsigned HLBITS>
+          unsigned QBITS, unsigned RPL, unsigned HLBITS, unsigned WT>
 class IstRtlT final : public IstRtl {
   static constexpr unsigned BW = 67 + 5 * W;  // a result record
   static constexpr unsigned RW = 32 + 8 * W;  // a ray read
-  static constexpr unsigned RB = W <= 24 ? 32 : 48;
+  static constexpr unsigned RB = unsigned(W <= 24 ? hls::tri_record_bytes<hls::FP24>(WT ? hls::IstKind::watertight : hls::IstKind::wald)
+                                                  : hls::tri_record_bytes<hls::FP32>(WT ? hls::IstKind::watertight : hls::IstKind::wald));
   static constexpr unsigned LB = RPL * RB;  // bytes per triangle-cache line
 
  public:
@@ -182,14 +183,15 @@ class IstRtlT final : public IstRtl {
 
 }  // namespace
 
-std::unique_ptr<IstRtl> make_rtl_ist_unit(hls::FormatId f, hls::Rounding r, unsigned stages,
+std::unique_ptr<IstRtl> make_rtl_ist_unit(hls::FormatId f, hls::Rounding r, unsigned stages, hls::IstKind kind,
                                           FrameCtx& fc, RtuChannels& ch, const SimConfig& cfg) {
-#define RAYCORE_RTL_ISTU_VARIANT(prefix, fmt, mode, st, width, slot_bits, ist, pipes, words, \
-                                 qbits, rpl, hlbits)                                         \
-  if (vl::variant_is(#fmt, #mode, f, r) && stages == st)                                     \
-    return std::make_unique<                                                                 \
-        IstRtlT<prefix, width, slot_bits, ist, pipes, words, qbits, rpl, hlbits>>(           \
-        "Verilated ist_unit " #fmt " " #mode " S=" #st, fc, ch, cfg);
+#define RAYCORE_RTL_ISTU_VARIANT(prefix, fmt, mode, st, width, slot_bits, ist, pipes, words,      \
+                                 qbits, rpl, hlbits, wt)                                          \
+  if (vl::variant_is(#fmt, #mode, f, r) && stages == st && (kind == hls::IstKind::watertight) == (wt != 0)) \
+    return std::make_unique<                                                                      \
+        IstRtlT<prefix, width, slot_bits, ist, pipes, words, qbits, rpl, hlbits, wt>>(            \
+        wt ? "Verilated ist_unit " #fmt " " #mode " watertight S=" #st                             \
+           : "Verilated ist_unit " #fmt " " #mode " S=" #st, fc, ch, cfg);
 #include "rtl_ist_unit_variants.h"
 #undef RAYCORE_RTL_ISTU_VARIANT
   return nullptr;
@@ -198,9 +200,9 @@ std::unique_ptr<IstRtl> make_rtl_ist_unit(hls::FormatId f, hls::Rounding r, unsi
 std::string rtl_ist_unit_built() {
   std::string s;
 #define RAYCORE_RTL_ISTU_VARIANT(prefix, fmt, mode, st, width, slot_bits, ist, pipes, words, \
-                                 qbits, rpl, hlbits)                                         \
-  s += std::string(s.empty() ? "" : ", ") +                                                  \
-       "ist_unit " #fmt " " #mode " S=" #st " (units " #ist ", slots " +                     \
+                                 qbits, rpl, hlbits, wt)                                     \
+  s += std::string(s.empty() ? "" : ", ") + "ist_unit " #fmt " " #mode +                     \
+       (wt ? " watertight" : "") + " S=" #st " (units " #ist ", slots " +                    \
        std::to_string(1u << slot_bits) + ", queue " + std::to_string(1u << qbits) + ")";
 #include "rtl_ist_unit_variants.h"
 #undef RAYCORE_RTL_ISTU_VARIANT

@@ -49,12 +49,13 @@ class IstRtl {
   virtual IstProbe probe(Cycle now) const = 0;
 };
 
-// The Verilated ist_unit of that format, rounding and STAGES (ist_latency = 10 x STAGES) bound to
+// The Verilated ist_unit of that format, rounding, STAGES (ist_latency = 10 x STAGES, ist.v's and
+// ist_watertight.v's) and record kind (ist.v or ist_watertight.v inside) bound to
 // an RTU's frame context, channels and triangle cache (ch.tri). Throws ConfigError for a
 // configuration the built model cannot run (more ist units, slots, pipes or queue entries than its
 // parameters, another triangle line, a longer triangle-cache hit latency, the mailbox); nullptr
 // when no model of that format, rounding and STAGES is built.
-std::unique_ptr<IstRtl> make_rtl_ist_unit(hls::FormatId f, hls::Rounding r, unsigned stages,
+std::unique_ptr<IstRtl> make_rtl_ist_unit(hls::FormatId f, hls::Rounding r, unsigned stages, hls::IstKind kind,
                                           FrameCtx& fc, RtuChannels& ch, const SimConfig& cfg);
 // "ist_unit FP24 rtz S=2 (units 4, slots 128, queue 64), ..." or "none ...".
 std::string rtl_ist_unit_built();

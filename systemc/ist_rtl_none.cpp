@@ -3,7 +3,7 @@
 
 namespace raycore::sc {
 
-std::unique_ptr<IstRtl> make_rtl_ist_unit(hls::FormatId, hls::Rounding, unsigned, FrameCtx&,
+std::unique_ptr<IstRtl> make_rtl_ist_unit(hls::FormatId, hls::Rounding, unsigned, hls::IstKind, FrameCtx&,
                                           RtuChannels&, const SimConfig&) {
   return nullptr;
 }

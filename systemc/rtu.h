@@ -106,13 +106,15 @@ class Rtu : public sc_core::sc_module {
       vtu_unit.bind(vtu_port_.get());
     }
     if (cfg.ist_view == UnitView::rtl) {  // the whole unit: rtl/units/ist_unit.v
+      const hls::IstKind kind = hls::IstKind(fc.header.ist);  // ist.v or ist_watertight.v: 10 levels
+      const bool wt = kind == hls::IstKind::watertight;
       const unsigned stages = pin_stages("ist", cfg.ist_latency, kIstLevels, "--ist-latency");
-      ist_rtl_ = make_rtl_ist_unit(hls::format_id<F>(), R, stages, fc, ch_, cfg);
+      ist_rtl_ = make_rtl_ist_unit(hls::format_id<F>(), R, stages, kind, fc, ch_, cfg);
       if (!ist_rtl_)
         throw ConfigError(std::string("no Verilated ist_unit for ") +
                           hls::format_name(hls::format_id<F>()) + " " + hls::rounding_name(R) +
-                          " STAGES=" + std::to_string(stages) + " in this build; built: " +
-                          rtl_ist_unit_built());
+                          (wt ? " watertight" : "") + " STAGES=" + std::to_string(stages) +
+                          " in this build; built: " + rtl_ist_unit_built());
       ist.bind_rtl(ist_rtl_.get());
     }
     if (cfg.ist_view == UnitView::twin) {  // one SystemC twin of rtl/units/ist.v per ist unit

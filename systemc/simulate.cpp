@@ -34,11 +34,12 @@ SimResult run(const hls::Image& image, const scenes::Camera& cam, const scenes::
   if (tc.ist != hls::IstKind::wald)
     for (const auto& [view, unit] : {std::pair{cfg.vtu_view, "vtu"}, {cfg.ascache_view, "ascache"},
                                      {cfg.ist_view, "ist"}, {cfg.rtu_view, "rtu"}})
-      if (view != UnitView::model)
-        throw ConfigError(std::string("--ist watertight is in the golden tracer and the transaction model: ") +
+      if (view != UnitView::model && !(view == UnitView::rtl && std::string(unit) == "ist"))
+        throw ConfigError(std::string("--ist watertight is in the golden tracer, the transaction model and "
+                                      "--rtl ist (ist_unit.v with ist_watertight.v): ") +
                           unit + " has no " + (view == UnitView::twin ? "pin-level twin" : "RTL") +
-                          " for its 48-byte records yet (rtl/units/ist.v and vtu.v are Wald's; use "
-                          "--ist wald for --rtl/--pins " + unit + ")");
+                          " for its records yet (vtu.v, ascache.v and rtu.v are Wald's; use --ist wald "
+                          "for --rtl/--pins " + unit + ")");
   SimResult res;
   res.frame.width = tc.width;
   res.frame.height = tc.height;

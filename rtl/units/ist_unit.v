@@ -37,10 +37,14 @@
 // rotation, a fixed wire. A mux per entry over all PIPES x WORDS words cost 2.4 M NAND2 eq. at the
 // RTU's parameters (64 entries, 4 pipes x 16 words); see docs/area.md. Each ist.v carries its test's side data (slot, skip,
 // list position, the record's id, k and plane) as its tag. Parameters: SLOT_BITS, IST, PIPES and
-// WORDS (the hand-off: trv_unit's), RPL (triangle records per cache line, a power of two).
+// WORDS (the hand-off: trv_unit's), RPL (triangle records per cache line, a power of two),
+// WATERTIGHT (0: Wald's records and ist.v; 1: watertight records, the plane and the vertices, and
+// ist_watertight.v: --ist watertight; the same latency, 10 x STAGES, the margin registers unused).
 // lint: also SLOT_BITS=7 IST=4 PIPES=4 WORDS=16 QBITS=6 RPL=2 HLBITS=4 STAGES=2
 // lint: also EXP_BITS=8 MAN_BITS=23 RNE=1 SLOT_BITS=7 IST=4 PIPES=4 WORDS=16 QBITS=6 RPL=1 HLBITS=4 STAGES=2
 // lint: also IST=1 PIPES=1 WORDS=1 RPL=1 HLBITS=1 STAGES=0 ENTRY_REG=0
+// lint: also SLOT_BITS=7 IST=4 PIPES=4 WORDS=16 QBITS=6 RPL=1 HLBITS=4 STAGES=2 WATERTIGHT=1
+// lint: also EXP_BITS=8 MAN_BITS=23 RNE=1 RPL=1 WATERTIGHT=1
 module ist_unit #(
   parameter integer EXP_BITS  = 7,
   parameter integer MAN_BITS  = 16,
@@ -58,10 +62,12 @@ module ist_unit #(
   // and the ray registered), and its result waits hl_i - 1 cycles in the ring instead of hl_i:
   // the same cycles, hl_i >= 1. 0: it enters in the access's cycle (hl_i >= 0).
   parameter integer ENTRY_REG = 1,
+  parameter integer WATERTIGHT = 0,
   // Derived (not to be overridden): the record layout of hls/wald.h and the widths.
   parameter integer W_        = 1 + EXP_BITS + MAN_BITS,
   parameter integer CB_       = (W_ <= 24) ? 3 : 4,               // bytes per constant
-  parameter integer IDOFF_    = ((9 * CB_ + 1 + 3) / 4) * 4,      // the id's byte offset
+  parameter integer NC_       = (WATERTIGHT != 0) ? 12 : 9,       // constants per record
+  parameter integer IDOFF_    = ((NC_ * CB_ + 1 + 3) / 4) * 4,    // the id's byte offset
   parameter integer RB_       = ((IDOFF_ + 4 + 15) / 16) * 16,    // bytes per record
   parameter integer LINE_W_   = 8 * RPL * RB_                     // bits per cache line
 ) (
@@ -69,7 +75,7 @@ module ist_unit #(
   input  wire                            rst_ni,
   input  wire [31:0]                     now_i,
   // Configuration, static per frame.
-  input  wire [W_-1:0]                   eps_i,       // ist.v's margin registers
+  input  wire [W_-1:0]                   eps_i,       // ist.v's margin registers (Wald's)
   input  wire [W_-1:0]                   one_eps_i,
   input  wire [15:0]                     qcap_i,      // the queue's capacity (<= 2^QBITS)
   input  wire [7:0]                      hl_i,        // the triangle cache's hit latency
@@ -115,7 +121,8 @@ module ist_unit #(
   localparam integer RESW = 1 + SLOT_BITS + BW;                  // a result: {hit, slot, rec}
   localparam integer RPLB = (RPL > 1) ? $clog2(RPL) : 1;
   localparam integer SW  = SLOT_BITS + 1 + 32 + 32;              // {slot, skip, pos, id}
-  localparam integer EW  = 2 + 9 * W + 8 * W + SW;               // a test entering ist.v
+  localparam integer NC  = NC_;
+  localparam integer EW  = 2 + NC * W + 8 * W + SW;              // a test entering the datapath
 
   // ---- the queue --------------------------------------------------------------------------------
   // Entry e's values after this edge (its registers, or what this cycle's pushes write into them:
@@ -175,17 +182,20 @@ module ist_unit #(
           if (RPL > 1 && tidx[RPLB-1:0] == r[RPLB-1:0]) rec = line[r*8*RB_ +: 8*RB_];
       end
       wire          unused_rec = ^rec;  // flags and padding
-      wire [W-1:0]  c0 = rec[0*8*CB_ +: W], c1 = rec[1*8*CB_ +: W], c2 = rec[2*8*CB_ +: W];
-      wire [W-1:0]  c3 = rec[3*8*CB_ +: W], c4 = rec[4*8*CB_ +: W], c5 = rec[5*8*CB_ +: W];
-      wire [W-1:0]  c6 = rec[6*8*CB_ +: W], c7 = rec[7*8*CB_ +: W], c8 = rec[8*8*CB_ +: W];
-      wire [1:0]    k  = rec[9*8*CB_ +: 2];
+      // The constants c_{NC-1} .. c_0, packed (c_i at [i*W +: W]).
+      wire [NC*W-1:0] cs;
+      genvar gr;
+      for (gr = 0; gr < NC; gr = gr + 1) begin : g_rc
+        assign cs[gr*W +: W] = rec[gr*8*CB_ +: W];
+      end
+      wire [1:0]    k  = rec[NC*8*CB_ +: 2];
       wire [31:0]   id = rec[8*IDOFF_ +: 32];
       wire [RW-1:0] ray = ray_i[u*RW +: RW];
       wire          skip = (id == ray[8*W +: 32]);
-      // The test entering ist.v: {k, c8 .. c0, the ray, slot, skip, list position, id}; the side
-      // data rides as ist.v's tag (with k and the plane c0 .. c2, taken from the record here).
-      wire [EW-1:0] ein = {k, c8, c7, c6, c5, c4, c3, c2, c1, c0, ray[0 +: 8*W],
-                           w_slot_q[u], skip, w_pos_q[u], id};
+      // The test entering the datapath: {k, c_{NC-1} .. c_0, the ray, slot, skip, list position,
+      // id}; the side data rides as its tag (with k and the plane c0 .. c2, taken from the record
+      // here).
+      wire [EW-1:0] ein = {k, cs, ray[0 +: 8*W], w_slot_q[u], skip, w_pos_q[u], id};
       wire          ev;
       wire [EW-1:0] ed;
       if (ENTRY_REG != 0) begin : g_ereg  // registered: ist.v's level 1 starts from a register
@@ -205,28 +215,38 @@ module ist_unit #(
       // A test counts as it enters ist.v (with ENTRY_REG a cycle after the access: the skip
       // test's compare is off the triangle cache's path).
       assign test[u] = ev && !ed[64];  // ed[0 +: SW] = {slot, skip, pos, id}
-      wire [W-1:0]  ec [0:8];
-      genvar gc;
-      for (gc = 0; gc < 9; gc = gc + 1) begin : g_ec
-        assign ec[gc] = ed[SW + 8*W + gc*W +: W];
-      end
+      wire [NC*W-1:0] ec = ed[SW + 8*W +: NC*W];
+      wire [TW-1:0] itag = {ed[0 +: SW], ed[EW-1 -: 2], ec[0 +: W], ec[W +: W], ec[2*W +: W]};
       // The datapath.
       wire          o_valid, o_ready_unused;
       wire [2:0]    o_exit;
       wire [W-1:0]  o_t, o_den;
       wire [TW-1:0] o_tag;
-      ist #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
-            .TAG_BITS(TW)) u_ist (
-        .clk_i(clk_i), .rst_ni(rst_ni), .eps_i(eps_i), .one_eps_i(one_eps_i),
-        .in_valid_i(ev), .in_ready_o(o_ready_unused), .in_k_i(ed[EW-1 -: 2]),
-        .in_c0_i(ec[0]), .in_c1_i(ec[1]), .in_c2_i(ec[2]), .in_c3_i(ec[3]), .in_c4_i(ec[4]),
-        .in_c5_i(ec[5]), .in_c6_i(ec[6]), .in_c7_i(ec[7]), .in_c8_i(ec[8]),
-        .in_o_x_i(eray[0 +: W]), .in_o_y_i(eray[W +: W]), .in_o_z_i(eray[2*W +: W]),
-        .in_d_x_i(eray[3*W +: W]), .in_d_y_i(eray[4*W +: W]), .in_d_z_i(eray[5*W +: W]),
-        .in_tmin_i(eray[6*W +: W]), .in_tmax_i(eray[7*W +: W]),
-        .in_tag_i({ed[0 +: SW], ed[EW-1 -: 2], ec[0], ec[1], ec[2]}),
-        .out_valid_o(o_valid), .out_ready_i(1'b1), .out_exit_o(o_exit), .out_t_o(o_t),
-        .out_den_o(o_den), .out_tag_o(o_tag));
+      if (WATERTIGHT != 0) begin : g_wt  // the plane, then the vertices A, B, C ({z, y, x} each)
+        ist_watertight #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE),
+                         .STAGES(STAGES), .TAG_BITS(TW)) u_ist (
+          .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(ev), .in_ready_o(o_ready_unused),
+          .in_k_i(ed[EW-1 -: 2]), .in_nu_i(ec[0 +: W]), .in_nv_i(ec[W +: W]), .in_nd_i(ec[2*W +: W]),
+          .in_va_i(ec[3*W +: 3*W]), .in_vb_i(ec[6*W +: 3*W]), .in_vc_i(ec[9*W +: 3*W]),
+          .in_o_i(eray[0 +: 3*W]), .in_d_i(eray[3*W +: 3*W]),
+          .in_tmin_i(eray[6*W +: W]), .in_tmax_i(eray[7*W +: W]), .in_tag_i(itag),
+          .out_valid_o(o_valid), .out_ready_i(1'b1), .out_exit_o(o_exit), .out_t_o(o_t),
+          .out_den_o(o_den), .out_tag_o(o_tag));
+        wire unused_eps = ^{eps_i, one_eps_i};  // Wald's margin registers
+      end else begin : g_wald
+        ist #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
+              .TAG_BITS(TW)) u_ist (
+          .clk_i(clk_i), .rst_ni(rst_ni), .eps_i(eps_i), .one_eps_i(one_eps_i),
+          .in_valid_i(ev), .in_ready_o(o_ready_unused), .in_k_i(ed[EW-1 -: 2]),
+          .in_c0_i(ec[0 +: W]), .in_c1_i(ec[W +: W]), .in_c2_i(ec[2*W +: W]), .in_c3_i(ec[3*W +: W]),
+          .in_c4_i(ec[4*W +: W]), .in_c5_i(ec[5*W +: W]), .in_c6_i(ec[6*W +: W]),
+          .in_c7_i(ec[7*W +: W]), .in_c8_i(ec[8*W +: W]),
+          .in_o_x_i(eray[0 +: W]), .in_o_y_i(eray[W +: W]), .in_o_z_i(eray[2*W +: W]),
+          .in_d_x_i(eray[3*W +: W]), .in_d_y_i(eray[4*W +: W]), .in_d_z_i(eray[5*W +: W]),
+          .in_tmin_i(eray[6*W +: W]), .in_tmax_i(eray[7*W +: W]), .in_tag_i(itag),
+          .out_valid_o(o_valid), .out_ready_i(1'b1), .out_exit_o(o_exit), .out_t_o(o_t),
+          .out_den_o(o_den), .out_tag_o(o_tag));
+      end
       // The result as the trv takes it: {hit, slot, {1, t, den, pos, id, k, nu, nv, nd}}.
       wire [SLOT_BITS-1:0] t_slot = o_tag[TW-1 -: SLOT_BITS];
       wire          t_skip = o_tag[TW-1-SLOT_BITS];

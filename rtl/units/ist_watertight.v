@@ -1,32 +1,32 @@
-// ist_watertight - the intersection unit's watertight datapath (--ist watertight): Woop, Benthin
-// and Wald's sheared test on a watertight record (the plane n_u, n_v, n_d, then the vertices A, B,
-// C), fully pipelined, one test per cycle.
+// ist_watertight - the intersection unit's watertight datapath (--ist watertight): Wald's
+// distance on the record's plane and Woop, Benthin and Wald's sheared inside test on its vertices
+// (a watertight record: the plane n_u, n_v, n_d, then the vertices A, B, C), fully pipelined, one
+// test per cycle.
 //
 // Bit-exact twin of hls::ist_watertight (hls/ist.h): same operations in the same order, each
 // rounded once by the rtl/fp operators, so {exit, t, den} equal the C++ reference's for every
 // input. Every level is computed for every test; the reference's early exits only decide the
-// exit code and t (0 for the edge and det exits):
+// exit code (the first failing phase):
 //   0 hit, 1 distance (not tmin < t < tmax), 2 beta (the edge functions' signs differ: outside),
 //   4 sum (det = 0: edge-on, or a degenerate record's equal vertices).
-// k (the plane's projection axis) selects d_k, d_u, d_v for den as in ist.v (k = 3 as 0); kz = the
-// axis of the largest |d| (magnitude bits compared as integers, a zero exponent field as zero;
-// ties to the lower axis), kx = kz + 1, ky = kz + 2 (mod 3) select the sheared coordinates. NEG
-// (the sign bit alone, -0) is an absent sop term; x ^ NEG = -x.
+// k (the plane's projection axis) selects o_k, o_u, o_v, d_k, d_u, d_v as in ist.v (k = 3 as 0);
+// kz = the axis of the largest |d| (magnitude bits compared as integers, a zero exponent field as
+// zero; ties to the lower axis), kx = kz + 1, ky = kz + 2 (mod 3) select the sheared coordinates.
+// NEG (the sign bit alone, -0) is an absent sop term; x ^ NEG = -x.
 //
 // Levels (the operators of a level side by side with the same number of pipeline registers, S1 ..
-// S8 below: the level's share of the 14 x STAGES by its logic; a per-level fp_pipe of the same
+// S5 below: the level's share of the 10 x STAGES by its logic; a per-level fp_pipe of the same
 // depth carries the values needed later and the tag):
-//    1  nud = n_u*d_u, nvd = n_v*d_v; ox = sop(-0, -0, dz, o_kx, -dx, o_kz), oy (ky);
-//       pz_j = P_kz - o_kz (j = A, B, C)
-//    2  den = add3(d_k, nud, nvd); px_j = sop(-ox, -0, dz, P_kx, -dx, P_kz), py_j (ky, -oy)
-//    3  U = E(B, C), V = E(C, A), W = E(A, B), E(P, Q) = sop(-0, -0, qx, py, -qy, px)
-//    4  out = some of U, V, W < 0 and some > 0 (signs and zero tests); det = add3(U, V, W);
-//       mw = W * pz_C
-//    5  T = sop(mw, -0, U, pz_A, V, pz_B), dd = det * dz; dz0 = (det = 0)
-//    6  r = 1 / dd (fp_div; RAYCORE: fp_rcp, the table reciprocal)
-//    7  t = T * r
-//    8  lt(tmin, t), lt(t, tmax) (fp_cmp); the exit code is decoded combinationally at the output.
-// Latency = 14 * STAGES cycles (STAGES = 0: combinational), throughput one test per cycle.
+//    1  n_u*d_u, n_v*d_v, n_u*o_u, n_v*o_v, s1 = n_d - o_k; ox = sop(-0, -0, dz, o_kx, -dx, o_kz),
+//       oy (ky)
+//    2  den = add3(d_k, n_u*d_u, n_v*d_v), s2 = n_u*o_u + n_v*o_v; px_j = sop(-ox, -0, dz, P_kx,
+//       -dx, P_kz), py_j (ky, -oy) for the vertices j = A, B, C
+//    3  num = s1 - s2, r = 1 / den (fp_div; RAYCORE: fp_rcp, the table reciprocal); U = E(B, C),
+//       V = E(C, A), W = E(A, B), E(P, Q) = sop(-0, -0, qx, py, -qy, px)
+//    4  t = num * r; out = some of U, V, W < 0 and some > 0 (signs and zero tests); det = add3(U,
+//       V, W)
+//    5  lt(tmin, t), lt(t, tmax) (fp_cmp); det = 0; the exit code is decoded at the output.
+// Latency = 10 * STAGES cycles, as ist.v's (STAGES = 0: combinational), one test per cycle.
 //
 // Handshake: as ist.v's (valid/ready; the operators of a level in lockstep with its carry pipe,
 // whose in_ready and out_valid stand for the level; back-pressure stalls the whole chain).
@@ -45,6 +45,7 @@ module ist_watertight #(
   input  wire [1:0]                 in_k_i,     // the plane's projection axis 0..2
   input  wire [EXP_BITS+MAN_BITS:0] in_nu_i,    // n_u
   input  wire [EXP_BITS+MAN_BITS:0] in_nv_i,    // n_v
+  input  wire [EXP_BITS+MAN_BITS:0] in_nd_i,    // n_d
   input  wire [3*(EXP_BITS+MAN_BITS+1)-1:0] in_va_i,  // vertex A: {z, y, x}
   input  wire [3*(EXP_BITS+MAN_BITS+1)-1:0] in_vb_i,  // vertex B
   input  wire [3*(EXP_BITS+MAN_BITS+1)-1:0] in_vc_i,  // vertex C
@@ -68,20 +69,18 @@ module ist_watertight #(
   localparam [W-1:0] ONE = {1'b0, BIAS[E-1:0], {M{1'b0}}};  // 1.0
   localparam [W-1:0] NEG = {1'b1, {(W-1){1'b0}}};           // -0: an absent term; x ^ NEG = -x
   // Registers per level, as ist.v: the levels' weights (the registers each needs at STAGES 2 for
-  // 95 FO4: one add, mul or compare 1, an add3 3, a sop 4, the divider 7), cumulated in Q (28).
-  localparam integer Q1 = 4, Q2 = 8, Q3 = 12, Q4 = 15, Q5 = 19, Q6 = 26, Q7 = 27;
+  // 95 FO4: one add, mul or compare 1, an add3 3, a sop 4, the divider 7; level 5's compares are
+  // given 2, so that the 20 make the latency ist.v's 10 x STAGES), cumulated in Q.
+  localparam integer Q1 = 4, Q2 = 8, Q3 = 15, Q4 = 18;
   localparam integer S1 = (STAGES * Q1) / 2;
   localparam integer S2 = (STAGES * Q2) / 2 - (STAGES * Q1) / 2;
   localparam integer S3 = (STAGES * Q3) / 2 - (STAGES * Q2) / 2;
   localparam integer S4 = (STAGES * Q4) / 2 - (STAGES * Q3) / 2;
-  localparam integer S5 = (STAGES * Q5) / 2 - (STAGES * Q4) / 2;
-  localparam integer S6 = (STAGES * Q6) / 2 - (STAGES * Q5) / 2;
-  localparam integer S7 = (STAGES * Q7) / 2 - (STAGES * Q6) / 2;
-  localparam integer S8 = 14 * STAGES - (STAGES * Q7) / 2;
+  localparam integer S5 = 10 * STAGES - (STAGES * Q4) / 2;
 
   // Level handshakes: v[L] / r[L] = valid / ready at the output of level L (index 0 = the input).
-  wire [8:0] v;
-  wire [9:1] r;
+  wire [5:0] v;
+  wire [6:1] r;
   assign v[0]       = in_valid_i;
   assign in_ready_o = r[1];
 
@@ -110,6 +109,7 @@ module ist_watertight #(
   wire [1:0] kx = kz == 2'd2 ? 2'd0 : kz + 2'd1;
   wire [1:0] ky = kz == 2'd0 ? 2'd2 : kz - 2'd1;
   wire [W-1:0] d_k = pick(in_d_i, pk), d_u = pick(in_d_i, pu), d_v = pick(in_d_i, pv);
+  wire [W-1:0] o_k = pick(in_o_i, pk), o_u = pick(in_o_i, pu), o_v = pick(in_o_i, pv);
   wire [W-1:0] dz = pick(in_d_i, kz), ndx = pick(in_d_i, kx) ^ NEG, ndy = pick(in_d_i, ky) ^ NEG;
   wire [W-1:0] o_kx = pick(in_o_i, kx), o_ky = pick(in_o_i, ky), o_kz = pick(in_o_i, kz);
   // Vertex j's sheared axes, {P_kz, P_ky, P_kx} at [3*W*j +: 3*W] (j = 0 A, 1 B, 2 C).
@@ -119,9 +119,9 @@ module ist_watertight #(
 
   genvar gj;
 
-  // ---- level 1: den's products, the ray's sheared origin, the vertices' z ---------------------------
-  wire [W-1:0]   l1_nud, l1_nvd, l1_ox, l1_oy;
-  wire [3*W-1:0] l1_pz;  // {pz_C, pz_B, pz_A}
+  // ---- level 1: the plane's products and n_d - o_k, the ray's sheared origin ----------------------
+  wire [4*W-1:0] l1_prod;  // {nvo, nuo, nvd, nud}
+  wire [W-1:0]   l1_s1, l1_ox, l1_oy;
   wire [6:0]     l1_unused_v, l1_unused_r;
   localparam integer C1_W = TAG_BITS + 15 * W;
   wire [TAG_BITS-1:0] c1_tag;
@@ -132,88 +132,104 @@ module ist_watertight #(
     .in_data_i({in_tag_i, in_tmin_i, in_tmax_i, d_k, dz, ndx, ndy, vs}),
     .out_valid_o(v[1]), .out_ready_i(r[2]),
     .out_data_o({c1_tag, c1_tmin, c1_tmax, c1_dk, c1_dz, c1_ndx, c1_ndy, c1_vs}));
-  fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1)) u_l1_nud (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[0]),
-    .in_a_i(in_nu_i), .in_b_i(d_u), .out_valid_o(l1_unused_v[0]), .out_ready_i(r[2]), .out_res_o(l1_nud));
-  fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1)) u_l1_nvd (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[1]),
-    .in_a_i(in_nv_i), .in_b_i(d_v), .out_valid_o(l1_unused_v[1]), .out_ready_i(r[2]), .out_res_o(l1_nvd));
-  fp_sop_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1)) u_l1_ox (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[2]),
-    .in_a_i(NEG), .in_b_i(NEG), .in_x1_i(dz), .in_y1_i(o_kx), .in_x2_i(ndx), .in_y2_i(o_kz),
-    .out_valid_o(l1_unused_v[2]), .out_ready_i(r[2]), .out_res_o(l1_ox));
-  fp_sop_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1)) u_l1_oy (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[3]),
-    .in_a_i(NEG), .in_b_i(NEG), .in_x1_i(dz), .in_y1_i(o_ky), .in_x2_i(ndy), .in_y2_i(o_kz),
-    .out_valid_o(l1_unused_v[3]), .out_ready_i(r[2]), .out_res_o(l1_oy));
+  wire [4*W-1:0] l1_pa = {in_nv_i, in_nu_i, in_nv_i, in_nu_i};
+  wire [4*W-1:0] l1_pb = {o_v, o_u, d_v, d_u};
   generate
-    for (gj = 0; gj < 3; gj = gj + 1) begin : g_l1_pz
-      fp_op2_nt #(.OP("sub"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1)) u_sub (
-        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[4+gj]),
-        .in_a_i(vs[(3*gj+2)*W +: W]), .in_b_i(o_kz), .out_valid_o(l1_unused_v[4+gj]),
-        .out_ready_i(r[2]), .out_res_o(l1_pz[gj*W +: W]));
+    for (gj = 0; gj < 4; gj = gj + 1) begin : g_l1_mul
+      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1)) u_mul (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[gj]),
+        .in_a_i(l1_pa[gj*W +: W]), .in_b_i(l1_pb[gj*W +: W]), .out_valid_o(l1_unused_v[gj]),
+        .out_ready_i(r[2]), .out_res_o(l1_prod[gj*W +: W]));
     end
   endgenerate
+  fp_op2_nt #(.OP("sub"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1)) u_l1_s1 (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[4]),
+    .in_a_i(in_nd_i), .in_b_i(o_k), .out_valid_o(l1_unused_v[4]), .out_ready_i(r[2]), .out_res_o(l1_s1));
+  fp_sop_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1)) u_l1_ox (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[5]),
+    .in_a_i(NEG), .in_b_i(NEG), .in_x1_i(dz), .in_y1_i(o_kx), .in_x2_i(ndx), .in_y2_i(o_kz),
+    .out_valid_o(l1_unused_v[5]), .out_ready_i(r[2]), .out_res_o(l1_ox));
+  fp_sop_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1)) u_l1_oy (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[6]),
+    .in_a_i(NEG), .in_b_i(NEG), .in_x1_i(dz), .in_y1_i(o_ky), .in_x2_i(ndy), .in_y2_i(o_kz),
+    .out_valid_o(l1_unused_v[6]), .out_ready_i(r[2]), .out_res_o(l1_oy));
 
-  // ---- level 2: den, the vertices' sheared x and y ----------------------------------------------
-  wire [W-1:0]   l2_den;
+  // ---- level 2: den, n_u o_u + n_v o_v, the vertices' sheared x and y ------------------------------
+  wire [W-1:0]   l2_den, l2_s2;
   wire [3*W-1:0] l2_px, l2_py;  // {C, B, A}
-  wire [6:0]     l2_unused_v, l2_unused_r;
-  localparam integer C2_W = TAG_BITS + 6 * W;
+  wire [7:0]     l2_unused_v, l2_unused_r;
+  localparam integer C2_W = TAG_BITS + 3 * W;
   wire [TAG_BITS-1:0] c2_tag;
-  wire [W-1:0] c2_tmin, c2_tmax, c2_dz;
-  wire [3*W-1:0] c2_pz;
+  wire [W-1:0] c2_tmin, c2_tmax, c2_s1;
   fp_pipe #(.WIDTH(C2_W), .STAGES(S2)) u_carry2 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(r[2]),
-    .in_data_i({c1_tag, c1_tmin, c1_tmax, c1_dz, l1_pz}),
+    .in_data_i({c1_tag, c1_tmin, c1_tmax, l1_s1}),
     .out_valid_o(v[2]), .out_ready_i(r[3]),
-    .out_data_o({c2_tag, c2_tmin, c2_tmax, c2_dz, c2_pz}));
+    .out_data_o({c2_tag, c2_tmin, c2_tmax, c2_s1}));
   fp_add3_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S2)) u_l2_den (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[0]),
-    .in_a_i(c1_dk), .in_b_i(l1_nud), .in_c_i(l1_nvd), .out_valid_o(l2_unused_v[0]),
+    .in_a_i(c1_dk), .in_b_i(l1_prod[0 +: W]), .in_c_i(l1_prod[W +: W]), .out_valid_o(l2_unused_v[0]),
     .out_ready_i(r[3]), .out_res_o(l2_den));
+  fp_op2_nt #(.OP("add"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S2)) u_l2_s2 (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[1]),
+    .in_a_i(l1_prod[2*W +: W]), .in_b_i(l1_prod[3*W +: W]), .out_valid_o(l2_unused_v[1]),
+    .out_ready_i(r[3]), .out_res_o(l2_s2));
   generate
     for (gj = 0; gj < 3; gj = gj + 1) begin : g_l2_shear
       fp_sop_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S2)) u_px (
-        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[1+2*gj]),
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[2+2*gj]),
         .in_a_i(l1_ox ^ NEG), .in_b_i(NEG), .in_x1_i(c1_dz), .in_y1_i(c1_vs[(3*gj)*W +: W]),
         .in_x2_i(c1_ndx), .in_y2_i(c1_vs[(3*gj+2)*W +: W]),
-        .out_valid_o(l2_unused_v[1+2*gj]), .out_ready_i(r[3]), .out_res_o(l2_px[gj*W +: W]));
+        .out_valid_o(l2_unused_v[2+2*gj]), .out_ready_i(r[3]), .out_res_o(l2_px[gj*W +: W]));
       fp_sop_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S2)) u_py (
-        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[2+2*gj]),
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[3+2*gj]),
         .in_a_i(l1_oy ^ NEG), .in_b_i(NEG), .in_x1_i(c1_dz), .in_y1_i(c1_vs[(3*gj+1)*W +: W]),
         .in_x2_i(c1_ndy), .in_y2_i(c1_vs[(3*gj+2)*W +: W]),
-        .out_valid_o(l2_unused_v[2+2*gj]), .out_ready_i(r[3]), .out_res_o(l2_py[gj*W +: W]));
+        .out_valid_o(l2_unused_v[3+2*gj]), .out_ready_i(r[3]), .out_res_o(l2_py[gj*W +: W]));
     end
   endgenerate
 
-  // ---- level 3: the edge functions ----------------------------------------------------------------
-  // Lane j = 0 U = E(B, C), 1 V = E(C, A), 2 W = E(A, B); E(P, Q) = qx py - qy px.
+  // ---- level 3: num, 1 / den, the edge functions --------------------------------------------------
+  // Edge lane j = 0 U = E(B, C), 1 V = E(C, A), 2 W = E(A, B); E(P, Q) = qx py - qy px.
+  wire [W-1:0]   l3_num, l3_rcp;
   wire [3*W-1:0] l3_e;  // {W, V, U}
-  wire [2:0]     l3_unused_v, l3_unused_r;
-  localparam integer C3_W = TAG_BITS + 7 * W;
+  wire [4:0]     l3_unused_v, l3_unused_r;
+  localparam integer C3_W = TAG_BITS + 3 * W;
   wire [TAG_BITS-1:0] c3_tag;
-  wire [W-1:0] c3_tmin, c3_tmax, c3_dz, c3_den;
-  wire [3*W-1:0] c3_pz;
+  wire [W-1:0] c3_tmin, c3_tmax, c3_den;
   fp_pipe #(.WIDTH(C3_W), .STAGES(S3)) u_carry3 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(r[3]),
-    .in_data_i({c2_tag, c2_tmin, c2_tmax, c2_dz, l2_den, c2_pz}),
+    .in_data_i({c2_tag, c2_tmin, c2_tmax, l2_den}),
     .out_valid_o(v[3]), .out_ready_i(r[4]),
-    .out_data_o({c3_tag, c3_tmin, c3_tmax, c3_dz, c3_den, c3_pz}));
+    .out_data_o({c3_tag, c3_tmin, c3_tmax, c3_den}));
+  fp_op2_nt #(.OP("sub"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S3)) u_l3_num (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[0]),
+    .in_a_i(c2_s1), .in_b_i(l2_s2), .out_valid_o(l3_unused_v[0]), .out_ready_i(r[4]), .out_res_o(l3_num));
   generate
+    if (RAYCORE != 0) begin : g_rcp_table  // raycore: the table reciprocal (hls::rcp<F, raycore>)
+      wire unused_tag;
+      fp_rcp #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(S3)) u_l3_rcp (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[1]),
+        .in_a_i(l2_den), .in_tag_i(1'b0), .out_valid_o(l3_unused_v[1]),
+        .out_ready_i(r[4]), .out_res_o(l3_rcp), .out_tag_o(unused_tag));
+    end else begin : g_rcp_div  // rtz, rne: 1 / den, rounded once
+      fp_op2_nt #(.OP("div"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(S3)) u_l3_rcp (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[1]),
+        .in_a_i(ONE), .in_b_i(l2_den), .out_valid_o(l3_unused_v[1]),
+        .out_ready_i(r[4]), .out_res_o(l3_rcp));
+    end
     for (gj = 0; gj < 3; gj = gj + 1) begin : g_l3_edge
       localparam integer P = (gj + 1) % 3, Q = (gj + 2) % 3;
       fp_sop_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S3)) u_edge (
-        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[gj]),
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[2+gj]),
         .in_a_i(NEG), .in_b_i(NEG), .in_x1_i(l2_px[Q*W +: W]), .in_y1_i(l2_py[P*W +: W]),
         .in_x2_i(l2_py[Q*W +: W] ^ NEG), .in_y2_i(l2_px[P*W +: W]),
-        .out_valid_o(l3_unused_v[gj]), .out_ready_i(r[4]), .out_res_o(l3_e[gj*W +: W]));
+        .out_valid_o(l3_unused_v[2+gj]), .out_ready_i(r[4]), .out_res_o(l3_e[gj*W +: W]));
     end
   endgenerate
 
-  // ---- level 4: the inside test, det, W * pz_C ------------------------------------------------------
-  wire [2:0] l3_nz;  // nonzero (a zero exponent field is zero)
-  wire [2:0] l3_neg, l3_pos;
+  // ---- level 4: t, the inside test, det -------------------------------------------------------------
+  wire [2:0] l3_nz, l3_neg, l3_pos;  // nonzero (a zero exponent field is zero), < 0, > 0
   generate
     for (gj = 0; gj < 3; gj = gj + 1) begin : g_l4_sign
       assign l3_nz[gj]  = |l3_e[gj*W + M +: E];
@@ -222,126 +238,59 @@ module ist_watertight #(
     end
   endgenerate
   wire l3_out = (|l3_neg) & (|l3_pos);
-  wire [W-1:0] l4_det, l4_mw;
+  wire [W-1:0] l4_t, l4_det;
   wire [1:0]   l4_unused_v, l4_unused_r;
-  localparam integer C4_W = TAG_BITS + 8 * W + 1;
+  localparam integer C4_W = TAG_BITS + 3 * W + 1;
   wire [TAG_BITS-1:0] c4_tag;
-  wire [W-1:0] c4_tmin, c4_tmax, c4_dz, c4_den, c4_pza, c4_pzb, c4_u, c4_v;
+  wire [W-1:0] c4_tmin, c4_tmax, c4_den;
   wire         c4_out;
   fp_pipe #(.WIDTH(C4_W), .STAGES(S4)) u_carry4 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(r[4]),
-    .in_data_i({c3_tag, c3_tmin, c3_tmax, c3_dz, c3_den, c3_pz[0 +: 2*W], l3_e[0 +: 2*W], l3_out}),
+    .in_data_i({c3_tag, c3_tmin, c3_tmax, c3_den, l3_out}),
     .out_valid_o(v[4]), .out_ready_i(r[5]),
-    .out_data_o({c4_tag, c4_tmin, c4_tmax, c4_dz, c4_den, c4_pzb, c4_pza, c4_v, c4_u, c4_out}));
-  fp_add3_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S4)) u_l4_det (
+    .out_data_o({c4_tag, c4_tmin, c4_tmax, c4_den, c4_out}));
+  fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S4)) u_l4_t (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(l4_unused_r[0]),
-    .in_a_i(l3_e[0 +: W]), .in_b_i(l3_e[W +: W]), .in_c_i(l3_e[2*W +: W]),
-    .out_valid_o(l4_unused_v[0]), .out_ready_i(r[5]), .out_res_o(l4_det));
-  fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S4)) u_l4_mw (
+    .in_a_i(l3_num), .in_b_i(l3_rcp), .out_valid_o(l4_unused_v[0]), .out_ready_i(r[5]), .out_res_o(l4_t));
+  fp_add3_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S4)) u_l4_det (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(l4_unused_r[1]),
-    .in_a_i(l3_e[2*W +: W]), .in_b_i(c3_pz[2*W +: W]), .out_valid_o(l4_unused_v[1]),
-    .out_ready_i(r[5]), .out_res_o(l4_mw));
+    .in_a_i(l3_e[0 +: W]), .in_b_i(l3_e[W +: W]), .in_c_i(l3_e[2*W +: W]),
+    .out_valid_o(l4_unused_v[1]), .out_ready_i(r[5]), .out_res_o(l4_det));
 
-  // ---- level 5: T, det * dz -----------------------------------------------------------------------
+  // ---- level 5: tmin < t < tmax ----------------------------------------------------------------------
   wire         l4_dz0 = ~|l4_det[M +: E];  // det = 0
-  wire [W-1:0] l5_t, l5_dd;
-  wire [1:0]   l5_unused_v, l5_unused_r;
-  localparam integer C5_W = TAG_BITS + 3 * W + 2;
-  wire [TAG_BITS-1:0] c5_tag;
-  wire [W-1:0] c5_tmin, c5_tmax, c5_den;
+  wire [1:0]   l5_lt;  // {t < tmax, tmin < t}
+  wire [1:0]   l5_unused_v, l5_unused_r, l5_unused_eq;
+  wire [4*W-1:0] l5_unused_mm;
+  wire [W-1:0] unused_det_rest = l4_det;  // only its exponent field is read
+  localparam integer C5_W = TAG_BITS + 2 * W + 2;
   wire         c5_out, c5_dz0;
   fp_pipe #(.WIDTH(C5_W), .STAGES(S5)) u_carry5 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(r[5]),
-    .in_data_i({c4_tag, c4_tmin, c4_tmax, c4_den, c4_out, l4_dz0}),
+    .in_data_i({c4_tag, c4_den, l4_t, c4_out, l4_dz0}),
     .out_valid_o(v[5]), .out_ready_i(r[6]),
-    .out_data_o({c5_tag, c5_tmin, c5_tmax, c5_den, c5_out, c5_dz0}));
-  fp_sop_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S5)) u_l5_t (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(l5_unused_r[0]),
-    .in_a_i(l4_mw), .in_b_i(NEG), .in_x1_i(c4_u), .in_y1_i(c4_pza), .in_x2_i(c4_v), .in_y2_i(c4_pzb),
-    .out_valid_o(l5_unused_v[0]), .out_ready_i(r[6]), .out_res_o(l5_t));
-  fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S5)) u_l5_dd (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(l5_unused_r[1]),
-    .in_a_i(l4_det), .in_b_i(c4_dz), .out_valid_o(l5_unused_v[1]), .out_ready_i(r[6]),
-    .out_res_o(l5_dd));
-
-  // ---- level 6: 1 / (det * dz) -------------------------------------------------------------------
-  wire [W-1:0] l6_rcp;
-  wire         l6_unused_v, l6_unused_r;
-  localparam integer C6_W = TAG_BITS + 4 * W + 2;
-  wire [TAG_BITS-1:0] c6_tag;
-  wire [W-1:0] c6_tmin, c6_tmax, c6_den, c6_t;
-  wire         c6_out, c6_dz0;
-  fp_pipe #(.WIDTH(C6_W), .STAGES(S6)) u_carry6 (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(r[6]),
-    .in_data_i({c5_tag, c5_tmin, c5_tmax, c5_den, l5_t, c5_out, c5_dz0}),
-    .out_valid_o(v[6]), .out_ready_i(r[7]),
-    .out_data_o({c6_tag, c6_tmin, c6_tmax, c6_den, c6_t, c6_out, c6_dz0}));
+    .out_data_o({out_tag_o, out_den_o, out_t_o, c5_out, c5_dz0}));
+  wire [2*W-1:0] l5_ca = {l4_t, c4_tmin};
+  wire [2*W-1:0] l5_cb = {c4_tmax, l4_t};
   generate
-    if (RAYCORE != 0) begin : g_rcp_table  // raycore: the table reciprocal (hls::rcp<F, raycore>)
-      wire unused_tag;
-      fp_rcp #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(S6)) u_l6_rcp (
-        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(l6_unused_r),
-        .in_a_i(l5_dd), .in_tag_i(1'b0), .out_valid_o(l6_unused_v),
-        .out_ready_i(r[7]), .out_res_o(l6_rcp), .out_tag_o(unused_tag));
-    end else begin : g_rcp_div  // rtz, rne: 1 / dd, rounded once
-      fp_op2_nt #(.OP("div"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(S6)) u_l6_rcp (
-        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(l6_unused_r),
-        .in_a_i(ONE), .in_b_i(l5_dd), .out_valid_o(l6_unused_v),
-        .out_ready_i(r[7]), .out_res_o(l6_rcp));
+    for (gj = 0; gj < 2; gj = gj + 1) begin : g_l5
+      fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(S5)) u_lt (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(l5_unused_r[gj]),
+        .in_a_i(l5_ca[gj*W +: W]), .in_b_i(l5_cb[gj*W +: W]), .out_valid_o(l5_unused_v[gj]),
+        .out_ready_i(r[6]), .out_lt_o(l5_lt[gj]), .out_eq_o(l5_unused_eq[gj]),
+        .out_min_o(l5_unused_mm[2*gj*W +: W]), .out_max_o(l5_unused_mm[(2*gj+1)*W +: W]));
     end
   endgenerate
 
-  // ---- level 7: t = T / (det * dz) ---------------------------------------------------------------
-  wire [W-1:0] l7_t;
-  wire         l7_unused_v, l7_unused_r;
-  localparam integer C7_W = TAG_BITS + 3 * W + 2;
-  wire [TAG_BITS-1:0] c7_tag;
-  wire [W-1:0] c7_tmin, c7_tmax, c7_den;
-  wire         c7_out, c7_dz0;
-  fp_pipe #(.WIDTH(C7_W), .STAGES(S7)) u_carry7 (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(r[7]),
-    .in_data_i({c6_tag, c6_tmin, c6_tmax, c6_den, c6_out, c6_dz0}),
-    .out_valid_o(v[7]), .out_ready_i(r[8]),
-    .out_data_o({c7_tag, c7_tmin, c7_tmax, c7_den, c7_out, c7_dz0}));
-  fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S7)) u_l7_t (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(l7_unused_r),
-    .in_a_i(c6_t), .in_b_i(l6_rcp), .out_valid_o(l7_unused_v), .out_ready_i(r[8]), .out_res_o(l7_t));
-
-  // ---- level 8: tmin < t < tmax --------------------------------------------------------------------
-  wire [1:0]   l8_lt;  // {t < tmax, tmin < t}
-  wire [1:0]   l8_unused_v, l8_unused_r, l8_unused_eq;
-  wire [4*W-1:0] l8_unused_mm;
-  localparam integer C8_W = TAG_BITS + 2 * W + 2;
-  wire [W-1:0] c8_t;
-  wire         c8_out, c8_dz0;
-  fp_pipe #(.WIDTH(C8_W), .STAGES(S8)) u_carry8 (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(r[8]),
-    .in_data_i({c7_tag, c7_den, l7_t, c7_out, c7_dz0}),
-    .out_valid_o(v[8]), .out_ready_i(r[9]),
-    .out_data_o({out_tag_o, out_den_o, c8_t, c8_out, c8_dz0}));
-  wire [2*W-1:0] l8_ca = {l7_t, c7_tmin};
-  wire [2*W-1:0] l8_cb = {c7_tmax, l7_t};
-  generate
-    for (gj = 0; gj < 2; gj = gj + 1) begin : g_l8
-      fp_cmp_nt #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(S8)) u_lt (
-        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(l8_unused_r[gj]),
-        .in_a_i(l8_ca[gj*W +: W]), .in_b_i(l8_cb[gj*W +: W]), .out_valid_o(l8_unused_v[gj]),
-        .out_ready_i(r[9]), .out_lt_o(l8_lt[gj]), .out_eq_o(l8_unused_eq[gj]),
-        .out_min_o(l8_unused_mm[2*gj*W +: W]), .out_max_o(l8_unused_mm[(2*gj+1)*W +: W]));
-    end
-  endgenerate
-
-  assign r[9]        = out_ready_i;
-  assign out_valid_o = v[8];
-  // The first failing phase and t, as hls::ist_watertight returns them.
-  assign out_exit_o  = c8_out ? 3'd2 : c8_dz0 ? 3'd4 : !(&l8_lt) ? 3'd1 : 3'd0;
-  assign out_t_o     = (c8_out | c8_dz0) ? {W{1'b0}} : c8_t;
+  assign r[6]        = out_ready_i;
+  assign out_valid_o = v[5];
+  // The first failing phase, as hls::ist_watertight returns it.
+  assign out_exit_o  = !(&l5_lt) ? 3'd1 : c5_out ? 3'd2 : c5_dz0 ? 3'd4 : 3'd0;
 
   // The operators' handshake outputs equal their level's carry pipe's (lockstep, see ist.v).
   wire unused_hs;
   assign unused_hs = ^{l1_unused_v, l1_unused_r, l2_unused_v, l2_unused_r, l3_unused_v, l3_unused_r,
-                       l4_unused_v, l4_unused_r, l5_unused_v, l5_unused_r, l6_unused_v, l6_unused_r,
-                       l7_unused_v, l7_unused_r, l8_unused_v, l8_unused_r, l8_unused_eq,
-                       l8_unused_mm};
+                       l4_unused_v, l4_unused_r, l5_unused_v, l5_unused_r, l5_unused_eq, l5_unused_mm,
+                       unused_det_rest};
 
 endmodule

@@ -10,7 +10,7 @@
 # (the values are rtu.v's defaults, which the binding checks the configuration against).
 if(TARGET raycore_rtl_frame)
   set(_rtu_sources ${RAYCORE_RTL_HIT_SOURCES})
-  foreach(f rgu_walk rgu_ray rgu rgu_unit trv trv_pass trv_unit ist ist_unit hit_unit ascache_ram
+  foreach(f rgu_walk rgu_ray rgu rgu_unit trv trv_pass trv_unit ist ist_watertight ist_unit hit_unit ascache_ram
             ascache_victim ascache_touch ascache vtu vtu_unit slot_ram rtu)
     list(APPEND _rtu_sources ${CMAKE_CURRENT_SOURCE_DIR}/units/${f}.v)
   endforeach()

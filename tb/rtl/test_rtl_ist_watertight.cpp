@@ -4,7 +4,7 @@
 //
 // One test per Verilated variant (format, rounding, STAGES), listed once in rtl/CMakeLists.txt
 // (RAYCORE_RTL_IST_WATERTIGHT_VARIANTS). Each streams, through the valid/ready handshake:
-//   1. fullrate: 4096 tests with no stalls (one test per cycle, latency == 14*STAGES),
+//   1. fullrate: 4096 tests with no stalls (one test per cycle, latency == 10*STAGES),
 //   2. random: RAYCORE_RTL_IST_N / 4 tests (default 125,000) with random input gaps and output
 //      back-pressure.
 // Stimulus: tb/rtl/stimulus.h's, with watertight records (hls::make_wald(.., IstKind::watertight):
@@ -37,7 +37,7 @@ namespace {
 
 using hls::Rounding;
 
-constexpr uint64_t kLevels = 14;  // latency = 14 * STAGES
+constexpr uint64_t kLevels = 10;  // latency = 10 * STAGES, as ist.v
 
 struct Res {
   uint32_t exit = 0, t = 0, den = 0;
@@ -70,6 +70,7 @@ void drive(V& m, const IstIn& x) {
   m.in_k_i = uint8_t(x.k & 3u);
   m.in_nu_i = x.c[hls::kNU];
   m.in_nv_i = x.c[hls::kNV];
+  m.in_nd_i = x.c[hls::kND];
   set3<F>(m.in_va_i, x.c + 3);
   set3<F>(m.in_vb_i, x.c + 6);
   set3<F>(m.in_vc_i, x.c + 9);
@@ -94,7 +95,7 @@ void run_variant(const std::string& name, int stages) {
       IstIn x;
       Res expected;
     };
-    const StreamSpec spec{name, count, full, kLevels * uint64_t(stages), "14*STAGES",
+    const StreamSpec spec{name, count, full, kLevels * uint64_t(stages), "10*STAGES",
                           2000u + 64u * uint64_t(stages), 1};
     uint64_t mismatches = 0;
     V& m = *dut;

@@ -403,6 +403,23 @@ TEST(IstRtlFrame, Fp32RneAndFp24RaycoreOneUnit) {
   cfg.ist_view = UnitView::rtl;
   expect_same_counts(model, expect_match(corridor(), tc, cfg), "raycore, 1 ist unit");
 }
+// The watertight test (--ist watertight): ist_unit.v with ist_watertight.v (10 levels, as ist.v),
+// 48-byte records one per triangle line; small caches and randomised latency too (misses
+// looping), the trv as the model and as RTL.
+TEST(IstRtlFrame, Watertight) {
+  auto tc = config(FormatId::fp24, Rounding::rtz, true, 40, 24);
+  tc.ist = hls::IstKind::watertight;
+  sc::SimConfig cfg;
+  expect_ist_rtl(corridor(), tc, cfg, "watertight");
+  cfg.node_cache = {1024, 2, 64, 2, 1};
+  cfg.tri_cache = {1024, 2, 64, 2, 1};
+  cfg.ist_queue = 3;
+  cfg.ist_units = 3;
+  cfg.rtus = 2;
+  cfg.seed = 7;
+  tc.spawn = spawn(hls::Spawn::skip_back, true);
+  expect_ist_rtl(corridor(), tc, cfg, "watertight, small caches, skip-back");
+}
 TEST(IstRtlFrame, RefusesWhatItCannotRun) {
   const auto tc = config(FormatId::fp24, Rounding::rtz, false, 8, 8);
   sc::SimConfig cfg;

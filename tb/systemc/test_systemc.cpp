@@ -147,11 +147,14 @@ TEST(GoldenMatch, Watertight) {
   auto tc = config(FormatId::fp24, Rounding::rtz, true, 16, 8);
   tc.ist = hls::IstKind::watertight;
   sc::SimConfig cfg;
-  cfg.ist_view = sc::UnitView::rtl;
-  expect_refused(corridor(), tc, cfg, "--ist watertight is in the golden tracer and the transaction model");
+  cfg.ist_view = sc::UnitView::twin;
+  expect_refused(corridor(), tc, cfg, "--ist watertight is in the golden tracer, the transaction model and --rtl ist");
   cfg = {};
   cfg.vtu_view = sc::UnitView::twin;
   expect_refused(corridor(), tc, cfg, "vtu has no pin-level twin");
+  cfg = {};
+  cfg.ascache_view = sc::UnitView::rtl;
+  expect_refused(corridor(), tc, cfg, "ascache has no RTL");
 }
 // Any-hit shadow rays: the same lit/shadowed decisions as closest-hit (so the same image), fewer
 // triangle tests; the golden tracer and the cycle model end the walk at the same leaf.
