@@ -64,11 +64,11 @@ inline IstOut ist_wald(uint32_t k, const uint32_t c[9], const uint32_t o[3], con
 }
 
 // The watertight test (Woop, Benthin and Wald 2013's inside test) on a watertight record: c = the
-// plane n_u, n_v, n_d and the vertices A, B, C at c[3..11]. The distance is Wald's phase 1 on the
-// record's plane, bit for bit (so a hit point is the one Wald's test gives for the same triangle,
-// and the hit unit and every spawn rule see today's points: on an axis-aligned plane, where n_u =
-// n_v = 0, a shadow ray's own t is then exactly 0 as with Wald's record); the inside test is the
-// paper's, on the vertices. The ray is sheared to +z: kz = the axis of the largest |d| (ties to the
+// plane n_u, n_v, n_d (the stored triangle's: through its vertex A, hls/wald.h watertight_nd) and
+// the vertices A, B, C at c[3..11]. The distance is Wald's phase 1, the same operations, on the
+// record's plane (so the hit unit and every spawn rule see points made as Wald's test makes them:
+// on an axis-aligned plane, where n_u = n_v = 0, a shadow ray's own t is exactly 0 as with Wald's
+// record); the inside test is the paper's, on the vertices. The ray is sheared to +z: kz = the axis of the largest |d| (ties to the
 // lower axis), kx = kz + 1, ky = kz + 2 (mod 3); the sheared coordinates are scaled by d_kz instead
 // of divided by it (no per-ray reciprocal; the edge functions scale by d_kz^2 > 0, so their signs
 // are the paper's):

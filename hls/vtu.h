@@ -9,8 +9,9 @@
 //             b_d' = sop(b_d, -0, b_nu * c_u, b_nv * c_v)
 //             c_d' = sop(c_d, -0, c_nu * c_u, c_nv * c_v)
 //             n_u, n_v, b_nu, b_nv, c_nu, c_nv, k, flags and id unchanged
-//   watertight n_d' as above; each vertex coordinate x' = sop(x, -c[axis], -0*0, -0*0) (9 shifts);
-//   record     n_u, n_v, k, flags and id unchanged (a shared vertex shifts to the same bits in
+//   watertight each vertex coordinate x' = sop(x, -c[axis], -0*0, -0*0) (9 shifts), then the plane
+//   record     through the shifted A: n_d' = sop(A'_k, -0, n_u * A'_u, n_v * A'_v) (hls/wald.h,
+//              watertight_nd: the builder's n_d on the translated vertices); n_u, n_v, k, flags and id unchanged (a shared vertex shifts to the same bits in
 //              every triangle: the translated mesh stays closed)
 //   box/light x' = sop(x, -c, -0*0, -0*0)   (box_outward: one more step outward, see below)
 // (-0 and -0*0 are absent terms: they leave an all-zero sum's sign to the others.) For rtz and
@@ -67,11 +68,12 @@ struct Vtu {
     WaldTri<F> o = t;
     const uint32_t cu = c[u], cv = c[v];
     constexpr uint32_t absent = F::sign_mask;  // -0
-    o.c[W::ND] = A::sop(t.c[W::ND], A::neg(c[k]), A::neg(t.c[W::NU]), cu, A::neg(t.c[W::NV]), cv);
     if (t.kind == IstKind::watertight) {
       for (int i = W::VA; i < W::VA + 9; ++i) o.c[i] = shift(t.c[i], c[i % 3]);
+      o.c[W::ND] = watertight_nd<F, R>(o);  // the plane through the shifted vertex A
       return o;
     }
+    o.c[W::ND] = A::sop(t.c[W::ND], A::neg(c[k]), A::neg(t.c[W::NU]), cu, A::neg(t.c[W::NV]), cv);
     o.c[W::BD] = A::sop(t.c[W::BD], absent, t.c[W::BNU], cu, t.c[W::BNV], cv);
     o.c[W::CD] = A::sop(t.c[W::CD], absent, t.c[W::CNU], cu, t.c[W::CNV], cv);
     return o;

@@ -1,7 +1,8 @@
 // hls/wald.h - the triangle record of the memory image, of one of two kinds (IstKind, the image
 // header's byte 15; --ist): Wald's projection form for Wald's test, or the plane and the three
 // vertices for the watertight test (hls/ist.h). Every constant is computed in double precision from
-// the scene's vertices and rounded once to the format.
+// the scene's vertices and rounded once to the format (the watertight record's plane from the
+// rounded vertices, make_wald).
 //
 // Wald's constants (the project's convention, NOT Wald's original naming; see docs/image.md):
 //   k = dominant axis of n = (B-A) x (C-A), u = (k+1) % 3, v = (k+2) % 3
@@ -16,8 +17,9 @@
 //
 // Kinds and layouts (little endian; cb = 3 bytes per constant in FP24, 4 in FP32):
 //   wald        nine constants n_u, n_v, n_d, b_nu, b_nv, b_d, c_nu, c_nv, c_d
-//   watertight  twelve: the same plane n_u, n_v, n_d (what the hit unit reads: the side, the spawn),
-//               then the vertices A, B, C as x, y, z each (what the watertight test reads)
+//   watertight  twelve: the plane n_u, n_v, n_d of the stored triangle (its rounded vertices; what
+//               the distance test and the hit unit read: t, the side, the spawn), then the vertices
+//               A, B, C as x, y, z each (what the inside test reads); make_wald, watertight_nd
 //   the constants at 0, cb, 2 cb, ...; then one byte k (bits 1:0) | flags; the scene index (uint32)
 //   at the next multiple of 4; the record padded with zeros to a multiple of 16:
 //     FP24 wald 32 bytes (id at 28)   FP24 watertight 48 (id at 40)
@@ -185,22 +187,46 @@ WaldTri<F> degenerate_wald(uint32_t k, uint32_t id, IstKind kind = IstKind::wald
   return w;
 }
 
-// The record of triangle t with scene index id, of the given kind: the constants computed in double
-// (wald_double's; watertight: its plane n_u, n_v, n_d, then the vertices) and rounded once with
-// policy R. A constant whose magnitude exceeds the format's largest number makes the triangle
-// degenerate (it could only saturate to a meaningless value); a constant that rounds up to the
-// largest magnitude (rne, within half an ulp of it) keeps that value and is counted as saturated.
-// A shared vertex rounds to the same bits in every triangle that has it: watertight records keep
-// the scene's mesh closed, which the watertight test then keeps closed for every ray.
+// The plane offset of a watertight record: the plane through its stored vertex A with its stored
+// normal, n_d = A_k + n_u A_u + n_v A_v as one sop (exact products, one rounding). The builder's on
+// the world's (or the anchor's) vertices and the VTU's on the shifted ones (hls/vtu.h), so the plane
+// the distance test and the hit unit read is the stored triangle's wherever it is translated.
+template <class F, Rounding R>
+uint32_t watertight_nd(const WaldTri<F>& w) {
+  using W = WaldTri<F>;
+  const int k = int(w.k), u = k == 2 ? 0 : k + 1, v = k == 0 ? 2 : k - 1;
+  return sop<F, R>(w.c[W::VA + k], F::sign_mask, w.c[W::NU], w.c[W::VA + u], w.c[W::NV], w.c[W::VA + v]);
+}
+
+// The record of triangle t with scene index id, of the given kind, rounded with policy R. Wald's:
+// the constants computed in double (wald_double) and rounded once. Watertight: the vertices rounded
+// once, then the plane of the stored (rounded) triangle: n_u, n_v from wald_double of the rounded
+// vertices, rounded once, and n_d = watertight_nd (so the record is one triangle, the one the
+// inside test sees). A constant or vertex coordinate whose magnitude exceeds the format's largest
+// number makes the triangle degenerate (it could only saturate to a meaningless value), as does a
+// triangle of zero area (in double; for watertight, after its vertices are rounded); a constant that
+// rounds up to the largest magnitude (rne, within half an ulp of it) keeps that value and is
+// counted as saturated. A shared vertex rounds to the same bits in every triangle that has it:
+// watertight records keep the scene's mesh closed, which the watertight test then keeps closed for
+// every ray.
 template <class F, Rounding R>
 WaldTri<F> make_wald(const Tri& t, uint32_t id, IstKind kind = IstKind::wald, WaldInfo* info = nullptr) {
-  const WaldDouble d = wald_double(t);
+  const double maxv = to_double<F>(F::max_mag);
+  const bool watertight = kind == IstKind::watertight;
+  bool degenerate = false;
+  Tri stored = t;  // watertight: the rounded vertices
+  if (watertight)
+    for (size_t j = 0; j < 3; ++j)
+      for (int a = 0; a < 3; ++a) {
+        if (!(std::fabs(t[j][a]) <= maxv)) degenerate = true;
+        stored[j][a] = to_double<F>(from_double<F, R>(t[j][a]));
+      }
+  const WaldDouble d = wald_double(degenerate ? t : stored);
   double x[12] = {};
   const int n = tri_const_count(kind);
   for (int i = 0; i < 3; ++i) x[i] = d.c[i];
-  for (int i = 3; i < n; ++i) x[i] = kind == IstKind::wald ? d.c[i] : t[size_t(i / 3 - 1)][i % 3];
-  const double maxv = to_double<F>(F::max_mag);
-  bool degenerate = d.degenerate;
+  for (int i = 3; i < n; ++i) x[i] = watertight ? t[size_t(i / 3 - 1)][i % 3] : d.c[i];
+  degenerate = degenerate || d.degenerate;
   for (int i = 0; i < n; ++i)
     if (!(std::fabs(x[i]) <= maxv)) degenerate = true;
   WaldInfo local;
@@ -216,6 +242,10 @@ WaldTri<F> make_wald(const Tri& t, uint32_t id, IstKind kind = IstKind::wald, Wa
       w.c[i] = from_double<F, R>(x[i]);
       if ((w.c[i] & F::max_mag) == F::max_mag) ++local.saturated;
       if (is_zero<F>(w.c[i]) && x[i] != 0) ++local.flushed;
+    }
+    if (watertight) {
+      w.c[WaldTri<F>::ND] = watertight_nd<F, R>(w);
+      if ((w.c[WaldTri<F>::ND] & F::max_mag) == F::max_mag) ++local.saturated;
     }
   }
   if (info) *info = local;

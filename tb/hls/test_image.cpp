@@ -63,17 +63,25 @@ TEST(ImageTri, RoundTripFp32) { tri_round_trip<FP32>(IstKind::wald); }
 TEST(ImageTri, RoundTripWatertightFp24) { tri_round_trip<FP24>(IstKind::watertight); }
 TEST(ImageTri, RoundTripWatertightFp32) { tri_round_trip<FP32>(IstKind::watertight); }
 
-// A watertight record: the plane (Wald's n_u, n_v, n_d, bit for bit), then the vertices rounded
-// once; 48 bytes in FP24 with the id at 40; a shared vertex has the same bits in both triangles.
+// A watertight record: the plane of the stored triangle (n_u, n_v of its rounded vertices rounded
+// once, n_d through its stored vertex A, watertight_nd), then the vertices rounded once; 48 bytes in
+// FP24 with the id at 40; a shared vertex has the same bits in both triangles.
 TEST(ImageTri, WatertightRecord) {
   const Tri a{Vec3{0.1, 0.2, 0.3}, Vec3{1.7, 0.25, 0.35}, Vec3{0.15, 1.9, 0.4}};
   const Tri b{a[1], a[2], Vec3{1.8, 2.0, 0.2}};
   const WaldTri<FP24> wa = make_wald<FP24, Rounding::rne>(a, 3, IstKind::watertight);
   const WaldTri<FP24> wb = make_wald<FP24, Rounding::rne>(b, 4, IstKind::watertight);
-  const WaldTri<FP24> wald = make_wald<FP24, Rounding::rne>(a, 3);
+  Tri stored;
+  for (size_t j = 0; j < 3; ++j)
+    for (int x = 0; x < 3; ++x) stored[j][x] = to_double<FP24>(from_double<FP24, Rounding::rne>(a[j][x]));
+  const WaldTri<FP24> wald = make_wald<FP24, Rounding::rne>(stored, 3);  // Wald's record of the stored triangle
   EXPECT_EQ(wa.kind, IstKind::watertight);
   EXPECT_EQ(wa.k, wald.k);
-  for (int i = 0; i < 3; ++i) EXPECT_EQ(wa.c[i], wald.c[i]) << i;
+  for (int i = 0; i < 2; ++i) EXPECT_EQ(wa.c[i], wald.c[i]) << i;
+  const int k = int(wa.k), u = (k + 1) % 3, v = (k + 2) % 3;
+  const double nd = stored[0][k] + to_double<FP24>(wa.c[0]) * stored[0][u] + to_double<FP24>(wa.c[1]) * stored[0][v];
+  EXPECT_EQ(wa.c[WaldTri<FP24>::ND], (watertight_nd<FP24, Rounding::rne>(wa)));
+  EXPECT_LE(std::fabs(to_double<FP24>(wa.c[WaldTri<FP24>::ND]) - nd), std::ldexp(std::fabs(nd), -16));
   for (int j = 0; j < 3; ++j)
     for (int x = 0; x < 3; ++x) EXPECT_EQ(wa.c[3 + 3 * j + x], (from_double<FP24, Rounding::rne>(a[size_t(j)][x])));
   for (int x = 0; x < 3; ++x) {
