@@ -394,6 +394,21 @@ TEST(ErrorStages, WatertightClosesTheCracks) {
   EXPECT_EQ(wt.e.total.self_intersections, 0u);
 }
 
+// The watertight record's plane is its stored triangle's (n_d through the stored vertex A, and with
+// the VTU through the shifted A): far at 10^5 in world coordinates, where an FP24 ulp is a unit,
+// with Wald's plane (rounded from the exact triangle) the distance test disagreed with the rounded
+// vertices (800 x 480 rtz VTU on skip-back: 1,375 "same triangle" errors, the right triangle at a
+// wrong t); with the stored triangle's plane none, and fewer errors than Wald's test.
+TEST(ErrorStages, WatertightPlaneIsTheStoredTriangles) {
+  const Rendered& wald = render("far", "fp24", "rtz", "on", "skip-back", "world", 200, 120);
+  const Rendered& wt = render("far", "fp24", "rtz", "on", "skip-back", "world", 200, 120, 2, "watertight");
+  expect_adds_up(wt.e, "watertight");
+  EXPECT_EQ(wt.e.stages.traversal_kind[size_t(sim::TraversalKind::same)], 0u) << budget_line(wt.e.stages);
+  EXPECT_LT(wt.e.stages.traversal_intersection.total(), wald.e.stages.traversal_intersection.total())
+      << budget_line(wt.e.stages) << " / " << budget_line(wald.e.stages);
+  EXPECT_EQ(wt.e.total.self_intersections, 0u);
+}
+
 // Spawn: FP24 rne puts about half the hit points behind their plane; on a scene hundreds of units
 // from the origin (corridor: ulps of 2^-10..2^-7 against t_min 2^-12) spawn none's shadow rays then
 // cross their own triangle beyond t_min even when traced exactly: self-intersections charged to
