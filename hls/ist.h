@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstdint>
+#include <type_traits>
 
 #include "hls/fp.h"
 #include "hls/margins.h"
@@ -73,6 +74,7 @@ inline IstOut ist_wald(uint32_t k, const uint32_t c[9], const uint32_t o[3], con
 // of divided by it (no per-ray reciprocal; the edge functions scale by d_kz^2 > 0, so their signs
 // are the paper's):
 //   phase 1 (exit distance)  den, t as ist_wald (den = add3(d_k, n_u d_u, n_v d_v), t = num rcp(den))
+//   in the shear format G (ShearFormat: FP32's 8/23 for FP24; the inputs widened exactly):
 //   the ray's origin   ox = sop(-0, -0, d_kz, o_kx, -d_kx, o_kz)   oy likewise with ky
 //   a vertex P         px = sop(-ox, -0, d_kz, P_kx, -d_kx, P_kz)  = d_kz (P - o)_kx - d_kx (P - o)_kz,
 //                      py likewise                                 one rounding (and the ray's ox)
@@ -86,12 +88,33 @@ inline IstOut ist_wald(uint32_t k, const uint32_t c[9], const uint32_t o[3], con
 // both (E = 0, inside for both); no ray passes between them, nor through a shared vertex. The sop
 // rounds an edge function once from exact products, so its sign is the exact sign for the sheared
 // points. Per test: Wald's phase 1 (4 muls, 1 add, 2 subs, 1 add3, 1 reciprocal, 1 mul), 2 + 6 + 3
-// sops (22 exact products) and 1 add3.
+// sops (22 exact products) and 1 add3 in the shear format G (below).
+
+// The watertight test's shear format: the format with 23 mantissa bits and 8 exponent bits (FP32's)
+// when the image's format is narrower (FP24), else the format itself. Every FP24 number is exactly
+// an FP32 number (widen), so the sheared coordinates and edge functions are computed from the same
+// exact products, rounded to 24 bits instead of 17: a ray has to pass 2^7 times closer to an
+// outline edge for the rounding of px, py to decide its side. raycore's sop is the exact sum
+// truncated once, as rtz's (hls/fp.h), so the shear runs rtz for it (its add3 too: det is only
+// tested for zero).
+template <class F>
+using ShearFormat = typename std::conditional<(F::man_bits < 23), Format<8, 23>, F>::type;
+constexpr Rounding shear_rounding(Rounding r) { return r == Rounding::raycore ? Rounding::rtz : r; }
+// A number of format F as one of the wider format G, exactly (a zero exponent field stays a zero).
+template <class F, class G>
+constexpr uint32_t widen(uint32_t x) {
+  static_assert(G::exp_bits >= F::exp_bits && G::man_bits >= F::man_bits, "widen: G must be wider");
+  const uint32_t sign = (x & F::sign_mask) ? G::sign_mask : 0u;
+  const uint32_t e = (x & F::exp_mask) >> F::man_bits;
+  if (e == 0) return sign;
+  return sign | ((e - uint32_t(F::bias) + uint32_t(G::bias)) << G::man_bits) |
+         ((x & F::man_mask) << (G::man_bits - F::man_bits));
+}
+
 template <class A>
 inline IstOut ist_watertight(uint32_t k, const uint32_t c[12], const uint32_t o[3], const uint32_t d[3],
                              uint32_t tmin, uint32_t tmax) {
   using F = typename A::Fmt;
-  constexpr uint32_t absent = F::sign_mask;  // -0: an absent sop term
   const int u = axis_u(k), v = axis_v(k);
   // Phase 1: distance, on the record's plane (ist_wald's).
   const uint32_t den = A::add3(d[k], A::mul(c[kNU], d[u]), A::mul(c[kNV], d[v]));
@@ -99,28 +122,33 @@ inline IstOut ist_watertight(uint32_t k, const uint32_t c[12], const uint32_t o[
       A::sub(A::sub(c[kND], o[k]), A::add(A::mul(c[kNU], o[u]), A::mul(c[kNV], o[v])));
   const uint32_t t = A::mul(num, A::rcp(den));
   if (!(A::lt(tmin, t) && A::lt(t, tmax))) return {IstExit::distance, t, den};
-  // Phase 2: the edge functions on the sheared vertices.
+  // Phase 2: the edge functions on the sheared vertices, in the shear format G (FP24's inputs
+  // widened exactly to FP32's 8/23: the sheared coordinates rounded to 24 bits instead of 17).
+  using G = ShearFormat<F>;
+  using AW = Arith<G, shear_rounding(A::rounding)>;
+  constexpr uint32_t wabsent = G::sign_mask;
+  auto wide = [](uint32_t x) { return widen<F, G>(x); };
   int kz = 0;
   if (A::lt(A::abs(d[0]), A::abs(d[1]))) kz = 1;
   if (A::lt(A::abs(d[kz]), A::abs(d[2]))) kz = 2;
   const int kx = kz == 2 ? 0 : kz + 1, ky = kz == 0 ? 2 : kz - 1;
-  const uint32_t dz = d[kz], ndx = A::neg(d[kx]), ndy = A::neg(d[ky]);
-  const uint32_t ox = A::sop(absent, absent, dz, o[kx], ndx, o[kz]);
-  const uint32_t oy = A::sop(absent, absent, dz, o[ky], ndy, o[kz]);
+  const uint32_t dz = wide(d[kz]), ndx = wide(A::neg(d[kx])), ndy = wide(A::neg(d[ky]));
+  const uint32_t ox = AW::sop(wabsent, wabsent, dz, wide(o[kx]), ndx, wide(o[kz]));
+  const uint32_t oy = AW::sop(wabsent, wabsent, dz, wide(o[ky]), ndy, wide(o[kz]));
   uint32_t px[3], py[3];
   for (int j = 0; j < 3; ++j) {
     const uint32_t* p = c + 3 + 3 * j;
-    px[j] = A::sop(A::neg(ox), absent, dz, p[kx], ndx, p[kz]);
-    py[j] = A::sop(A::neg(oy), absent, dz, p[ky], ndy, p[kz]);
+    px[j] = AW::sop(AW::neg(ox), wabsent, dz, wide(p[kx]), ndx, wide(p[kz]));
+    py[j] = AW::sop(AW::neg(oy), wabsent, dz, wide(p[ky]), ndy, wide(p[kz]));
   }
-  auto edge = [&](int p, int q) { return A::sop(absent, absent, px[q], py[p], A::neg(py[q]), px[p]); };
+  auto edge = [&](int p, int q) { return AW::sop(wabsent, wabsent, px[q], py[p], AW::neg(py[q]), px[p]); };
   const uint32_t U = edge(1, 2), V = edge(2, 0), W = edge(0, 1);
-  auto negative = [](uint32_t x) { return A::sign(x) && !A::is_zero(x); };
-  auto positive = [](uint32_t x) { return !A::sign(x) && !A::is_zero(x); };
+  auto negative = [](uint32_t x) { return AW::sign(x) && !AW::is_zero(x); };
+  auto positive = [](uint32_t x) { return !AW::sign(x) && !AW::is_zero(x); };
   if ((negative(U) || negative(V) || negative(W)) && (positive(U) || positive(V) || positive(W)))
     return {IstExit::beta, t, den};
   // Phase 3: a triangle seen edge-on (or the degenerate record) has no inside.
-  if (A::is_zero(A::add3(U, V, W))) return {IstExit::sum, t, den};
+  if (AW::is_zero(AW::add3(U, V, W))) return {IstExit::sum, t, den};
   return {IstExit::hit, t, den};
 }
 

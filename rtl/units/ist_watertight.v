@@ -13,6 +13,10 @@
 // kz = the axis of the largest |d| (magnitude bits compared as integers, a zero exponent field as
 // zero; ties to the lower axis), kx = kz + 1, ky = kz + 2 (mod 3) select the sheared coordinates.
 // NEG (the sign bit alone, -0) is an absent sop term; x ^ NEG = -x.
+// The shear (ox, oy, px, py, the edge functions and det) runs in the shear format of
+// hls::ShearFormat: EXP_BITS 8 / MAN_BITS 23 when MAN_BITS < 23 (FP24's inputs widened exactly by
+// widen(): the exponent rebiased, the mantissa shifted left), else the format itself; its rounding
+// is RNE's, and rtz for RAYCORE (hls::shear_rounding: raycore's sop truncates as rtz's).
 //
 // Levels (the operators of a level side by side with the same number of pipeline registers, S1 ..
 // S5 below: the level's share of the 10 x STAGES by its logic; a per-level fp_pipe of the same
@@ -68,6 +72,11 @@ module ist_watertight #(
   localparam integer BIAS = (1 << (E - 1)) - 1;
   localparam [W-1:0] ONE = {1'b0, BIAS[E-1:0], {M{1'b0}}};  // 1.0
   localparam [W-1:0] NEG = {1'b1, {(W-1){1'b0}}};           // -0: an absent term; x ^ NEG = -x
+  // The shear format (hls::ShearFormat) and its -0.
+  localparam integer SE = MAN_BITS < 23 ? 8 : EXP_BITS;
+  localparam integer SM = MAN_BITS < 23 ? 23 : MAN_BITS;
+  localparam integer SW = 1 + SE + SM;
+  localparam [SW-1:0] SNEG = {1'b1, {(SW-1){1'b0}}};
   // Registers per level, as ist.v: the levels' weights (the registers each needs at STAGES 2 for
   // 95 FO4: one add, mul or compare 1, an add3 3, a sop 4, the divider 7; level 5's compares are
   // given 2, so that the 20 make the latency ist.v's 10 x STAGES), cumulated in Q.
@@ -98,6 +107,21 @@ module ist_watertight #(
       mag = (|x[W-2:M]) ? x : {(W-1){1'b0}};
     end
   endfunction
+  // hls::widen<F, ShearFormat<F>>, exact: the exponent rebiased, the mantissa shifted left (the
+  // appended bits zero); a zero exponent field stays a zero. The identity when SW = W.
+  localparam integer REBIAS = (1 << (SE - 1)) - (1 << (E - 1));
+  /* verilator lint_off UNUSEDSIGNAL */  // the locals have one bit more than they give (e's carry, m's pad)
+  function [SW-1:0] widen;
+    input [W-1:0] x;
+    reg [SE:0] e;
+    reg [SM:0] m;
+    begin
+      e = {{(SE + 1 - E){1'b0}}, x[M +: E]} + REBIAS[SE:0];
+      m = {x[M-1:0], {(SM - M + 1){1'b0}}};
+      widen = (|x[M +: E]) ? {x[W-1], e[SE-1:0], m[SM:1]} : {x[W-1], {(SW - 1){1'b0}}};
+    end
+  endfunction
+  /* verilator lint_on UNUSEDSIGNAL */
   // The plane's axes (k = 3 as 0).
   wire [1:0] pk = in_k_i == 2'd3 ? 2'd0 : in_k_i;
   wire [1:0] pu = pk == 2'd2 ? 2'd0 : pk + 2'd1;
@@ -121,7 +145,8 @@ module ist_watertight #(
 
   // ---- level 1: the plane's products and n_d - o_k, the ray's sheared origin ----------------------
   wire [4*W-1:0] l1_prod;  // {nvo, nuo, nvd, nud}
-  wire [W-1:0]   l1_s1, l1_ox, l1_oy;
+  wire [W-1:0]   l1_s1;
+  wire [SW-1:0]  l1_ox, l1_oy;
   wire [6:0]     l1_unused_v, l1_unused_r;
   localparam integer C1_W = TAG_BITS + 15 * W;
   wire [TAG_BITS-1:0] c1_tag;
@@ -145,18 +170,20 @@ module ist_watertight #(
   fp_op2_nt #(.OP("sub"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1)) u_l1_s1 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[4]),
     .in_a_i(in_nd_i), .in_b_i(o_k), .out_valid_o(l1_unused_v[4]), .out_ready_i(r[2]), .out_res_o(l1_s1));
-  fp_sop_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1)) u_l1_ox (
+  fp_sop_nt #(.EXP_BITS(SE), .MAN_BITS(SM), .RNE(RNE), .RAYCORE(0), .STAGES(S1)) u_l1_ox (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[5]),
-    .in_a_i(NEG), .in_b_i(NEG), .in_x1_i(dz), .in_y1_i(o_kx), .in_x2_i(ndx), .in_y2_i(o_kz),
+    .in_a_i(SNEG), .in_b_i(SNEG), .in_x1_i(widen(dz)), .in_y1_i(widen(o_kx)), .in_x2_i(widen(ndx)),
+    .in_y2_i(widen(o_kz)),
     .out_valid_o(l1_unused_v[5]), .out_ready_i(r[2]), .out_res_o(l1_ox));
-  fp_sop_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1)) u_l1_oy (
+  fp_sop_nt #(.EXP_BITS(SE), .MAN_BITS(SM), .RNE(RNE), .RAYCORE(0), .STAGES(S1)) u_l1_oy (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[6]),
-    .in_a_i(NEG), .in_b_i(NEG), .in_x1_i(dz), .in_y1_i(o_ky), .in_x2_i(ndy), .in_y2_i(o_kz),
+    .in_a_i(SNEG), .in_b_i(SNEG), .in_x1_i(widen(dz)), .in_y1_i(widen(o_ky)), .in_x2_i(widen(ndy)),
+    .in_y2_i(widen(o_kz)),
     .out_valid_o(l1_unused_v[6]), .out_ready_i(r[2]), .out_res_o(l1_oy));
 
   // ---- level 2: den, n_u o_u + n_v o_v, the vertices' sheared x and y ------------------------------
   wire [W-1:0]   l2_den, l2_s2;
-  wire [3*W-1:0] l2_px, l2_py;  // {C, B, A}
+  wire [3*SW-1:0] l2_px, l2_py;  // {C, B, A}
   wire [7:0]     l2_unused_v, l2_unused_r;
   localparam integer C2_W = TAG_BITS + 3 * W;
   wire [TAG_BITS-1:0] c2_tag;
@@ -176,23 +203,23 @@ module ist_watertight #(
     .out_ready_i(r[3]), .out_res_o(l2_s2));
   generate
     for (gj = 0; gj < 3; gj = gj + 1) begin : g_l2_shear
-      fp_sop_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S2)) u_px (
+      fp_sop_nt #(.EXP_BITS(SE), .MAN_BITS(SM), .RNE(RNE), .RAYCORE(0), .STAGES(S2)) u_px (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[2+2*gj]),
-        .in_a_i(l1_ox ^ NEG), .in_b_i(NEG), .in_x1_i(c1_dz), .in_y1_i(c1_vs[(3*gj)*W +: W]),
-        .in_x2_i(c1_ndx), .in_y2_i(c1_vs[(3*gj+2)*W +: W]),
-        .out_valid_o(l2_unused_v[2+2*gj]), .out_ready_i(r[3]), .out_res_o(l2_px[gj*W +: W]));
-      fp_sop_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S2)) u_py (
+        .in_a_i(l1_ox ^ SNEG), .in_b_i(SNEG), .in_x1_i(widen(c1_dz)), .in_y1_i(widen(c1_vs[(3*gj)*W +: W])),
+        .in_x2_i(widen(c1_ndx)), .in_y2_i(widen(c1_vs[(3*gj+2)*W +: W])),
+        .out_valid_o(l2_unused_v[2+2*gj]), .out_ready_i(r[3]), .out_res_o(l2_px[gj*SW +: SW]));
+      fp_sop_nt #(.EXP_BITS(SE), .MAN_BITS(SM), .RNE(RNE), .RAYCORE(0), .STAGES(S2)) u_py (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[3+2*gj]),
-        .in_a_i(l1_oy ^ NEG), .in_b_i(NEG), .in_x1_i(c1_dz), .in_y1_i(c1_vs[(3*gj+1)*W +: W]),
-        .in_x2_i(c1_ndy), .in_y2_i(c1_vs[(3*gj+2)*W +: W]),
-        .out_valid_o(l2_unused_v[3+2*gj]), .out_ready_i(r[3]), .out_res_o(l2_py[gj*W +: W]));
+        .in_a_i(l1_oy ^ SNEG), .in_b_i(SNEG), .in_x1_i(widen(c1_dz)), .in_y1_i(widen(c1_vs[(3*gj+1)*W +: W])),
+        .in_x2_i(widen(c1_ndy)), .in_y2_i(widen(c1_vs[(3*gj+2)*W +: W])),
+        .out_valid_o(l2_unused_v[3+2*gj]), .out_ready_i(r[3]), .out_res_o(l2_py[gj*SW +: SW]));
     end
   endgenerate
 
   // ---- level 3: num, 1 / den, the edge functions --------------------------------------------------
   // Edge lane j = 0 U = E(B, C), 1 V = E(C, A), 2 W = E(A, B); E(P, Q) = qx py - qy px.
   wire [W-1:0]   l3_num, l3_rcp;
-  wire [3*W-1:0] l3_e;  // {W, V, U}
+  wire [3*SW-1:0] l3_e;  // {W, V, U}
   wire [4:0]     l3_unused_v, l3_unused_r;
   localparam integer C3_W = TAG_BITS + 3 * W;
   wire [TAG_BITS-1:0] c3_tag;
@@ -220,11 +247,11 @@ module ist_watertight #(
     end
     for (gj = 0; gj < 3; gj = gj + 1) begin : g_l3_edge
       localparam integer P = (gj + 1) % 3, Q = (gj + 2) % 3;
-      fp_sop_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S3)) u_edge (
+      fp_sop_nt #(.EXP_BITS(SE), .MAN_BITS(SM), .RNE(RNE), .RAYCORE(0), .STAGES(S3)) u_edge (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[2+gj]),
-        .in_a_i(NEG), .in_b_i(NEG), .in_x1_i(l2_px[Q*W +: W]), .in_y1_i(l2_py[P*W +: W]),
-        .in_x2_i(l2_py[Q*W +: W] ^ NEG), .in_y2_i(l2_px[P*W +: W]),
-        .out_valid_o(l3_unused_v[2+gj]), .out_ready_i(r[4]), .out_res_o(l3_e[gj*W +: W]));
+        .in_a_i(SNEG), .in_b_i(SNEG), .in_x1_i(l2_px[Q*SW +: SW]), .in_y1_i(l2_py[P*SW +: SW]),
+        .in_x2_i(l2_py[Q*SW +: SW] ^ SNEG), .in_y2_i(l2_px[P*SW +: SW]),
+        .out_valid_o(l3_unused_v[2+gj]), .out_ready_i(r[4]), .out_res_o(l3_e[gj*SW +: SW]));
     end
   endgenerate
 
@@ -232,13 +259,14 @@ module ist_watertight #(
   wire [2:0] l3_nz, l3_neg, l3_pos;  // nonzero (a zero exponent field is zero), < 0, > 0
   generate
     for (gj = 0; gj < 3; gj = gj + 1) begin : g_l4_sign
-      assign l3_nz[gj]  = |l3_e[gj*W + M +: E];
-      assign l3_neg[gj] = l3_nz[gj] & l3_e[gj*W + W - 1];
-      assign l3_pos[gj] = l3_nz[gj] & ~l3_e[gj*W + W - 1];
+      assign l3_nz[gj]  = |l3_e[gj*SW + SM +: SE];
+      assign l3_neg[gj] = l3_nz[gj] & l3_e[gj*SW + SW - 1];
+      assign l3_pos[gj] = l3_nz[gj] & ~l3_e[gj*SW + SW - 1];
     end
   endgenerate
   wire l3_out = (|l3_neg) & (|l3_pos);
-  wire [W-1:0] l4_t, l4_det;
+  wire [W-1:0] l4_t;
+  wire [SW-1:0] l4_det;
   wire [1:0]   l4_unused_v, l4_unused_r;
   localparam integer C4_W = TAG_BITS + 3 * W + 1;
   wire [TAG_BITS-1:0] c4_tag;
@@ -252,17 +280,17 @@ module ist_watertight #(
   fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S4)) u_l4_t (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(l4_unused_r[0]),
     .in_a_i(l3_num), .in_b_i(l3_rcp), .out_valid_o(l4_unused_v[0]), .out_ready_i(r[5]), .out_res_o(l4_t));
-  fp_add3_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S4)) u_l4_det (
+  fp_add3_nt #(.EXP_BITS(SE), .MAN_BITS(SM), .RNE(RNE), .RAYCORE(0), .STAGES(S4)) u_l4_det (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(l4_unused_r[1]),
-    .in_a_i(l3_e[0 +: W]), .in_b_i(l3_e[W +: W]), .in_c_i(l3_e[2*W +: W]),
+    .in_a_i(l3_e[0 +: SW]), .in_b_i(l3_e[SW +: SW]), .in_c_i(l3_e[2*SW +: SW]),
     .out_valid_o(l4_unused_v[1]), .out_ready_i(r[5]), .out_res_o(l4_det));
 
   // ---- level 5: tmin < t < tmax ----------------------------------------------------------------------
-  wire         l4_dz0 = ~|l4_det[M +: E];  // det = 0
+  wire         l4_dz0 = ~|l4_det[SM +: SE];  // det = 0
   wire [1:0]   l5_lt;  // {t < tmax, tmin < t}
   wire [1:0]   l5_unused_v, l5_unused_r, l5_unused_eq;
   wire [4*W-1:0] l5_unused_mm;
-  wire [W-1:0] unused_det_rest = l4_det;  // only its exponent field is read
+  wire [SW-1:0] unused_det_rest = l4_det;  // only its exponent field is read
   localparam integer C5_W = TAG_BITS + 2 * W + 2;
   wire         c5_out, c5_dz0;
   fp_pipe #(.WIDTH(C5_W), .STAGES(S5)) u_carry5 (
