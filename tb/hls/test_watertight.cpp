@@ -7,8 +7,11 @@
 //   - against double precision: rays through a triangle's inside hit it with t within a few ulps
 //     of the exact t; rays clearly outside miss; den is Wald's den bit for bit;
 //   - the edge function is antisymmetric: E(Q, P) is E(P, Q) negated, bit for bit;
+//   - an outline edge is decided as the exact shear decides it, for rays farther than 2^-20 of the
+//     sheared coordinates' magnitude (the shear in FP32's 8/23);
 //   - the VTU translates a watertight record's vertices by the camera (one shift each) and its
-//     plane as Wald's, so the translated records of two triangles still share their vertices.
+//     plane through the shifted vertex A, so the translated records of two triangles still share
+//     their vertices.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -205,6 +208,78 @@ TEST(Watertight, AgreesWithDoubleFp24Rtz) { agrees_with_double<FP24, Rounding::r
 TEST(Watertight, AgreesWithDoubleFp24Rne) { agrees_with_double<FP24, Rounding::rne>(22); }
 TEST(Watertight, AgreesWithDoubleFp24Raycore) { agrees_with_double<FP24, Rounding::raycore>(23); }
 TEST(Watertight, AgreesWithDoubleFp32Rtz) { agrees_with_double<FP32, Rounding::rtz>(24); }
+
+// An outline edge decided at the shear's precision: rays (their origin and direction as the format
+// holds them) aimed near an edge of a lone triangle; the inside test's answer equals the exact one
+// (the shear and edge functions on the same bits in 113-bit arithmetic) whenever every exact edge
+// function exceeds 2^-20 of the product of its two vertices' sheared magnitudes (what bounds the
+// shear's rounding error). The shear runs in FP32's 8/23 for FP24 (hls::ShearFormat), 2^-23 of
+// each magnitude at worst; an FP24 shear's 2^-16 reaches into the band 2^-20 .. 2^-14, and the
+// test counts that the band is populated.
+template <class F, Rounding R>
+void outline_at_shear_precision(uint64_t seed) {
+  using A = Arith<F, R>;
+  __extension__ typedef __float128 Q;
+  auto q = [](uint32_t x) { return Q(A::to_double(x)); };
+  auto qabs = [](Q x) { return x < 0 ? -x : x; };
+  Rng rng(seed);
+  int decided = 0, band = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Tri tri = test::random_tri(rng, Vec3{uni(rng, -50, 50), uni(rng, -50, 50), uni(rng, -50, 50)}, 4);
+    const WaldTri<F> w = make_wald<F, R>(tri, 0, IstKind::watertight);
+    if (w.degenerate()) continue;
+    Vec3 P[3];
+    for (int j = 0; j < 3; ++j)
+      for (int a = 0; a < 3; ++a) P[j][a] = A::to_double(w.c[WaldTri<F>::VA + 3 * j + a]);
+    // A point near edge (e, e + 1), a small step toward or away from the third vertex.
+    const int e = int(rng() % 3);
+    const Vec3 &p0 = P[e], &p1 = P[(e + 1) % 3], &p2 = P[(e + 2) % 3];
+    const Vec3 base = p0 + (p1 - p0) * uni(rng, 0.1, 0.9);
+    const Vec3 p = base + (p2 - base) * uni(rng, -1e-3, 1e-3);
+    const Vec3 n = unit(cross(p1 - p0, p2 - p0));
+    const Vec3 dir = random_dir(rng);
+    if (std::fabs(dot(dir, n)) < 0.2) continue;
+    const Ray r = make_ray<A>(p - dir * uni(rng, 1, 100), dir);
+    const IstOut x = ist_test<A>(w, r.o, r.d, r.tmin, r.tmax);
+    if (x.exit == IstExit::distance || x.exit == IstExit::sum) continue;
+    // The exact shear of the same bits (kz as the hardware picks it: the largest |d|, ties low).
+    int kz = 0;
+    if (A::lt(A::abs(r.d[0]), A::abs(r.d[1]))) kz = 1;
+    if (A::lt(A::abs(r.d[kz]), A::abs(r.d[2]))) kz = 2;
+    const int kx = (kz + 1) % 3, ky = (kz + 2) % 3;
+    // px, py exact, and each one's error bound's scale: the shear rounds ox (oy) and then px (py),
+    // each to 2^-23 of its magnitude or better (rtz, FP32's 23 bits).
+    const Q ox = q(r.d[kz]) * q(r.o[kx]) - q(r.d[kx]) * q(r.o[kz]);
+    const Q oy = q(r.d[kz]) * q(r.o[ky]) - q(r.d[ky]) * q(r.o[kz]);
+    Q px[3], py[3], m[3];
+    for (int j = 0; j < 3; ++j) {
+      const uint32_t* c = w.c + WaldTri<F>::VA + 3 * j;
+      px[j] = q(r.d[kz]) * q(c[kx]) - q(r.d[kx]) * q(c[kz]) - ox;
+      py[j] = q(r.d[kz]) * q(c[ky]) - q(r.d[ky]) * q(c[kz]) - oy;
+      m[j] = std::max(qabs(px[j]), qabs(py[j])) + std::max(qabs(ox), qabs(oy));
+    }
+    bool neg = false, pos = false, undecidable = false, near = false;
+    for (int j = 0; j < 3; ++j) {
+      const int a = (j + 1) % 3, b = (j + 2) % 3;  // E(a, b) = bx ay - by ax
+      const Q E = px[b] * py[a] - py[b] * px[a];
+      // The shear's roundings move E by at most about 2 * 2^-23 * m_a m_b * 2: undecidable below
+      // 2^-20 m_a m_b; an FP24 shear's (2^-16 of each) reach 2^-14 m_a m_b.
+      undecidable |= qabs(E) <= m[a] * m[b] * Q(std::ldexp(1.0, -20));
+      near |= qabs(E) <= m[a] * m[b] * Q(std::ldexp(1.0, -14));
+      neg |= E < 0;
+      pos |= E > 0;
+    }
+    if (undecidable) continue;
+    ++decided;
+    band += near;
+    ASSERT_EQ(x.exit == IstExit::hit, !(neg && pos)) << i;
+  }
+  EXPECT_GT(decided, 10000);
+  EXPECT_GT(band, 200);  // rays an FP24 shear could put on the wrong side
+}
+TEST(Watertight, OutlineAtShearPrecisionFp24Rtz) { outline_at_shear_precision<FP24, Rounding::rtz>(51); }
+TEST(Watertight, OutlineAtShearPrecisionFp24Rne) { outline_at_shear_precision<FP24, Rounding::rne>(52); }
+TEST(Watertight, OutlineAtShearPrecisionFp24Raycore) { outline_at_shear_precision<FP24, Rounding::raycore>(53); }
 
 // The edge function's two orders: exact negations, bit for bit (what makes a shared edge one).
 template <class F, Rounding R>
