@@ -128,8 +128,10 @@ module ist_watertight #(
   wire [1:0] pv = pk == 2'd0 ? 2'd2 : pk - 2'd1;
   // The shear axes.
   wire [W-2:0] ax = mag(in_d_i[0 +: W-1]), ay = mag(in_d_i[W +: W-1]), az = mag(in_d_i[2*W +: W-1]);
-  wire [1:0] kz01 = (ax < ay) ? 2'd1 : 2'd0;
-  wire [1:0] kz = ((kz01 == 2'd1 ? ay : ax) < az) ? 2'd2 : kz01;
+  // The three compares side by side (not the second after the first's choice): the same kz, one
+  // comparator deep ahead of the first sops.
+  wire lt_xy = ax < ay, lt_xz = ax < az, lt_yz = ay < az;
+  wire [1:0] kz = (lt_xy ? lt_yz : lt_xz) ? 2'd2 : (lt_xy ? 2'd1 : 2'd0);
   wire [1:0] kx = kz == 2'd2 ? 2'd0 : kz + 2'd1;
   wire [1:0] ky = kz == 2'd0 ? 2'd2 : kz - 2'd1;
   wire [W-1:0] d_k = pick(in_d_i, pk), d_u = pick(in_d_i, pu), d_v = pick(in_d_i, pv);
