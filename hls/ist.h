@@ -31,6 +31,19 @@ struct IstOut {
   uint32_t den;  // n . d (unnormalised normal with n_k = 1): its sign says which side the ray hits
 };
 
+// Phase 1 of both tests (Wald's and the watertight one): t on the record's plane n_u, n_v, n_d
+// (c[0..2]), den = n . d; exit distance unless tmin < t < tmax (else exit hit: phase 1 passed).
+template <class A>
+inline IstOut ist_distance(uint32_t k, const uint32_t* c, const uint32_t o[3], const uint32_t d[3], uint32_t tmin,
+                           uint32_t tmax) {
+  const int u = axis_u(k), v = axis_v(k);
+  const uint32_t den = A::add3(d[k], A::mul(c[kNU], d[u]), A::mul(c[kNV], d[v]));
+  const uint32_t num =
+      A::sub(A::sub(c[kND], o[k]), A::add(A::mul(c[kNU], o[u]), A::mul(c[kNV], o[v])));
+  const uint32_t t = A::mul(num, A::rcp(den));
+  return {A::lt(tmin, t) && A::lt(t, tmax) ? IstExit::hit : IstExit::distance, t, den};
+}
+
 // A hit needs tmin < t < tmax; beta >= -eps, gamma >= -eps, beta + gamma <= one_eps (hls/margins.h:
 // a coordinate x fails iff sign(x) && |eps| < |x|, the sum iff one_eps < beta + gamma; with
 // margins_none(), eps = 0 and one_eps = 1: beta >= 0, gamma >= 0, beta + gamma <= 1).
@@ -38,12 +51,9 @@ template <class A>
 inline IstOut ist_wald(uint32_t k, const uint32_t c[9], const uint32_t o[3], const uint32_t d[3],
                        uint32_t tmin, uint32_t tmax, const Margins& m) {
   const int u = axis_u(k), v = axis_v(k);
-  // Phase 1: distance.
-  const uint32_t den = A::add3(d[k], A::mul(c[kNU], d[u]), A::mul(c[kNV], d[v]));
-  const uint32_t num =
-      A::sub(A::sub(c[kND], o[k]), A::add(A::mul(c[kNU], o[u]), A::mul(c[kNV], o[v])));
-  const uint32_t t = A::mul(num, A::rcp(den));
-  if (!(A::lt(tmin, t) && A::lt(t, tmax))) return {IstExit::distance, t, den};
+  const IstOut p1 = ist_distance<A>(k, c, o, d, tmin, tmax);
+  if (p1.exit != IstExit::hit) return p1;
+  const uint32_t t = p1.t, den = p1.den;
   // Phase 2: first barycentric coordinate at the hit point's projection.
   const uint32_t hu = A::add(o[u], A::mul(t, d[u]));
   const uint32_t hv = A::add(o[v], A::mul(t, d[v]));
@@ -69,11 +79,11 @@ inline IstOut ist_wald(uint32_t k, const uint32_t c[9], const uint32_t o[3], con
 // the vertices A, B, C at c[3..11]. The distance is Wald's phase 1, the same operations, on the
 // record's plane (so the hit unit and every spawn rule see points made as Wald's test makes them:
 // on an axis-aligned plane, where n_u = n_v = 0, a shadow ray's own t is exactly 0 as with Wald's
-// record); the inside test is the paper's, on the vertices. The ray is sheared to +z: kz = the axis of the largest |d| (ties to the
-// lower axis), kx = kz + 1, ky = kz + 2 (mod 3); the sheared coordinates are scaled by d_kz instead
-// of divided by it (no per-ray reciprocal; the edge functions scale by d_kz^2 > 0, so their signs
-// are the paper's):
-//   phase 1 (exit distance)  den, t as ist_wald (den = add3(d_k, n_u d_u, n_v d_v), t = num rcp(den))
+// record); the inside test is the paper's, on the vertices. The ray is sheared to +z: kz = the
+// axis of the largest |d| (ties to the lower axis), kx = kz + 1, ky = kz + 2 (mod 3); the sheared
+// coordinates are scaled by d_kz instead of divided by it (no per-ray reciprocal; the edge
+// functions scale by d_kz^2 > 0, so their signs are the paper's):
+//   phase 1 (exit distance)  ist_distance, as ist_wald's (den = add3(d_k, n_u d_u, n_v d_v), t = num rcp(den))
 //   in the shear format G (ShearFormat: FP32's 8/23 for FP24; the inputs widened exactly):
 //   the ray's origin   ox = sop(-0, -0, d_kz, o_kx, -d_kx, o_kz)   oy likewise with ky
 //   a vertex P         px = sop(-ox, -0, d_kz, P_kx, -d_kx, P_kz)  = d_kz (P - o)_kx - d_kx (P - o)_kz,
@@ -115,13 +125,9 @@ template <class A>
 inline IstOut ist_watertight(uint32_t k, const uint32_t c[12], const uint32_t o[3], const uint32_t d[3],
                              uint32_t tmin, uint32_t tmax) {
   using F = typename A::Fmt;
-  const int u = axis_u(k), v = axis_v(k);
-  // Phase 1: distance, on the record's plane (ist_wald's).
-  const uint32_t den = A::add3(d[k], A::mul(c[kNU], d[u]), A::mul(c[kNV], d[v]));
-  const uint32_t num =
-      A::sub(A::sub(c[kND], o[k]), A::add(A::mul(c[kNU], o[u]), A::mul(c[kNV], o[v])));
-  const uint32_t t = A::mul(num, A::rcp(den));
-  if (!(A::lt(tmin, t) && A::lt(t, tmax))) return {IstExit::distance, t, den};
+  const IstOut p1 = ist_distance<A>(k, c, o, d, tmin, tmax);  // on the record's plane
+  if (p1.exit != IstExit::hit) return p1;
+  const uint32_t t = p1.t, den = p1.den;
   // Phase 2: the edge functions on the sheared vertices, in the shear format G (FP24's inputs
   // widened exactly to FP32's 8/23: the sheared coordinates rounded to 24 bits instead of 17).
   using G = ShearFormat<F>;

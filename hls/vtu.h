@@ -11,8 +11,10 @@
 //             n_u, n_v, b_nu, b_nv, c_nu, c_nv, k, flags and id unchanged
 //   watertight each vertex coordinate x' = sop(x, -c[axis], -0*0, -0*0) (9 shifts), then the plane
 //   record     through the shifted A: n_d' = sop(A'_k, -0, n_u * A'_u, n_v * A'_v) (hls/wald.h,
-//              watertight_nd: the builder's n_d on the translated vertices); n_u, n_v, k, flags and id unchanged (a shared vertex shifts to the same bits in
-//              every triangle: the translated mesh stays closed)
+//              watertight_nd: the builder's n_d on the translated vertices; a second sop after
+//              A's shifts, which vtu.v does not have: it refuses watertight records); n_u, n_v,
+//              k, flags and id unchanged (a shared vertex shifts to the same bits in every
+//              triangle: the translated mesh stays closed)
 //   box/light x' = sop(x, -c, -0*0, -0*0)   (box_outward: one more step outward, see below)
 // (-0 and -0*0 are absent terms: they leave an all-zero sum's sign to the others.) For rtz and
 // rne a two-term sop is sub(x, c) bit for bit (tb/fp/test_fp_sop.cpp, Sop.*TwoTermsAreAdd); for

@@ -25,8 +25,9 @@ template <class M, unsigned W, unsigned SLOT_BITS, unsigned IST, unsigned PIPES,
 class IstRtlT final : public IstRtl {
   static constexpr unsigned BW = 67 + 5 * W;  // a result record
   static constexpr unsigned RW = 32 + 8 * W;  // a ray read
-  static constexpr unsigned RB = unsigned(W <= 24 ? hls::tri_record_bytes<hls::FP24>(WT ? hls::IstKind::watertight : hls::IstKind::wald)
-                                                  : hls::tri_record_bytes<hls::FP32>(WT ? hls::IstKind::watertight : hls::IstKind::wald));
+  static constexpr hls::IstKind KIND = WT ? hls::IstKind::watertight : hls::IstKind::wald;
+  static constexpr unsigned RB =  // a triangle record's bytes
+      unsigned(W <= 24 ? hls::tri_record_bytes<hls::FP24>(KIND) : hls::tri_record_bytes<hls::FP32>(KIND));
   static constexpr unsigned LB = RPL * RB;  // bytes per triangle-cache line
 
  public:
