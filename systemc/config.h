@@ -151,6 +151,10 @@ struct RtuStats {
   uint64_t ist_busy = 0, ist_tri_miss = 0, tri_tests = 0;
   uint64_t hit_busy = 0;
   uint64_t vtu_busy = 0;  // records transformed (one per cycle)
+  // Cycles in which two lines arrived at the RTU (the memory's and the L2's last beats together),
+  // and lines waiting for their cache's one fill port (bypassed lines, summed over the cycles
+  // each waits: two lines of one cache arriving together).
+  uint64_t vtu_paired = 0, vtu_fill_waits = 0;
   CacheStats node, list, tri;
 };
 

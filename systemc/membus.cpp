@@ -334,7 +334,7 @@ bool Membus::tick_rtl(Cycle now) {
     const uint32_t off = f.got * bandwidth_;
     std::memcpy(f.q.data + off, r.data, std::min<uint32_t>(bandwidth_, f.q.bytes - off));
     reqs_[f.requester].client->mem_beat(reqs_[f.requester].port, f.q.tag, f.got, r.last, r.data,
-                                        bandwidth_, now + 1);
+                                        bandwidth_, false, now + 1);
     ++f.got;
     if (r.last != (f.got == f.beats) || (r.last && now + 1 != f.arrival))
       throw std::logic_error("--rtl membus: the line's last beat came back in cycle " +
@@ -361,7 +361,7 @@ bool Membus::tick_rtl(Cycle now) {
     const uint32_t bw = l2_.bandwidth, off = f.got * bw;
     std::memcpy(f.q.data + off, h.data, std::min<uint32_t>(bw, f.q.bytes - off));
     reqs_[f.requester].client->mem_beat(reqs_[f.requester].port, f.q.tag, f.got, h.last, h.data,
-                                        bw, now + 1);
+                                        bw, true, now + 1);
     ++f.got;
     if (h.last != (f.got * bw >= f.q.bytes))
       throw std::logic_error("--rtl membus: the L2's last beat of a line came after " +

@@ -34,11 +34,12 @@ class MemClient {
  public:
   virtual ~MemClient() = default;
   virtual void mem_resp(uint32_t port, uint32_t tag, Cycle now) = 0;
-  // With the bus interface in RTL (bind_rtl): each data beat as membus_if routes it back, seen by
-  // the requester in cycle `at` (the RTU in RTL, systemc/rtu_rtl.h, takes the beats at its pins;
-  // the cycle model's vtu takes the whole line at mem_resp).
+  // With the bus interface in RTL (bind_rtl): each data beat as membus_if routes it back (l2
+  // false) or as the L2 of membus_l2 sends it (l2 true), seen by the requester in cycle `at` (the
+  // RTU in RTL, systemc/rtu_rtl.h, takes the beats at its pins; the cycle model's vtu takes the
+  // whole line at mem_resp).
   virtual void mem_beat(uint32_t /*port*/, uint32_t /*tag*/, uint32_t /*beat*/, bool /*last*/,
-                        const uint8_t* /*data*/, uint32_t /*bytes*/, Cycle /*at*/) {}
+                        const uint8_t* /*data*/, uint32_t /*bytes*/, bool /*l2*/, Cycle /*at*/) {}
 };
 
 struct MembusStats {

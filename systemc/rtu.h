@@ -211,6 +211,8 @@ class Rtu : public sc_core::sc_module {
     s.list = list.stats();
     s.tri = tri.stats();
     s.vtu_busy = vtu_unit.busy();
+    s.vtu_paired = vtu_unit.paired();
+    s.vtu_fill_waits = vtu_unit.fill_waits();
     if (trv_rtl_) trv_rtl_->stats(s);
     if (ist_rtl_) ist_rtl_->stats(s);
     if (hit_rtl_) s.hit_busy = hit_rtl_->busy();

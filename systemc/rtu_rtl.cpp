@@ -42,7 +42,8 @@ void put_hex(FILE* f, const T& s) {
   }
 }
 
-// The data beat an RTU takes at its pins in a given cycle (membus_if routes one per cycle).
+// A data beat an RTU takes at its pins in a given cycle (per cycle at most one from the memory,
+// routed by membus_if, and one from the L2 of membus_l2).
 struct Beat {
   bool valid = false;
   uint32_t rtu = 0, port = 0, tag = 0, index = 0;
@@ -53,7 +54,7 @@ struct Beat {
 // The parameters rtu.v is Verilated with (rtl/units/rtu.cmake) and what they fix in SimConfig.
 struct Built {
   unsigned slot_bits, pipes, ist, words, qbits, hlbits, tile;
-  uint32_t node_kb, list_kb, tri_kb, ways, line, mshrs, stages;
+  uint32_t node_kb, list_kb, tri_kb, ways, line, mshrs, stages, l2_beat;
 };
 
 template <class M, unsigned W>
@@ -70,7 +71,8 @@ class RtuRtlRunner {
     image_ = &image;
     check(b);
     while ((1u << mb_) < b.mshrs) ++mb_;
-    auto r = make_rtl_membus_for(cfg.rtus, cfg.mem_queue_depth, cfg.mem_bandwidth);
+    bus_.set_l2(cfg.l2);
+    auto r = make_rtl_membus_for(cfg.rtus, cfg.mem_queue_depth, cfg.mem_bandwidth, cfg.l2);
     if (cfg.mem_bandwidth > 64) throw ConfigError("--rtl rtu: beats of up to 64 bytes");
     const hls::ImageHeader& h = fc.header;
     base_ = {h.node_offset, h.list_offset, h.tri_offset};
@@ -87,7 +89,7 @@ class RtuRtlRunner {
       configure(u.m, k, vtu_cam, hit);
       vl::async_reset(u.m, 1);  // the edge in the reset loads rtu.v's frame registers
     }
-    bus_.bind_rtl(std::move(r));
+    bus_.bind_rtl(std::move(r), uint64_t(cfg.rtus) * 3 * cfg.node_cache.mshrs);
     cos_.assign(fc.frame->px.size(), 0.0);
   }
   ~RtuRtlRunner() {
@@ -124,7 +126,7 @@ class RtuRtlRunner {
         }
       }
       now_ = now;
-      beat_next_.valid = false;
+      beat_next_.valid = l2_next_.valid = false;
       bus_.tick(now);  // arbitration (membus_if), the memory's beats; the routed beat -> beat_next_
       // Every RTU's two evaluations of this cycle: independent models (the bus is resolved
       // above), so RAYCORE_RTL_THREADS=2 splits them over two host threads; what leaves an RTU is
@@ -178,9 +180,12 @@ class RtuRtlRunner {
     Unit(RtuRtlRunner* r, int k) : run(r), index(uint32_t(k)) {}
     void mem_resp(uint32_t, uint32_t, Cycle) override {}  // the last beat told rtu.v already
     void mem_beat(uint32_t port, uint32_t tag, uint32_t beat, bool last, const uint8_t* data,
-                  uint32_t bytes, Cycle at) override {
-      Beat& b = run->beat_next_;
-      if (b.valid) throw std::logic_error("--rtl rtu: two beats routed in one cycle");
+                  uint32_t bytes, bool l2, Cycle at) override {
+      Beat& b = l2 ? run->l2_next_ : run->beat_next_;
+      if (b.valid)
+        throw std::logic_error(std::string("--rtl rtu: two ") + (l2 ? "L2" : "memory") +
+                               " beats in one cycle");
+      if (bytes > b.data.size()) throw std::logic_error("--rtl rtu: a beat of more than 64 bytes");
       if (at != run->now_next()) throw std::logic_error("--rtl rtu: a beat for another cycle");
       b.valid = true;
       b.rtu = index;
@@ -246,9 +251,9 @@ class RtuRtlRunner {
              " (an inner node's split is written back " + std::to_string(kTrvRtlMinLoop - 1) +
              " cycles after its pass)");
     need(cfg_.mailbox == 0, "--mailbox 0");
-    need(cfg_.l2.size_bytes == 0,
-         "--l2-kb 0 (the L2 is RTL with --rtl membus, membus_l2.v, but rtu.v takes the memory's "
-         "16-byte beats only: the L2's 32-byte beats need a second beat port)");
+    need(cfg_.l2.size_bytes == 0 || (cfg_.l2.line_bytes == b.line && cfg_.l2.bandwidth == b.l2_beat),
+         "an L2 of " + std::to_string(b.line) + "-byte lines (the caches') and --l2-bandwidth " +
+             std::to_string(b.l2_beat) + " (rtu.v's L2 beats), or --l2-kb 0");
     need(cfg_.rtus >= 1 && cfg_.rtus <= 16, "--rtus <= 16");
     need(uint32_t(fc_.width) <= 65535 && uint32_t(fc_.height) <= 65535,
          "frames up to 65535 pixels a side");
@@ -364,8 +369,9 @@ class RtuRtlRunner {
     for (uint32_t p = 0; p < 3; ++p)
       if (u.asked[p] && u.req[p].empty()) ready |= 1u << p;  // the bus took it
     m.req_ready_i = uint8_t(ready);
-    // rtu.v is built with BEAT_REG = 1: its beat pins take the next cycle's beat (routed by
-    // membus_if in this cycle), registered at this edge as membus_if's response register.
+    // rtu.v is built with BEAT_REG = 1: its beat pins take the next cycle's beats (routed by
+    // membus_if and sent by the L2 in this cycle), registered at this edge as the bus's response
+    // registers.
     m.beat_valid_i = 0;
     if (beat_next_.valid && beat_next_.rtu == u.index) {
       m.beat_valid_i = uint8_t(1u << beat_next_.port);
@@ -373,6 +379,14 @@ class RtuRtlRunner {
       m.beat_idx_i = static_cast<std::remove_reference_t<decltype(m.beat_idx_i)>>(beat_next_.index);
       m.beat_last_i = beat_next_.last;
       vl::set_bytes(m.beat_data_i, 0, cfg_.mem_bandwidth, beat_next_.data.data());
+    }
+    m.l2_valid_i = 0;
+    if (l2_next_.valid && l2_next_.rtu == u.index) {
+      m.l2_valid_i = uint8_t(1u << l2_next_.port);
+      m.l2_tag_i = static_cast<std::remove_reference_t<decltype(m.l2_tag_i)>>(l2_next_.tag);
+      m.l2_idx_i = static_cast<std::remove_reference_t<decltype(m.l2_idx_i)>>(l2_next_.index);
+      m.l2_last_i = l2_next_.last;
+      vl::set_bytes(m.l2_data_i, 0, cfg_.l2.bandwidth, l2_next_.data.data());
     }
     m.eval();
     Out& o = u.out;
@@ -469,6 +483,8 @@ class RtuRtlRunner {
     s.shadow_rays = cnt(16);
     s.rgu_stall_no_slot = cnt(17);
     s.vtu_busy = cnt(18);
+    s.vtu_paired = cnt(37);
+    s.vtu_fill_waits = cnt(38);
     s.rgu_busy = s.primary_rays + s.shadow_rays;
     s.retired = s.primary_rays + s.shadow_rays;
     CacheStats* cs[3] = {&s.node, &s.list, &s.tri};
@@ -495,6 +511,7 @@ class RtuRtlRunner {
   std::array<uint32_t, 3> line_{};
   std::vector<double> cos_;  // per pixel: its primary's cosine, for the shadow ray's shade
   Beat beat_next_;  // the beat membus_if routed in this cycle, for the next
+  Beat l2_next_;    // the L2's beat of this cycle, for the next
   Cycle now_ = 0;
   FILE* pxf_ = nullptr;
   std::unique_ptr<Pool> pool_;  // RAYCORE_RTL_THREADS=2
@@ -508,10 +525,11 @@ RtuRtlRun run_rtl_rtus(hls::FormatId f, hls::Rounding r, FrameCtx& fc, const Sim
                        const std::vector<uint8_t>& image, const uint32_t vtu_cam[3],
                        const pins::HitConfig& hit, const PixelWrite& write) {
 #define RAYCORE_RTL_RTU_VARIANT(prefix, fmt, mode, width, stages, slot_bits, pipes, ist, words,   \
-                                qbits, hlbits, tile, node_kb, list_kb, tri_kb, ways, line, mshrs) \
+                                qbits, hlbits, tile, node_kb, list_kb, tri_kb, ways, line, mshrs, \
+                                l2_beat)                                                        \
   if (vl::variant_is(#fmt, #mode, f, r)) {                                                      \
     const Built b{slot_bits, pipes, ist, words, qbits, hlbits, tile,                            \
-                  node_kb, list_kb, tri_kb, ways, line, mshrs, stages};                         \
+                  node_kb, list_kb, tri_kb, ways, line, mshrs, stages, l2_beat};                \
     RtuRtlRunner<prefix, width> run("Verilated rtu " #fmt " " #mode, b, fc, cfg, image, vtu_cam, \
                                     hit, write);                                                \
     return run.run();                                                                           \
@@ -525,7 +543,8 @@ RtuRtlRun run_rtl_rtus(hls::FormatId f, hls::Rounding r, FrameCtx& fc, const Sim
 std::string rtl_rtu_built() {
   std::string s;
 #define RAYCORE_RTL_RTU_VARIANT(prefix, fmt, mode, width, stages, slot_bits, pipes, ist, words,   \
-                                qbits, hlbits, tile, node_kb, list_kb, tri_kb, ways, line, mshrs) \
+                                qbits, hlbits, tile, node_kb, list_kb, tri_kb, ways, line, mshrs, \
+                                l2_beat)                                                        \
   s += std::string(s.empty() ? "" : ", ") + "rtu " #fmt " " #mode " (STAGES " #stages ", " +      \
        std::to_string(1u << slot_bits) + " slots, " #pipes " trv pipes, " #ist " ist units, " +    \
        #node_kb "/" #list_kb "/" #tri_kb " KB caches)";

@@ -201,6 +201,8 @@ nlohmann::json hardware_json(const SimResult& r, const SimConfig& cfg) {
     t.tri_tests += s.tri_tests;
     t.hit_busy += s.hit_busy;
     t.vtu_busy += s.vtu_busy;
+    t.vtu_paired += s.vtu_paired;
+    t.vtu_fill_waits += s.vtu_fill_waits;
     add(t.node, s.node);
     add(t.list, s.list);
     add(t.tri, s.tri);
@@ -289,6 +291,10 @@ nlohmann::json hardware_json(const SimResult& r, const SimConfig& cfg) {
         {"ist_tri_miss", t.ist_tri_miss},
         {"rgu_no_free_slot", t.rgu_stall_no_slot},
         {"membus_queue_full", r.bus.queue_full_cycles},
+        // Lines of one cache from the memory and the L2 in one cycle: the second waits for the
+        // cache's fill port (lines x cycles waited); cycles with two lines at one RTU.
+        {"vtu_fill_port_waits", t.vtu_fill_waits},
+        {"vtu_two_lines_cycles", t.vtu_paired},
         // Every trv issue slot of the frame (cycles x RTUs, including the cycles the simulator
         // skips because nothing can happen) is a step, a slot lost above, or empty: no ray ready.
         {"trv_no_ray_ready", trv_empty}}}};

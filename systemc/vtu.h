@@ -50,6 +50,8 @@ class VtuUnit : public sc_core::sc_module, public MemClient {
 
   // A line's last beat arrived (membus side).
   void mem_resp(uint32_t port, uint32_t tag, Cycle now) override {
+    if (now == last_resp_) ++paired_;  // a second line in this cycle (one per channel at most)
+    last_resp_ = now;
     Ascache& c = *caches_[port];
     if (!on_ || port == kListPort) {  // not behind the lines inside the pipeline
       bypass_.push({port, tag}, now);
@@ -101,6 +103,9 @@ class VtuUnit : public sc_core::sc_module, public MemClient {
         caches_[f.port]->fill(f.tag);
         active = true;
       }
+    // Bypassed lines left: each arrived by now (mem_resp comes before this tick in its cycle) and
+    // waits for its cache's fill port.
+    waits_ += bypass_.size();
     if (port_) active |= tick_pins();
     return active;
   }
@@ -111,6 +116,8 @@ class VtuUnit : public sc_core::sc_module, public MemClient {
   // This cycle needs a clock edge on the pin-level unit (it drove a record or has some inside).
   bool wants_edge() const { return edge_; }
   uint64_t busy() const { return busy_; }
+  uint64_t paired() const { return paired_; }
+  uint64_t fill_waits() const { return waits_; }
 
  private:
   struct Fill {
@@ -201,7 +208,8 @@ class VtuUnit : public sc_core::sc_module, public MemClient {
   std::array<Ascache*, 3> caches_;
   TimedFifo<Fill> fills_, bypass_;
   Cycle free_ = 0;
-  uint64_t busy_ = 0;
+  uint64_t busy_ = 0, paired_ = 0, waits_ = 0;
+  Cycle last_resp_ = kNever;
   // Pin-level view.
   pins::VtuPort* port_ = nullptr;
   std::deque<Record> records_;

@@ -164,7 +164,7 @@ module chip #(
             .TILE_BITS(TILE_BITS), .RTU_BITS(RTU_BITS), .NODE_SETS(NODE_SETS),
             .LIST_SETS(LIST_SETS), .TRI_SETS(TRI_SETS), .WAYS(WAYS), .NODE_LB(NODE_LB),
             .LIST_LB(LIST_LB), .TRI_LB(TRI_LB), .MSHRS(MSHRS), .LINE_W(LINE_W),
-            .BEAT_BYTES(BEAT_BYTES), .LEN_BITS(LEN_BITS)) u_rtu (
+            .BEAT_BYTES(BEAT_BYTES), .L2_BEAT(BEAT_BYTES), .LEN_BITS(LEN_BITS)) u_rtu (
         .clk_i(clk_i), .rst_ni(rst_ni), .start_i(start_i), .cam_i(cam_i), .width_i(width_i),
         .height_i(height_i), .rtu_i(R), .rtus_i(rtus_i), .slots_i(slots_i), .tmin_i(tmin_i),
         .trv_lat_i(trv_lat_i), .node_hl_i(node_hl_i), .list_hl_i(list_hl_i), .pipes_i(pipes_i),
@@ -178,6 +178,8 @@ module chip #(
         .req_line_o(req_line[3*r*LINE_W +: 3*LINE_W]), .req_tag_o(req_tag[3*r*MB_ +: 3*MB_]),
         .beat_valid_i(rsp_valid[3*r +: 3]), .beat_tag_i(rsp_tag), .beat_idx_i(rsp_beat),
         .beat_last_i(rsp_last), .beat_data_i(rsp_data),
+        .l2_valid_i(3'b000), .l2_tag_i({MB_{1'b0}}), .l2_idx_i({LEN_BITS{1'b0}}),  // no L2 here
+        .l2_last_i(1'b0), .l2_data_i({(8*BEAT_BYTES){1'b0}}),
         .px_valid_o(px_valid), .px_pixel_o(px[PX_-1 -: 2*COORD_BITS]),
         .px_shadow_o(px[PX_-1-2*COORD_BITS]), .px_found_o(px[PX_-2-2*COORD_BITS]),
         .px_spawn_o(px[PX_-3-2*COORD_BITS]),

@@ -26,7 +26,7 @@
 // 9 trv_fused, 10 stack_max, 11 ist_busy, 12 ist_tri_miss, 13 tri_tests, 14 hit_busy,
 // 15 primary_rays, 16 shadow_rays, 17 rgu_stall_no_slot, 18 vtu_busy, then per cache (node 19,
 // list 24, triangle 29): hits, misses, mshr_merges, mshr_full, fills; set_full per cache (node 34,
-// list 35, triangle 36); others 0.
+// list 35, triangle 36); 37 vtu_paired, 38 vtu_fill_waits; others 0.
 //
 // Parameters: the cycle model's defaults (systemc/config.h SimConfig) for FP24: 128 slots (96 rays
 // in flight), 64 stack entries, 4 trv pipes, 2 ist units, 16 list words per read, an ist queue of
@@ -58,9 +58,10 @@ module rtu #(
   parameter integer TRI_LB     = 0,   // 0: whole records nearest 64 bytes (the model's)
   parameter integer MSHRS      = 8,
   parameter integer LINE_W     = 26,
-  parameter integer BEAT_BYTES = 16,
+  parameter integer BEAT_BYTES = 16,  // the memory's beats
+  parameter integer L2_BEAT    = 32,  // the L2's beats
   parameter integer LEN_BITS   = 12,
-  parameter integer BEAT_REG   = 0,   // 1: beat_*_i is the next cycle's beat, registered here
+  parameter integer BEAT_REG   = 0,   // 1: beat_*_i and l2_*_i are the next cycle's, registered here
   // Derived (not to be overridden).
   parameter integer W_     = 1 + EXP_BITS + MAN_BITS,
   parameter integer CB_    = (W_ <= 24) ? 3 : 4,
@@ -121,6 +122,11 @@ module rtu #(
   input  wire [LEN_BITS-1:0]         beat_idx_i,
   input  wire                        beat_last_i,
   input  wire [8*BEAT_BYTES-1:0]     beat_data_i,
+  input  wire [2:0]                  l2_valid_i,    // the L2's beats (membus_l2's l2_*), as beat_*
+  input  wire [MB_-1:0]              l2_tag_i,
+  input  wire [LEN_BITS-1:0]         l2_idx_i,
+  input  wire                        l2_last_i,
+  input  wire [8*L2_BEAT-1:0]        l2_data_i,
   // ---- the ray leaving the hit unit (the host's pixel write) ------------------------------------
   output wire                        px_valid_o,
   output wire [2*COORD_BITS-1:0]     px_pixel_o,
@@ -501,47 +507,63 @@ module rtu #(
   assign px_ray_o    = h_ray;
 
   // ---- the fill path ----------------------------------------------------------------------------
-  // The beat the fill path takes in this cycle. In the chip it comes from membus_if's response
-  // register (chip.v, BEAT_REG = 0). A host that steps rtu.v alone (systemc/rtu_rtl.cpp) sets
+  // The beats the fill path takes in this cycle: the memory's (beat_*) and the L2's (l2_*, idle
+  // without an L2). In the chip they come from the bus's response registers (chip.v, BEAT_REG = 0;
+  // membus_if's rsp_*, membus_l2's l2_*). A host that steps rtu.v alone (systemc/rtu_rtl.cpp) sets
   // BEAT_REG = 1 and drives the next cycle's beat, registered here: the same beat in the same
   // cycle, from flip-flops as in the chip. It was needed for Verilator 5.006 while the trv's cache
   // accesses were chained through the caches' ports (an UNOPTFLAT loop, until the trv's list
   // stage): with the beat a top-level input, the fill reached that chain in the input region,
   // where the --cc model settled it differently from Icarus and from the same RTL Verilated with
   // the beat from a register (a list-cache miss at cycle 6,303 of corridor 20x12, VTU off).
-  wire [2:0]            b_valid;
-  wire [MB_-1:0]        b_tag;
-  wire [LEN_BITS-1:0]   b_idx;
-  wire                  b_last;
+  wire [2:0]            b_valid, l2_valid;
+  wire [MB_-1:0]        b_tag, l2_tag;
+  wire [LEN_BITS-1:0]   b_idx, l2_idx;
+  wire                  b_last, l2_last;
   wire [8*BEAT_BYTES-1:0] b_data;
+  wire [8*L2_BEAT-1:0]  l2_data;
   generate
     if (BEAT_REG != 0) begin : g_beat_reg
-      reg [2:0]            bv_q;
-      reg [MB_-1:0]        bt_q;
-      reg [LEN_BITS-1:0]   bi_q;
-      reg                  bl_q;
+      reg [2:0]            bv_q, lv_q;
+      reg [MB_-1:0]        bt_q, lt_q;
+      reg [LEN_BITS-1:0]   bi_q, li_q;
+      reg                  bl_q, ll_q;
       reg [8*BEAT_BYTES-1:0] bd_q;
+      reg [8*L2_BEAT-1:0]  ld_q;
       always @(posedge clk_i or negedge rst_ni) begin
-        if (!rst_ni) bv_q <= 3'b000;
-        else         bv_q <= beat_valid_i;
+        if (!rst_ni) begin
+          bv_q <= 3'b000;
+          lv_q <= 3'b000;
+        end else begin
+          bv_q <= beat_valid_i;
+          lv_q <= l2_valid_i;
+        end
       end
       always @(posedge clk_i) begin
         bt_q <= beat_tag_i;
         bi_q <= beat_idx_i;
         bl_q <= beat_last_i;
         bd_q <= beat_data_i;
+        lt_q <= l2_tag_i;
+        li_q <= l2_idx_i;
+        ll_q <= l2_last_i;
+        ld_q <= l2_data_i;
       end
       assign {b_valid, b_tag, b_idx, b_last, b_data} = {bv_q, bt_q, bi_q, bl_q, bd_q};
+      assign {l2_valid, l2_tag, l2_idx, l2_last, l2_data} = {lv_q, lt_q, li_q, ll_q, ld_q};
     end else begin : g_beat_in
       assign {b_valid, b_tag, b_idx, b_last, b_data} =
           {beat_valid_i, beat_tag_i, beat_idx_i, beat_last_i, beat_data_i};
+      assign {l2_valid, l2_tag, l2_idx, l2_last, l2_data} =
+          {l2_valid_i, l2_tag_i, l2_idx_i, l2_last_i, l2_data_i};
     end
   endgenerate
   wire [63:0] c_vtu_busy;
+  wire [31:0] c_vtu_pair, c_vtu_wait;
   wire        v_busy;
   vtu_unit #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE),
              .STAGES(STAGES), .MSHRS(MSHRS), .NODE_LB(NODE_LB), .LIST_LB(LIST_LB),
-             .TRI_LB(TLB), .BEAT_BYTES(BEAT_BYTES), .LEN_BITS(LEN_BITS),
+             .TRI_LB(TLB), .BEAT_BYTES(BEAT_BYTES), .L2_BEAT(L2_BEAT), .LEN_BITS(LEN_BITS),
              .LINE_W(LINE_W)) u_vtu (
     .clk_i(clk_i), .rst_ni(rst_ni), .vtu_on_i(vtu_on_q),
     .cam_x_i(vtu_cam_q[0 +: W]), .cam_y_i(vtu_cam_q[W +: W]), .cam_z_i(vtu_cam_q[2*W +: W]),
@@ -549,8 +571,10 @@ module rtu #(
     .req_take_i(req_valid_o & req_ready_i), .req_line_i(req_line_o), .req_tag_i(req_tag_o),
     .beat_valid_i(b_valid), .beat_tag_i(b_tag), .beat_idx_i(b_idx),
     .beat_last_i(b_last), .beat_data_i(b_data),
+    .l2_valid_i(l2_valid), .l2_tag_i(l2_tag), .l2_idx_i(l2_idx), .l2_last_i(l2_last),
+    .l2_data_i(l2_data),
     .fill_valid_o(fill_valid), .fill_tag_o(fill_tag), .fill_data_o(fill_data),
-    .cnt_busy_o(c_vtu_busy), .busy_o(v_busy));
+    .cnt_busy_o(c_vtu_busy), .cnt_pair_o(c_vtu_pair), .cnt_wait_o(c_vtu_wait), .busy_o(v_busy));
   wire unused_vtu = ^{v_busy, fill_data};  // a cache's line may be narrower than the widest
 
   // ---- status and counters ----------------------------------------------------------------------
@@ -595,6 +619,8 @@ module rtu #(
       6'd34: cnt_o = {32'd0, c_sfull[0 +: 32]};
       6'd35: cnt_o = {32'd0, c_sfull[32 +: 32]};
       6'd36: cnt_o = {32'd0, c_sfull[64 +: 32]};
+      6'd37: cnt_o = {32'd0, c_vtu_pair};
+      6'd38: cnt_o = {32'd0, c_vtu_wait};
       default: cnt_o = 64'd0;
     endcase
   end

@@ -44,17 +44,19 @@ struct Summary {
   // The bus's L2 (if any) and its queue: accesses, hits, merges, stalled and queue-full cycles.
   uint64_t l2_accesses = 0, l2_hits = 0, l2_merges = 0, l2_stalls = 0, queue_full = 0;
   // The work counters of every RTU summed (stack_max: the largest), in kWorkNames' order.
-  static constexpr int kWork = 23;
+  static constexpr int kWork = 25;
   uint64_t work[kWork] = {};
   int first_x = -1, first_y = -1;
 };
 inline constexpr int kWorkSetFull = 22;  // "cache set_full": misses refused by the caches' pin rule
+inline constexpr int kWorkVtuPaired = 23;  // cycles with two lines at one RTU (memory and L2)
+inline constexpr int kWorkFillWaits = 24;  // lines x cycles waiting for their cache's fill port
 inline const char* const kWorkNames[Summary::kWork] = {
     "trv_busy",     "trv_node_miss", "trv_list_miss", "trv_ist_full", "inner_steps",
     "leaf_visits",  "pops",          "list_steps",    "trv_fused",    "stack_max",
     "ist_busy",     "ist_tri_miss",  "hit_busy",      "node.accesses", "list.accesses",
     "tri.accesses", "node.hits",     "list.hits",     "tri.hits",     "cache mshr_merges",
-    "cache mshr_full", "cache fills", "cache set_full"};
+    "cache mshr_full", "cache fills", "cache set_full", "vtu_paired", "vtu_fill_waits"};
 inline void sum_work(const sc::RtuStats& u, uint64_t* w) {
   const uint64_t v[Summary::kWork] = {
       u.trv_busy,      u.trv_node_miss, u.trv_list_miss, u.trv_ist_full,   u.inner_steps,
@@ -64,7 +66,8 @@ inline void sum_work(const sc::RtuStats& u, uint64_t* w) {
       u.node.mshr_merges + u.list.mshr_merges + u.tri.mshr_merges,
       u.node.mshr_full + u.list.mshr_full + u.tri.mshr_full,
       u.node.fills + u.list.fills + u.tri.fills,
-      u.node.set_full + u.list.set_full + u.tri.set_full};
+      u.node.set_full + u.list.set_full + u.tri.set_full,
+      u.vtu_paired,    u.vtu_fill_waits};
   for (int i = 0; i < Summary::kWork; ++i) w[i] = i == 9 ? std::max(w[i], v[i]) : w[i] + v[i];
 }
 
