@@ -145,7 +145,7 @@ section_frames() {
 # --sc RTL (--rtl) must give the transaction model's cycle count (frames section) and golden_match;
 # reports each run's simulated cycles/s and rays/s. Needs `frames` first (its VTU-on report).
 section_cosim() {
-  header "cosim: sponza-paper 800x480 with vtu+ist+hit+rgu as pin-level twins and as Verilated RTL, then every unit in RTL (--rtl all), then with the bus interface too (--rtl all,membus --l2-kb 0), then every RTU one Verilated rtu.v (--rtl rtu --l2-kb 0)"
+  header "cosim: sponza-paper 800x480 with vtu+ist+hit+rgu as pin-level twins and as Verilated RTL, then every unit in RTL (--rtl all), then with the bus and its L2 too (--rtl all,membus), then every RTU one Verilated rtu.v with the bus (--rtl rtu), all at the defaults (the 256 KB L2)"
   local rc_bin="$BUILD/bin/raycore"
   local scenes=${SHARED_SCENES:-$(cd "$(dirname "$0")/.." && pwd)/../shared/scenes}
   local sponza="$scenes/sponza-paper.glb"
@@ -158,23 +158,17 @@ section_cosim() {
     "$rc_bin" simulate "$sponza" --vtu on --no-reference --out-dir "$OUT" --report "$ref" \
       --png "$OUT/simulate-vtu-on.png" || return 1
   fi
-  # The bus interface's RTL runs without the L2 (it has none): its reference is the model without.
-  local ref_nol2="$OUT/simulate-vtu-on-nol2.json"
-  "$rc_bin" simulate "$sponza" --vtu on --l2-kb 0 --no-reference --out-dir "$OUT" \
-    --report "$ref_nol2" --png "$OUT/simulate-vtu-on-nol2.png" || return 1
-  # view:units:tag; rtl-all has every unit of the RTUs in RTL, rtl-all-membus the bus interface too,
-  # rtl-rtu every RTU as one Verilated rtu.v with the bus interface.
+  # view:units:tag; rtl-all has every unit of the RTUs in RTL, rtl-all-membus the bus (membus_l2.v,
+  # the default L2) too, rtl-rtu every RTU as one Verilated rtu.v with the bus.
   for run in pins:vtu,ist,hit,rgu:pins rtl:vtu,ist,hit,rgu:rtl rtl:all:rtl-all \
              rtl:all,membus:rtl-all-membus rtl:rtu:rtl-rtu; do
     IFS=: read -r view units tag <<<"$run"
-    local extra=()
     ref="$OUT/simulate-vtu-on.json"
-    [ "$tag" = rtl-all-membus ] || [ "$tag" = rtl-rtu ] && { extra=(--l2-kb 0); ref=$ref_nol2; }
     # --rtl rtu: the RTUs' models on two host threads (the section runs alone).
     local threads=1
     [ "$tag" = rtl-rtu ] && threads=2
-    echo "command: RAYCORE_RTL_THREADS=$threads $rc_bin simulate $sponza --vtu on --$view $units ${extra[*]} --no-reference --out-dir $OUT"
-    RAYCORE_RTL_THREADS=$threads "$rc_bin" simulate "$sponza" --vtu on --"$view" "$units" "${extra[@]}" --no-reference --out-dir "$OUT" \
+    echo "command: RAYCORE_RTL_THREADS=$threads $rc_bin simulate $sponza --vtu on --$view $units --no-reference --out-dir $OUT"
+    RAYCORE_RTL_THREADS=$threads "$rc_bin" simulate "$sponza" --vtu on --"$view" "$units" --no-reference --out-dir "$OUT" \
       --report "$OUT/simulate-$tag.json" --png "$OUT/simulate-$tag.png" || { rc=1; continue; }
     local c0 c1
     c0=$(json_get "$ref" hardware.cycles)
