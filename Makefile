@@ -65,7 +65,8 @@ area-configs: deps
 timing: deps
 	./scripts/timing.sh
 
-# A whole frame on chip.v (the chip top: membus_if and one RTU) closed-loop with tb/rtl/tb_chip.v's
+# A whole frame on chip.v (the chip top: the bus with the L2, membus_l2.v, or with --l2-kb 0 in ARGS
+# membus_if.v, and one RTU) closed-loop with tb/rtl/tb_chip.v's
 # memory, against the transaction model (tb/rtl/run_chip.sh; SIM=icarus for Icarus, ARGS: the
 # frame's simulate options).
 chip: configure

@@ -1,8 +1,11 @@
-// chip - the chip top: RTUS ray-tracing units (rtu.v) and the memory-bus interface (membus_if.v)
-// they share, as systemc/top.h connects the cycle model's RTUs to its Membus. The memory (the
-// image's bytes and its latency) is outside, on mem_* / beat_* (the testbench's, as Membus's); so
-// is the frame buffer, written from each RTU's px_* (the host's pixel write and shade). No L2: the
-// caches' line requests go to the memory directly (the cycle model with --l2-kb 0).
+// chip - the chip top: RTUS ray-tracing units (rtu.v) and the memory bus they share, as
+// systemc/top.h connects the cycle model's RTUs to its Membus: with L2_SETS 0 membus_if.v (no L2:
+// the caches' line requests go to the memory directly, the cycle model with --l2-kb 0), else
+// membus_l2.v (the L2 of L2_SETS x L2_WAYS lines of the caches' line bytes, L2_BEAT bytes per cycle
+// to the RTUs' second beat port, its hit latency l2_lat_i; the model's default: 512 x 8 x 64 bytes,
+// 32 bytes per cycle, 20 cycles). The memory (the image's bytes and its latency) is outside, on
+// mem_* / beat_* (the testbench's, as Membus's); so is the frame buffer, written from each RTU's
+// px_* (the host's pixel write and shade).
 //
 // Requester 3 r + p of membus_if is RTU r's cache p (node 0, list 1, triangle 2): its line request
 // becomes the byte address base_p + line x line bytes of p (the image's regions, hls/image.h), for
@@ -10,6 +13,7 @@
 // The frame registers are the same for every RTU but its index (rtu_i = r). Status: done_o when
 // every RTU is done, err_o when any overflowed its stack; counters by RTU and index (rtu.v's).
 // lint: also RTUS=2 SLOT_BITS=4 DEPTH=8 PIPES=2 IST=2 WORDS=4 QBITS=3 NODE_SETS=4 LIST_SETS=2 TRI_SETS=4 WAYS=2 MSHRS=2 NODE_LB=32 LIST_LB=16 TRI_LB=32
+// lint: also RTUS=2 SLOT_BITS=4 DEPTH=8 PIPES=2 IST=2 WORDS=4 QBITS=3 NODE_SETS=4 LIST_SETS=2 TRI_SETS=4 WAYS=2 MSHRS=2 NODE_LB=32 LIST_LB=32 TRI_LB=32 L2_SETS=4 L2_WAYS=2
 module chip #(
   parameter integer RTUS       = 6,
   parameter integer EXP_BITS   = 7,
@@ -40,6 +44,9 @@ module chip #(
   parameter integer LEN_BITS   = 12,
   parameter integer ADDR_BITS  = 32,
   parameter integer BUS_DEPTH  = 32,
+  parameter integer L2_SETS    = 0,   // 0: no L2
+  parameter integer L2_WAYS    = 8,
+  parameter integer L2_BEAT    = 32,
   // Derived (not to be overridden).
   parameter integer W_  = 1 + EXP_BITS + MAN_BITS,
   parameter integer MB_ = (MSHRS > 1) ? $clog2(MSHRS) : 1,
@@ -85,6 +92,7 @@ module chip #(
   input  wire [31:0]                 tri_count_i,
   // The image's regions: byte addresses of the node, list and triangle arrays.
   input  wire [3*ADDR_BITS-1:0]      base_i,        // {tri, list, node}
+  input  wire [15:0]                 l2_lat_i,      // the L2's hit latency (unused without one)
   // ---- the memory: requests (membus_if's mem_*) and data beats ----------------------------------
   output wire                        mem_valid_o,
   input  wire                        mem_ready_i,
@@ -135,22 +143,62 @@ module chip #(
     end
   endgenerate
 
-  wire                take, take_last;
-  wire [MB_-1:0]      take_tag;
-  wire [LEN_BITS-1:0] take_beat;
-  membus_if #(.N(N), .ADDR_BITS(ADDR_BITS), .LEN_BITS(LEN_BITS), .TAG_BITS(MB_),
-              .DEPTH(BUS_DEPTH), .BEAT_BYTES(BEAT_BYTES)) u_bus (
-    .clk_i(clk_i), .rst_ni(rst_ni),
-    .req_valid_i(req_valid), .req_ready_o(req_ready), .req_addr_i(req_addr),
-    .req_bytes_i(req_bytes), .req_tag_i(req_tag),
-    .mem_valid_o(mem_valid_o), .mem_ready_i(mem_ready_i), .mem_addr_o(mem_addr_o),
-    .mem_bytes_o(mem_bytes_o), .mem_port_o(mem_port_o), .mem_tag_o(mem_tag_o),
-    .beat_valid_i(beat_valid_i), .beat_data_i(beat_data_i),
-    .rsp_valid_o(rsp_valid), .rsp_port_o(rsp_port), .rsp_tag_o(rsp_tag), .rsp_data_o(rsp_data),
-    .rsp_beat_o(rsp_beat), .rsp_last_o(rsp_last), .outstanding_o(outstanding_o),
-    .take_o(take), .take_tag_o(take_tag), .take_beat_o(take_beat), .take_last_o(take_last));
+  // The RTUs' second beat port: the L2's beats (idle without an L2).
+  wire [N-1:0]           l2_valid;
+  wire [MB_-1:0]         l2_tag;
+  wire [8*L2_BEAT-1:0]   l2_data;
+  wire [LEN_BITS-1:0]    l2_beat;
+  wire                   l2_last;
+  generate
+    if (L2_SETS == 0) begin : g_no_l2
+      wire                take, take_last;
+      wire [MB_-1:0]      take_tag;
+      wire [LEN_BITS-1:0] take_beat;
+      membus_if #(.N(N), .ADDR_BITS(ADDR_BITS), .LEN_BITS(LEN_BITS), .TAG_BITS(MB_),
+                  .DEPTH(BUS_DEPTH), .BEAT_BYTES(BEAT_BYTES)) u_bus (
+        .clk_i(clk_i), .rst_ni(rst_ni),
+        .req_valid_i(req_valid), .req_ready_o(req_ready), .req_addr_i(req_addr),
+        .req_bytes_i(req_bytes), .req_tag_i(req_tag),
+        .mem_valid_o(mem_valid_o), .mem_ready_i(mem_ready_i), .mem_addr_o(mem_addr_o),
+        .mem_bytes_o(mem_bytes_o), .mem_port_o(mem_port_o), .mem_tag_o(mem_tag_o),
+        .beat_valid_i(beat_valid_i), .beat_data_i(beat_data_i),
+        .rsp_valid_o(rsp_valid), .rsp_port_o(rsp_port), .rsp_tag_o(rsp_tag), .rsp_data_o(rsp_data),
+        .rsp_beat_o(rsp_beat), .rsp_last_o(rsp_last), .outstanding_o(outstanding_o),
+        .take_o(take), .take_tag_o(take_tag), .take_beat_o(take_beat), .take_last_o(take_last));
+      wire unused_take = ^{take, take_tag, take_beat, take_last, l2_lat_i};  // membus_l2.v's
+      assign {l2_valid, l2_tag, l2_data, l2_beat, l2_last} = {(N+MB_+8*L2_BEAT+LEN_BITS+1){1'b0}};
+    end else begin : g_l2
+      // The cycle number the L2's responses are timed by (membus_l2's now_i).
+      reg [31:0] now_q;
+      always @(posedge clk_i or negedge rst_ni) begin
+        if (!rst_ni) now_q <= 32'd0;
+        else         now_q <= now_q + 32'd1;
+      end
+      wire acc_valid, acc_hit, stall, l2_busy;
+      wire [PB_-1:0] acc_port, l2_port;
+      membus_l2 #(.N(N), .ADDR_BITS(ADDR_BITS), .LEN_BITS(LEN_BITS), .TAG_BITS(MB_),
+                  .DEPTH(BUS_DEPTH), .BEAT_BYTES(BEAT_BYTES), .SETS(L2_SETS), .WAYS(L2_WAYS),
+                  .LINE_BYTES(NODE_LB), .L2_BEAT(L2_BEAT), .QDEPTH(N * MSHRS)) u_bus (
+        .clk_i(clk_i), .rst_ni(rst_ni), .now_i(now_q), .lat_i(l2_lat_i),
+        .req_valid_i(req_valid), .req_ready_o(req_ready), .req_addr_i(req_addr),
+        .req_bytes_i(req_bytes), .req_tag_i(req_tag),
+        .acc_valid_o(acc_valid), .acc_port_o(acc_port), .acc_hit_o(acc_hit), .stall_o(stall),
+        .mem_valid_o(mem_valid_o), .mem_ready_i(mem_ready_i), .mem_addr_o(mem_addr_o),
+        .mem_bytes_o(mem_bytes_o),
+        .beat_valid_i(beat_valid_i), .beat_data_i(beat_data_i),
+        .rsp_valid_o(rsp_valid), .rsp_port_o(rsp_port), .rsp_tag_o(rsp_tag), .rsp_data_o(rsp_data),
+        .rsp_beat_o(rsp_beat), .rsp_last_o(rsp_last),
+        .l2_valid_o(l2_valid), .l2_port_o(l2_port), .l2_tag_o(l2_tag), .l2_data_o(l2_data),
+        .l2_beat_o(l2_beat), .l2_last_o(l2_last), .outstanding_o(outstanding_o),
+        .l2_busy_o(l2_busy));
+      // The memory's side tags are membus_l2's own (its miss queue); every line is one L2 line
+      // (the caches' lines are the L2's: NODE_LB = LIST_LB = the triangle lines).
+      assign mem_port_o = {PB_{1'b0}};
+      assign mem_tag_o  = {MB_{1'b0}};
+      wire unused_l2 = ^{acc_valid, acc_port, acc_hit, stall, l2_busy, l2_port};
+    end
+  endgenerate
   wire unused_port = ^rsp_port;  // rsp_valid_o is one-hot by requester already
-  wire unused_take = ^{take, take_tag, take_beat, take_last};  // membus_l2.v's
 
   genvar r;
   generate
@@ -164,7 +212,7 @@ module chip #(
             .TILE_BITS(TILE_BITS), .RTU_BITS(RTU_BITS), .NODE_SETS(NODE_SETS),
             .LIST_SETS(LIST_SETS), .TRI_SETS(TRI_SETS), .WAYS(WAYS), .NODE_LB(NODE_LB),
             .LIST_LB(LIST_LB), .TRI_LB(TRI_LB), .MSHRS(MSHRS), .LINE_W(LINE_W),
-            .BEAT_BYTES(BEAT_BYTES), .L2_BEAT(BEAT_BYTES), .LEN_BITS(LEN_BITS)) u_rtu (
+            .BEAT_BYTES(BEAT_BYTES), .L2_BEAT(L2_BEAT), .LEN_BITS(LEN_BITS)) u_rtu (
         .clk_i(clk_i), .rst_ni(rst_ni), .start_i(start_i), .cam_i(cam_i), .width_i(width_i),
         .height_i(height_i), .rtu_i(R), .rtus_i(rtus_i), .slots_i(slots_i), .tmin_i(tmin_i),
         .trv_lat_i(trv_lat_i), .node_hl_i(node_hl_i), .list_hl_i(list_hl_i), .pipes_i(pipes_i),
@@ -178,8 +226,8 @@ module chip #(
         .req_line_o(req_line[3*r*LINE_W +: 3*LINE_W]), .req_tag_o(req_tag[3*r*MB_ +: 3*MB_]),
         .beat_valid_i(rsp_valid[3*r +: 3]), .beat_tag_i(rsp_tag), .beat_idx_i(rsp_beat),
         .beat_last_i(rsp_last), .beat_data_i(rsp_data),
-        .l2_valid_i(3'b000), .l2_tag_i({MB_{1'b0}}), .l2_idx_i({LEN_BITS{1'b0}}),  // no L2 here
-        .l2_last_i(1'b0), .l2_data_i({(8*BEAT_BYTES){1'b0}}),
+        .l2_valid_i(l2_valid[3*r +: 3]), .l2_tag_i(l2_tag), .l2_idx_i(l2_beat),
+        .l2_last_i(l2_last), .l2_data_i(l2_data),
         .px_valid_o(px_valid), .px_pixel_o(px[PX_-1 -: 2*COORD_BITS]),
         .px_shadow_o(px[PX_-1-2*COORD_BITS]), .px_found_o(px[PX_-2-2*COORD_BITS]),
         .px_spawn_o(px[PX_-3-2*COORD_BITS]),

@@ -1,22 +1,33 @@
 #!/usr/bin/env bash
-# tb/rtl/run_chip.sh - a whole frame on chip.v (make chip): the chip top with its membus_if and one
-# RTU, closed-loop with tb_chip.v's memory, against the transaction model.
+# tb/rtl/run_chip.sh - a whole frame on chip.v (make chip): the chip top with its bus (membus_l2.v
+# with the frame's L2, the model's default 256 KB unless --l2-kb says otherwise; membus_if.v with
+# --l2-kb 0) and one RTU, closed-loop with tb_chip.v's memory, against the transaction model.
 #   1. `raycore simulate <frame> --rtl rtu` with RAYCORE_CHIP_DUMP: the frame's registers, the
 #      image and the frame's rays (pixel, kind, best record: bit-exact with the golden tracer);
 #   2. the transaction model of the same frame: its cycles;
 #   3. tb/rtl/tb_chip.v on chip.v, built with `verilator --binary --timing` (SIM=icarus: iverilog,
 #      about 30 cycles/s): passes only if its cycles are the model's and its rays the frame's.
 # Usage: run_chip.sh <raycore binary> <work dir> [simulate options; default corridor 20x12, VTU off]
-# The frame must fit chip.v's build: one RTU, --l2-kb 0, the model's defaults otherwise, FP24 rtz.
+# The frame must fit chip.v's build: one RTU, the model's defaults otherwise, FP24 rtz (--l2-kb,
+# --l2-ways and --l2-latency are taken from the options; the L2's lines and beats are the model's).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 raycore=$1 work=$2
 shift 2
 [ $# -gt 0 ] || set -- corridor --width 20 --height 12 --vtu off
 mkdir -p "$work"
-frame=("$@" --rtus 1 --l2-kb 0 --no-reference)
-lat=100
-for ((i = 1; i <= $#; i++)); do [ "${!i}" = --mem-latency ] && { j=$((i + 1)); lat=${!j}; }; done
+frame=("$@" --rtus 1 --no-reference)
+lat=100 l2kb=256 l2ways=8 l2lat=20
+for ((i = 1; i <= $#; i++)); do
+  j=$((i + 1))
+  case "${!i}" in
+    --mem-latency) lat=${!j} ;;
+    --l2-kb) l2kb=${!j} ;;
+    --l2-ways) l2ways=${!j} ;;
+    --l2-latency) l2lat=${!j} ;;
+  esac
+done
+l2sets=$((l2kb * 1024 / (l2ways * 64)))
 
 cycles_of() { sed -n 's/^hardware *\([0-9]*\) cycles.*/\1/p' "$1"; }
 RAYCORE_CHIP_DUMP="$work/frame" "$raycore" simulate "${frame[@]}" --rtl rtu > "$work/rtu.log"
@@ -30,7 +41,8 @@ img=$(wc -l < "$work/frame.img")
 list=$(dirname "$raycore")/../rtl/chip_sources.txt
 [ -f "$list" ] || { echo "run_chip: $list not found (configure with RAYCORE_RTL=ON)" >&2; exit 1; }
 mapfile -t srcs < "$list"
-defs=(-DDUMP="\"$work/frame\"" -DIMG="$img" -DLAT="$lat")
+defs=(-DDUMP="\"$work/frame\"" -DIMG="$img" -DLAT="$lat" -DL2_SETS="$l2sets" -DL2_WAYS="$l2ways"
+      -DL2_LAT="$l2lat")
 start=$(date +%s)
 if [ "${SIM:-verilator}" = icarus ]; then
   iverilog -g2005 -Wno-timescale "${defs[@]}" -o "$work/tb_chip.vvp" -s tb_chip "${srcs[@]}" \

@@ -1,10 +1,12 @@
-// tb_chip - a whole frame on chip.v (RTUS = 1): the chip top with its membus_if, closed-loop with
+// tb_chip - a whole frame on chip.v (RTUS = 1): the chip top with its bus, closed-loop with
 // a memory timed as systemc/membus.cpp's RTL view (Membus::dram_accept: a line accepted at cycle
 // a has its beats on cycles first .. first + beats - 1, first = max(a + LAT, the previous line's
 // end); mem_ready_i always high, membus_if bounds the outstanding lines). The frame's registers,
 // the image and its regions come from `raycore simulate --rtl rtu` with RAYCORE_CHIP_DUMP=<prefix>
 // (systemc/rtu_rtl.cpp); tb/rtl/run_chip.sh runs it and compares. Defines: DUMP (the prefix, a
-// string), IMG (the image's bytes), LAT (--mem-latency). Prints every ray leaving the hit unit to
+// string), IMG (the image's bytes), LAT (--mem-latency), L2_SETS (0: no L2, chip.v's membus_if),
+// L2_WAYS, L2_LAT (--l2-latency; the L2's line is the caches', 64 bytes, its beats 32 bytes: the
+// model's). Prints every ray leaving the hit unit to
 // <prefix>.chip.px (pixel, kind, best record) and "RESULT cycles=<last retire + 1> retired=<n>".
 // Verilog-2005 with delays: iverilog -g2005, or verilator --binary --timing.
 `timescale 1ns/1ps
@@ -35,7 +37,7 @@ module tb_chip;
   wire           done, err;
   wire [5:0]     outstanding;
   wire [63:0]    cnt;
-  chip #(.RTUS(1)) dut (
+  chip #(.RTUS(1), .L2_SETS(`L2_SETS), .L2_WAYS(`L2_WAYS)) dut (
     .clk_i(clk), .rst_ni(rst_n), .start_i(start), .cam_i(cam), .width_i(width), .height_i(height),
     .rtus_i(rtus), .slots_i(slots), .tmin_i(tmin), .trv_lat_i(trv_lat), .node_hl_i(node_hl),
     .list_hl_i(list_hl), .pipes_i(pipes), .fuse_i(fuse), .any_hit_i(any_hit), .empty_i(empty),
@@ -43,7 +45,7 @@ module tb_chip;
     .tri_hl_i(tri_hl), .ist_units_i(ist_units), .light_i(light), .strategy_i(strategy),
     .segment_i(segment), .all_i(all), .back_i(back), .scale_i(scale), .fixed_i(fixed),
     .slab_scale_i(slab_scale), .vtu_on_i(vtu_on), .vtu_cam_i(vtu_cam), .node_count_i(node_count),
-    .tri_count_i(tri_count), .base_i({b_tri, b_list, b_node}),
+    .tri_count_i(tri_count), .base_i({b_tri, b_list, b_node}), .l2_lat_i(16'd`L2_LAT),
     .mem_valid_o(mem_valid), .mem_ready_i(1'b1), .mem_addr_o(mem_addr), .mem_bytes_o(mem_bytes),
     .mem_port_o(mem_port), .mem_tag_o(mem_tag), .beat_valid_i(beat_valid), .beat_data_i(beat_data),
     .px_o(px), .done_o(done), .err_o(err), .outstanding_o(outstanding), .cnt_rtu_i(8'd0),
