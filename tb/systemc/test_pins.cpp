@@ -1056,7 +1056,8 @@ TEST(RtuRtlFrame, PinnedLinesAndSetsFull) {
 // with the VTU off two lines of one cache meet (the second waits a cycle for the cache's fill
 // port, and the lines behind it with it). The model's cycles and counters, those two counted in
 // both views (vtu_paired, vtu_fill_waits; the test asserts that they occur). A fast L2 (latency 1)
-// and one RTU make the meetings common (corridor 48x32, VTU off: 30-odd); with randomised memory
+// and one RTU make the meetings common (corridor 48x32, VTU off: 21 cycles with two lines, 9
+// line-cycles waiting for a fill port); with randomised memory
 // latency the L2's line is sometimes the older one (2 RTUs, seed 29, VTU on; 3 RTUs, seed 5, VTU
 // off: both diverge from the model if the memory's line is always taken first); the 1 KB L2
 // (evictions, stalls) with 2 RTUs.
