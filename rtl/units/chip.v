@@ -13,7 +13,7 @@
 // The frame registers are the same for every RTU but its index (rtu_i = r). Status: done_o when
 // every RTU is done, err_o when any overflowed its stack; counters by RTU and index (rtu.v's).
 // lint: also RTUS=2 SLOT_BITS=4 DEPTH=8 PIPES=2 IST=2 WORDS=4 QBITS=3 NODE_SETS=4 LIST_SETS=2 TRI_SETS=4 WAYS=2 MSHRS=2 NODE_LB=32 LIST_LB=16 TRI_LB=32
-// lint: also RTUS=2 SLOT_BITS=4 DEPTH=8 PIPES=2 IST=2 WORDS=4 QBITS=3 NODE_SETS=4 LIST_SETS=2 TRI_SETS=4 WAYS=2 MSHRS=2 NODE_LB=32 LIST_LB=32 TRI_LB=32 L2_SETS=4 L2_WAYS=2
+// lint: also RTUS=2 SLOT_BITS=4 DEPTH=8 PIPES=2 IST=2 WORDS=4 QBITS=3 NODE_SETS=4 LIST_SETS=2 TRI_SETS=4 WAYS=2 MSHRS=2 NODE_LB=32 LIST_LB=32 TRI_LB=32 L2_SETS=4 L2_WAYS=2 L2_BEAT=16
 module chip #(
   parameter integer RTUS       = 6,
   parameter integer EXP_BITS   = 7,
