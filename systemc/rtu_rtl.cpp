@@ -359,6 +359,19 @@ class RtuRtlRunner {
     fc_.last_retire = std::max(fc_.last_retire, now);
   }
 
+  // A channel's beat (the memory's or the L2's) on rtu.v's pins for it, if it is RTU rtu's.
+  template <class V, class T, class I, class L, class D>
+  static void drive_beat(const Beat& b, uint32_t rtu, uint32_t bytes, V& valid, T& tag, I& idx,
+                         L& last, D& data) {
+    valid = 0;
+    if (!b.valid || b.rtu != rtu) return;
+    valid = static_cast<V>(1u << b.port);
+    tag = static_cast<T>(b.tag);
+    idx = static_cast<I>(b.index);
+    last = static_cast<L>(b.last);
+    vl::set_bytes(data, 0, bytes, b.data.data());
+  }
+
   // One RTU's cycle: its inputs, the evaluation with the clock low (what leaves it is kept in
   // u.out), the edge. Touches only u and reads the cycle's routed beat.
   void eval_unit(Unit& u, Cycle now) {
@@ -372,22 +385,10 @@ class RtuRtlRunner {
     // rtu.v is built with BEAT_REG = 1: its beat pins take the next cycle's beats (routed by
     // membus_if and sent by the L2 in this cycle), registered at this edge as the bus's response
     // registers.
-    m.beat_valid_i = 0;
-    if (beat_next_.valid && beat_next_.rtu == u.index) {
-      m.beat_valid_i = uint8_t(1u << beat_next_.port);
-      m.beat_tag_i = static_cast<std::remove_reference_t<decltype(m.beat_tag_i)>>(beat_next_.tag);
-      m.beat_idx_i = static_cast<std::remove_reference_t<decltype(m.beat_idx_i)>>(beat_next_.index);
-      m.beat_last_i = beat_next_.last;
-      vl::set_bytes(m.beat_data_i, 0, cfg_.mem_bandwidth, beat_next_.data.data());
-    }
-    m.l2_valid_i = 0;
-    if (l2_next_.valid && l2_next_.rtu == u.index) {
-      m.l2_valid_i = uint8_t(1u << l2_next_.port);
-      m.l2_tag_i = static_cast<std::remove_reference_t<decltype(m.l2_tag_i)>>(l2_next_.tag);
-      m.l2_idx_i = static_cast<std::remove_reference_t<decltype(m.l2_idx_i)>>(l2_next_.index);
-      m.l2_last_i = l2_next_.last;
-      vl::set_bytes(m.l2_data_i, 0, cfg_.l2.bandwidth, l2_next_.data.data());
-    }
+    drive_beat(beat_next_, u.index, cfg_.mem_bandwidth, m.beat_valid_i, m.beat_tag_i, m.beat_idx_i,
+               m.beat_last_i, m.beat_data_i);
+    drive_beat(l2_next_, u.index, cfg_.l2.bandwidth, m.l2_valid_i, m.l2_tag_i, m.l2_idx_i,
+               m.l2_last_i, m.l2_data_i);
     m.eval();
     Out& o = u.out;
     o.valid = m.px_valid_o != 0;
