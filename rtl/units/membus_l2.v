@@ -40,6 +40,7 @@
 // earliest cycle; QDEPTH >= the requesters' MSHRs, so it never fills: systemc/membus.cpp checks).
 // now_i is the cycle number (a 32-bit count, compared as a signed difference).
 // lint: also N=6 SETS=8 WAYS=4 LINE_BYTES=32 L2_BEAT=8 BEAT_BYTES=8 DEPTH=4 QDEPTH=16
+// lint: also N=3 SETS=4 WAYS=2 LINE_BYTES=32 L2_BEAT=32 BEAT_BYTES=16 DEPTH=4 QDEPTH=8
 module membus_l2 #(
   parameter integer N          = 3,
   parameter integer ADDR_BITS  = 32,
@@ -103,6 +104,7 @@ module membus_l2 #(
   localparam integer TW     = ADDR_BITS - LSH - SB;          // the tag
   localparam integer RPL    = LINE_BYTES / L2_BEAT;          // data rows per line (>= 1)
   localparam integer RB     = (RPL > 1) ? $clog2(RPL) : 1;
+  localparam integer DB     = (RPL > 1) ? LB + RB : LB;      // a data row's index
   localparam integer SUB    = L2_BEAT / BEAT_BYTES;          // memory beats per row (>= 1)
   localparam integer SUBB   = (SUB > 1) ? $clog2(SUB) : 1;
   localparam integer QB     = $clog2(QDEPTH);
@@ -234,12 +236,12 @@ module membus_l2 #(
   wire [RB-1:0] row = busy_q ? row_q : {RB{1'b0}};
   wire          h_last = (RPL == 1) || (row == LAST_ROW);
   wire          pop  = drive && h_last;
-  wire [LB+RB-1:0] rd_row;
+  wire [DB-1:0] rd_row;
   generate
     if (RPL > 1) begin : g_rows
       assign rd_row = {h_li, row};
     end else begin : g_row1
-      assign rd_row = {h_li, 1'b0};
+      assign rd_row = h_li;
       wire unused_row = ^row;
     end
   endgenerate
@@ -248,7 +250,7 @@ module membus_l2 #(
   // The data array: a memory beat written at its row's offset, a row read per cycle.
   reg [8*L2_BEAT-1:0] data_q [0:SETS*WAYS*RPL-1];
   wire [LB-1:0]     t_li  = t_tag[MTAG-1 -: LB];
-  wire [LB+RB-1:0]  t_row;
+  wire [DB-1:0]     t_row;
   wire [SUBB-1:0]   t_sub;
   generate
     if (RPL > 1 && SUB > 1) begin : g_wr_rs
@@ -258,16 +260,16 @@ module membus_l2 #(
       assign t_row = {t_li, t_beat[RB-1:0]};
       assign t_sub = 1'b0;
     end else if (SUB > 1) begin : g_wr_s
-      assign t_row = {t_li, 1'b0};
+      assign t_row = t_li;
       assign t_sub = t_beat[SUBB-1:0];
     end else begin : g_wr_1
-      assign t_row = {t_li, 1'b0};
+      assign t_row = t_li;
       assign t_sub = 1'b0;
     end
   endgenerate
   wire unused_beat = ^t_beat;
   always @(posedge clk_i) begin
-    if (t_take) data_q[t_row[LB+RB-1:0]][t_sub * (8 * BEAT_BYTES) +: 8 * BEAT_BYTES] <= beat_data_i;
+    if (t_take) data_q[t_row][t_sub * (8 * BEAT_BYTES) +: 8 * BEAT_BYTES] <= beat_data_i;
   end
 
   integer v;
