@@ -583,6 +583,18 @@ inline uint32_t from_float(float x) {
   return from_float_bits<F, R>(f);
 }
 
+// A number of format F as one of the wider format G, exactly: the exponent rebiased, the mantissa
+// shifted left (a zero exponent field stays a zero; the watertight test's shear, hls/ist.h).
+template <class F, class G>
+constexpr uint32_t widen(uint32_t x) {
+  static_assert(G::exp_bits >= F::exp_bits && G::man_bits >= F::man_bits, "widen: G must be wider");
+  const uint32_t sign = (x & F::sign_mask) ? G::sign_mask : 0u;
+  const uint32_t e = (x & F::exp_mask) >> F::man_bits;
+  if (e == 0) return sign;
+  return sign | ((e - uint32_t(F::bias) + uint32_t(G::bias)) << G::man_bits) |
+         ((x & F::man_mask) << (G::man_bits - F::man_bits));
+}
+
 // To binary64: exact for every format here (E <= 11, M <= 31).
 template <class F>
 constexpr uint64_t to_double_bits(uint32_t a) {

@@ -110,16 +110,6 @@ inline IstOut ist_wald(uint32_t k, const uint32_t c[9], const uint32_t o[3], con
 template <class F>
 using ShearFormat = typename std::conditional<(F::man_bits < 23), Format<8, 23>, F>::type;
 constexpr Rounding shear_rounding(Rounding r) { return r == Rounding::raycore ? Rounding::rtz : r; }
-// A number of format F as one of the wider format G, exactly (a zero exponent field stays a zero).
-template <class F, class G>
-constexpr uint32_t widen(uint32_t x) {
-  static_assert(G::exp_bits >= F::exp_bits && G::man_bits >= F::man_bits, "widen: G must be wider");
-  const uint32_t sign = (x & F::sign_mask) ? G::sign_mask : 0u;
-  const uint32_t e = (x & F::exp_mask) >> F::man_bits;
-  if (e == 0) return sign;
-  return sign | ((e - uint32_t(F::bias) + uint32_t(G::bias)) << G::man_bits) |
-         ((x & F::man_mask) << (G::man_bits - F::man_bits));
-}
 
 template <class A>
 inline IstOut ist_watertight(uint32_t k, const uint32_t c[12], const uint32_t o[3], const uint32_t d[3],

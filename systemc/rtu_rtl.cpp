@@ -89,7 +89,8 @@ class RtuRtlRunner {
       configure(u.m, k, vtu_cam, hit);
       vl::async_reset(u.m, 1);  // the edge in the reset loads rtu.v's frame registers
     }
-    bus_.bind_rtl(std::move(r), uint64_t(cfg.rtus) * 3 * cfg.node_cache.mshrs);
+    bus_.bind_rtl(std::move(r), uint64_t(cfg.rtus) * (cfg.node_cache.mshrs + cfg.list_cache.mshrs +
+                                                      cfg.tri_cache.mshrs));  // as top.h's
     cos_.assign(fc.frame->px.size(), 0.0);
   }
   ~RtuRtlRunner() {

@@ -138,6 +138,18 @@ TEST_P(Fp24Exhaustive, Conversions) {
 }
 INSTANTIATE_TEST_SUITE_P(Fp, Fp24Exhaustive, testing::Range(0, kShards));
 
+// hls::widen (the watertight test's shear inputs): every FP24 pattern as FP32 is the exact
+// conversion through binary64 (both exact: FP32 holds every FP24 number), zeros with their sign.
+TEST(Widen, Fp24ToFp32EveryPattern) {
+  uint32_t bad = 0, first = 0;
+  for (uint32_t x = 0; x < (1u << 24); ++x) {
+    const uint32_t w = hls::widen<hls::FP24, hls::FP32>(x);
+    const uint32_t r = hls::from_double_bits<hls::FP32, Rounding::rtz>(hls::to_double_bits<hls::FP24>(x));
+    if (w != r && bad++ == 0) first = x;
+  }
+  EXPECT_EQ(bad, 0u) << "first at " << std::hex << first;
+}
+
 // FP32: random patterns (uniform bits and structured ones), the same checks without float points.
 TEST(Fp32Conversions, RandomPatterns) {
   using F = hls::FP32;

@@ -17,17 +17,20 @@ shift 2
 [ $# -gt 0 ] || set -- corridor --width 20 --height 12 --vtu off
 mkdir -p "$work"
 frame=("$@" --rtus 1 --no-reference)
+# The memory's and the L2's timing for tb_chip.v, from the options (`--opt value` or `--opt=value`;
+# raycore's --rtl rtu run below refuses what no built model runs, before they are used).
 lat=100 l2kb=256 l2ways=8 l2lat=20
 for ((i = 1; i <= $#; i++)); do
   j=$((i + 1))
-  case "${!i}" in
-    --mem-latency) lat=${!j} ;;
-    --l2-kb) l2kb=${!j} ;;
-    --l2-ways) l2ways=${!j} ;;
-    --l2-latency) l2lat=${!j} ;;
+  opt=${!i} val=${!j:-}
+  [[ "$opt" == --*=* ]] && { val=${opt#*=}; opt=${opt%%=*}; }
+  case "$opt" in
+    --mem-latency) lat=$val ;;
+    --l2-kb) l2kb=$val ;;
+    --l2-ways) l2ways=$val ;;
+    --l2-latency) l2lat=$val ;;
   esac
 done
-l2sets=$((l2kb * 1024 / (l2ways * 64)))
 
 cycles_of() { sed -n 's/^hardware *\([0-9]*\) cycles.*/\1/p' "$1"; }
 RAYCORE_CHIP_DUMP="$work/frame" "$raycore" simulate "${frame[@]}" --rtl rtu > "$work/rtu.log"
@@ -36,6 +39,7 @@ model=$(cycles_of "$work/model.log")
 rtu=$(cycles_of "$work/rtu.log")
 grep -q '^golden *match' "$work/rtu.log" || { echo "run_chip: --rtl rtu frame is not golden" >&2; exit 1; }
 img=$(wc -l < "$work/frame.img")
+l2sets=$((l2kb * 1024 / (l2ways * 64)))  # accepted by --rtl rtu: the default or the 1 KB L2, or none
 
 # chip.v's sources, as rtl/units/rtu.cmake lists them (written at configure time beside raycore's build).
 list=$(dirname "$raycore")/../rtl/chip_sources.txt
