@@ -35,9 +35,9 @@ SRAM_BIT_NAND2=0.5  # NAND2 eq. per single-port SRAM bit (as sim/sweep/throughpu
 CACHE_P="-set WAYS 4 -set LINE_BYTES 64 -set MSHRS 8 -set HIT_LATENCY 0 -set LINE_W 26 -set TAG_BITS 7"
 UNITS=(
   "vtu|vtu|1|fmt|-set STAGES 2 -set TAG_BITS 8"
-  "ist|ist|2|fmt|-set STAGES 2 -set TAG_BITS 7"
+  "ist|ist|2|fmt|-set STAGES 2 -set TAG_BITS 1 -set FREE 1"
   "trv_unit|trv_unit|1|fmt|-set SLOT_BITS 7 -set DEPTH 64 -set PIPES 4 -set IST 2 -set WORDS 16"
-  "hit|hit|1|fmt|-set STAGES 2 -set TAG_BITS 7"
+  "hit|hit|1|fmt|-set STAGES 2 -set TAG_BITS 9 -set FREE 1"
   "rgu|rgu|1|fmt|-set STAGES 2"
   "ascache node|ascache|1|-|-set SETS 64 -set PORTS 4 $CACHE_P"
   "ascache list|ascache|1|-|-set SETS 32 -set PORTS 4 $CACHE_P"
@@ -81,8 +81,11 @@ run_unit() {
 }
 
 # The whole RTU and its fill path (rtu.v's defaults: the cycle model's; vtu_unit at the RTU's).
+# "spawn none": the hit unit built for the default --spawn alone (hit.v's SPAWNS 1; rtu.v's default
+# SPAWNS 127 builds all seven strategies, as `--rtl rtu` runs it).
 WHOLE=(
   "rtu whole|rtu|1|fmt|"
+  "rtu whole, spawn none|rtu|1|fmt|-set SPAWNS 1"
   "vtu_unit|vtu_unit|1|fmt|-set STAGES 2 -set MSHRS 8"
 )
 WHOLE_TIMEOUT=${RAYCORE_AREA_WHOLE_TIMEOUT:-7200}
@@ -125,9 +128,10 @@ section() {
   echo "  with the glue between the units: slot_ram, vtu_unit, the trv's slot read ports, the cache"
   echo "  responses' alignment) follows below the tables. Not counted anywhere: the L2 shared by the"
   echo "  RTUs (256 KB by default, no RTL) and the chip's membus_if (its row: once per chip)."
-  echo "- Parameters: vtu TAG_BITS 8 (cache port 2 + MSHR 3 + record in the line 3 bits); ist and hit"
-  echo "  TAG_BITS 7 (a ray slot, or an index of the <= 20 tests in flight per ist; the modules' default"
-  echo "  16 is the cycle model's free-running pin tag); trv_unit 2^7 = 128 slots (the model's 96 ray"
+  echo "- Parameters: vtu TAG_BITS 8 (cache port 2 + MSHR 3 + record in the line 3 bits); ist as in"
+  echo "  ist_unit (TAG_BITS 1: the side data travel beside it in one fp_delay memory; FREE 1: its"
+  echo "  carries in fp_delay memories, ist_unit never holding a result back), hit as in hit_unit"
+  echo "  (TAG_BITS 9 = slot 7 + 2, FREE 1, all seven spawn strategies); trv_unit 2^7 = 128 slots (the model's 96 ray"
   echo "  slots rounded up: the RTL has 2^SLOT_BITS), 64 stack entries, 4 pipes, IST 2 results per cycle"
   echo "  (ist_units; the frame's Verilated trv_unit, rtl/units/trv_unit.cmake, takes IST 4 to run with"
   echo "  up to 4 ist units), 16 list words per read; caches 4 ways, 64 B lines, 8 MSHRs, HIT_LATENCY 0"
@@ -223,7 +227,7 @@ whole_section() {
     echo
     echo "| design | cells | FFs | NAND2 eq. | depth | SRAM bits | SRAM NAND2 eq. | yosys s |"
     echo "|---|---:|---:|---:|---:|---:|---:|---:|"
-    for v in "rtu whole" vtu_unit vtu; do
+    for v in "rtu whole" "rtu whole, spawn none" vtu_unit vtu; do
       k="$v|$mode"
       if [ "${R[$k|status]:-}" != ok ]; then
         echo "| $v | did not finish in $((WHOLE_TIMEOUT / 60)) min | | | | | | ${R[$k|secs]:-} |"
@@ -234,9 +238,10 @@ whole_section() {
           'BEGIN { printf "| %s | %d | %d | %d | %s | %d | %.0f | %d |\n", n, c, f, g, (d > 0 ? d : "-"), s, sp * b, t }'
     done
     echo
-    k="rtu whole|$mode"
-    if [ -n "${R[$k|parts]:-}" ]; then
-      echo "rtu.v whole by instance (each instance's subtree in the same synthesis; glue: rtu.v's own"
+    for v in "rtu whole" "rtu whole, spawn none"; do
+      k="$v|$mode"
+      [ -n "${R[$k|parts]:-}" ] || continue
+      echo "$v by instance (each instance's subtree in the same synthesis; glue: rtu.v's own"
       echo "logic: the trv's cache responses aligned to the byte read, the hand-offs, the counter mux):"
       echo
       echo "| instance | cells | FFs | NAND2 eq. | share of the RTU's logic |"
@@ -244,7 +249,8 @@ whole_section() {
       awk -v tot="${R[$k|ge]}" '{ printf "| %s | %d | %d | %d | %.1f%% |\n", $1, $3, $4, $5, 100 * $5 / tot }' \
         <<< "${R[$k|parts]}" | sort -t'|' -k5,5nr
       echo
-    fi
+    done
+    k="rtu whole|$mode"
     if [ "${R[$k|status]:-}" = ok ] && [ "${R[vtu|$mode|status]:-}" = ok ] &&
        [ "${R[vtu_unit|$mode|status]:-}" = ok ]; then
       awk -v r="${R[$k|ge]}" -v rs="${R[$k|ported]}" -v rs1="${R[$k|sram]}" -v v="${R[vtu|$mode|ge]}" \

@@ -122,6 +122,39 @@ LEVELS = [
     ], []),
 ]
 
+# The spawn strategies that need a value (hls::Spawn: 0 none, 1 skip-origin, 2 ulp-offset,
+# 3 error-bound, 4 skip-offset, 5 skip-slab, 6 skip-back), as a 7-bit mask; a value not named
+# here is needed by every strategy. hit.v's parameter SPAWNS (the mask of strategies the unit
+# supports) keeps an operator and a carry only if a supported strategy needs it: the rest is not
+# built (generate), its wires read zero, and an unsupported strategy_i acts as none. An operator
+# may read a value of fewer strategies only where the expression selects it by that strategy
+# (ma_*: s_eb ? delta : fixed_i), as the check below allows.
+EB, ULPEB, ULP, SLAB, SKIP = 0b0001000, 0b0011100, 0b0010100, 0b1100000, 0b1110010
+CLASS = {}
+for n in ("t", "at", "and", "nu", "nv", "ok", "ou", "ov", "dk", "du", "dv", "nuou", "nvov",
+          "nudu", "nvdv", "tden", "ndok", "e_num", "e_den", "s_x", "s_y", "s_z", "ndhk", "m_x",
+          "m_y", "m_z", "nuhu", "nvhv", "c5num", "ated", "c2tden", "x_x", "x_y", "x_z", "c3ted",
+          "em1", "e_snum", "b1", "eh1", "em", "c5snum", "eh", "snmv", "c2hit", "b2", "ub", "delta"):
+    CLASS[n] = EB
+for n in ("sn_x", "sn_y", "sn_z", "ma_x", "ma_y", "ma_z", "oa_x", "oa_y", "oa_z"):
+    CLASS[n] = ULPEB
+for n in ("ps_x", "ps_y", "ps_z", "q_x", "q_y", "q_z"):
+    CLASS[n] = ULP
+for n in ("slab", "dmax", "rd", "t0"):
+    CLASS[n] = SLAB
+CLASS["id"] = SKIP
+ALL = 0b1111111
+CLS_NAME = {EB: "eb", ULPEB: "ulpeb", ULP: "ulp", SLAB: "slab", SKIP: "skip"}
+
+
+def cls_name(c):
+    return CLS_NAME.get(c, f"s{c}")
+
+
+def cls(n):
+    return CLASS.get(n, ALL)
+
+
 # Values available at the input (level 0) and their widths (default W).
 INPUTS = {"tag": "TAG_BITS", "id": "32", "k": "2", "th": W, "t": W, "at": W, "and": W, "den": W,
           "nu": W, "nv": W, "n_x": W, "n_y": W, "n_z": W, "o_x": W, "o_y": W, "o_z": W,
@@ -164,12 +197,16 @@ def refs(expr):
     return re.findall(r"\{([a-z_0-9]+)\}", expr)
 
 
-def need(name, at):
+reads = {}  # value -> [(level at whose output it is read, the strategies of the reader)]
+
+
+def need(name, at, by=ALL):
     if name not in produced:
         raise SystemExit(f"unknown value {name}")
     if at < produced[name]:
         raise SystemExit(f"{name} used at {at} before it is produced at {produced[name]}")
     last[name] = max(last.get(name, 0), at)
+    reads.setdefault(name, []).append((at, by & cls(name)))
 
 
 for li, (_, groups, posts) in enumerate(LEVELS, 1):
@@ -178,14 +215,34 @@ for li, (_, groups, posts) in enumerate(LEVELS, 1):
             for e in it[1:]:
                 if e:
                     for n in refs(e):
-                        need(n, li - 1)
+                        need(n, li - 1, cls(it[0]))
     for name, w, e in posts:
         for n in refs(e):
-            need(n, li)
+            need(n, li, cls(name))
 for _, e in OUTPUTS:
     for n in refs(e):
         need(n, NL)
 need("front", NL)
+
+
+def carry_cls(n, lvl):
+    """The strategies that need value n carried through level lvl (its reads at lvl or later)."""
+    c = 0
+    for at_, by in reads.get(n, []):
+        if at_ >= lvl:
+            c |= by
+    return c
+
+# Every value an operator or wire reads is built whenever the operator is (or, for a value of
+# fewer strategies, shares one with it: the expression selects it by that strategy).
+for li, (_, groups, posts) in enumerate(LEVELS, 1):
+    items = [it for _, its in groups for it in its] + [(nm, e) for nm, _, e in posts]
+    for it in items:
+        for e in it[1:]:
+            if e and isinstance(e, str):
+                for n in refs(e):
+                    if cls(it[0]) & cls(n) == 0:
+                        raise SystemExit(f"{it[0]} reads {n}, built for no strategy of its own")
 
 
 def at(name, lvl):
@@ -227,43 +284,77 @@ for li, (wt, _, _) in enumerate(LEVELS, 1):
     hi = f"(R * {q}) / {QT}"
     w(f"  localparam integer S{li} = {hi} - {lo};  // weight {wt}")
 w("")
+def use(c):
+    """The generate condition of a class of strategies."""
+    return f"(SPAWNS & {c}) != 0"
+
+
 for li, (_, groups, posts) in enumerate(LEVELS, 1):
     stg = f"S{li}"
     w(f"  // ---- sublevel {li} " + "-" * 78)
     cs = carried(li)
-    cw = " + ".join(width[n] for n in cs)
+    base = [n for n in cs if carry_cls(n, li) == ALL]
+    if not base:
+        raise SystemExit(f"sublevel {li} carries nothing for every strategy (its handshake)")
+    cw = " + ".join(width[n] for n in base)
     w(f"  localparam integer C{li}_W = {cw};")
     for n in cs:
         w(f"  wire [{width[n]}-1:0] {at(n, li)};")
-    w(f"  fp_pipe #(.WIDTH(C{li}_W), .STAGES({stg})) u_c{li} (")
+    w(f"  fp_delay #(.WIDTH(C{li}_W), .STAGES({stg}), .FREE(FREE)) u_c{li} (")
     w(f"    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[{li-1}]), .in_ready_o(r[{li}]),")
-    w(f"    .in_data_i({{{', '.join(at(n, li - 1) for n in cs)}}}),")
+    w(f"    .in_data_i({{{', '.join(at(n, li - 1) for n in base)}}}),")
     w(f"    .out_valid_o(v[{li}]), .out_ready_i(r[{li+1}]),")
-    w(f"    .out_data_o({{{', '.join(at(n, li) for n in cs)}}}));")
-    for gi, (op, items) in enumerate(groups):
-        g = f"g{li}_{op}"
-        n = len(items)
-        a = [sub(it[1], li - 1) for it in items]
-        b = [sub(it[2], li - 1) if len(it) > 2 and it[2] else Z for it in items]
-        c = [sub(it[3], li - 1) if len(it) > 3 and it[3] else Z for it in items]
-        s = [sub(it[4], li - 1) if len(it) > 4 and it[4] else ("1'b1" if op == "sub" else "1'b0")
-             for it in items]
-        if op == "rcp":  # 1 / x: spawn_ops' divider takes (ONE, x); raycore's table takes x
-            b = a
-            a = ["ONE"] * n
-        w(f"  wire [{n}*W-1:0] {g}_res;")
-        w(f"  wire {g}_ur, {g}_uv;")
-        unused += [f"{g}_ur", f"{g}_uv"]
-        w(f"  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES({stg}),")
-        w(f"              .OP({OPCODE[op]}), .N({n})) u_{g} (")
-        w(f"    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[{li-1}]), .in_ready_o({g}_ur),")
-        rev = lambda xs: "{" + ", ".join(reversed(xs)) + "}"
-        w(f"    .in_a_i({rev(a)}),")
-        w(f"    .in_b_i({rev(b)}),")
-        w(f"    .in_c_i({rev(c)}), .in_sub_i({rev(s)}),")
-        w(f"    .out_valid_o({g}_uv), .out_ready_i(r[{li+1}]), .out_res_o({g}_res));")
-        for i, it in enumerate(items):
-            w(f"  wire [W-1:0] {it[0]} = {g}_res[{i}*W +: W];")
+    w(f"    .out_data_o({{{', '.join(at(n, li) for n in base)}}}));")
+    # The carries of fewer strategies: one fp_pipe per class, built if the class is supported.
+    for c in sorted({carry_cls(n, li) for n in cs} - {ALL}):
+        part = [n for n in cs if carry_cls(n, li) == c]
+        nm = f"c{li}_{cls_name(c)}"
+        w(f"  wire {nm}_ur, {nm}_uv;")
+        unused += [f"{nm}_ur", f"{nm}_uv"]
+        w(f"  generate if ({use(c)}) begin : g_{nm}")
+        w(f"    fp_delay #(.WIDTH({' + '.join(width[n] for n in part)}), .STAGES({stg}), .FREE(FREE)) u_{nm} (")
+        w(f"      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[{li-1}]), .in_ready_o({nm}_ur),")
+        w(f"      .in_data_i({{{', '.join(at(n, li - 1) for n in part)}}}),")
+        w(f"      .out_valid_o({nm}_uv), .out_ready_i(r[{li+1}]),")
+        w(f"      .out_data_o({{{', '.join(at(n, li) for n in part)}}}));")
+        w(f"  end else begin : g_{nm}_none")
+        zw = " + ".join(["2"] + [width[n] for n in part])
+        w(f"    assign {{{nm}_ur, {nm}_uv, {', '.join(at(n, li) for n in part)}}} = {{({zw}){{1'b0}}}};")
+        w("  end endgenerate")
+    for gi, (op, all_items) in enumerate(groups):
+        for c in sorted({cls(it[0]) for it in all_items}, reverse=True):
+            items = [it for it in all_items if cls(it[0]) == c]
+            g = f"g{li}_{op}" + (f"_{cls_name(c)}" if c != ALL else "")
+            n = len(items)
+            a = [sub(it[1], li - 1) for it in items]
+            b = [sub(it[2], li - 1) if len(it) > 2 and it[2] else Z for it in items]
+            c3 = [sub(it[3], li - 1) if len(it) > 3 and it[3] else Z for it in items]
+            s = [sub(it[4], li - 1) if len(it) > 4 and it[4] else ("1'b1" if op == "sub" else "1'b0")
+                 for it in items]
+            if op == "rcp":  # 1 / x: spawn_ops' divider takes (ONE, x); raycore's table takes x
+                b = a
+                a = ["ONE"] * n
+            w(f"  wire [{n}*W-1:0] {g}_res;")
+            w(f"  wire {g}_ur, {g}_uv;")
+            unused += [f"{g}_ur", f"{g}_uv"]
+            ind = "  "
+            if c != ALL:
+                w(f"  generate if ({use(c)}) begin : u_{g}_on")
+                ind = "    "
+            w(f"{ind}spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES({stg}),")
+            w(f"{ind}            .OP({OPCODE[op]}), .N({n})) u_{g} (")
+            w(f"{ind}  .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[{li-1}]), .in_ready_o({g}_ur),")
+            rev = lambda xs: "{" + ", ".join(reversed(xs)) + "}"
+            w(f"{ind}  .in_a_i({rev(a)}),")
+            w(f"{ind}  .in_b_i({rev(b)}),")
+            w(f"{ind}  .in_c_i({rev(c3)}), .in_sub_i({rev(s)}),")
+            w(f"{ind}  .out_valid_o({g}_uv), .out_ready_i(r[{li+1}]), .out_res_o({g}_res));")
+            if c != ALL:
+                w(f"  end else begin : u_{g}_off")
+                w(f"    assign {{{g}_ur, {g}_uv, {g}_res}} = {{(2 + {n} * W){{1'b0}}}};")
+                w("  end endgenerate")
+            for i, it in enumerate(items):
+                w(f"  wire [W-1:0] {it[0]} = {g}_res[{i}*W +: W];")
     for name, wd, e in posts:
         w(f"  wire [{wd}-1:0] {name} = {sub(e, li)};")
     w("")
@@ -274,6 +365,13 @@ w(f"  wire spawn12 = {at('front', NL)} | all_i;  // a shadow ray: light in front
 for o, e in OUTPUTS:
     w(f"  assign {o} = {sub(e, NL)};")
 w("")
+# Values of fewer strategies, read by nothing where their strategies are not built.
+part = [at(n, l) for n in produced
+        for l in range(produced[n], max(last.get(n, produced[n]), produced[n]) + 1)
+        if cls(n) != ALL or carry_cls(n, l) != ALL]
+w("  wire unused_spawns;")
+w("  assign unused_spawns = ^{" + ", ".join(part + ["strategy_i", "scale_i", "fixed_i", "slab_scale_i",
+                                                  "back_i", "bk_m", "bk_u"]) + "};")
 w("  wire unused_hs;")
 w("  assign unused_hs = ^{" + ", ".join(unused) + "};")
 w("")

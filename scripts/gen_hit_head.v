@@ -5,8 +5,11 @@
 // Bit-exact twin of hls::hit_shadow_regs (hls/hit.h; SystemC twin systemc/pins/hit.h): the same
 // operations in the same order, each rounded once by the rtl/fp operators, so every output equals
 // the C++ reference's for every input, for every strategy, both shadow-ray forms and
-// --shadow-spawn front|all. In hardware every strategy's arithmetic is computed for every ray;
-// the per-frame registers select what is put out:
+// --shadow-spawn front|all. In hardware every built strategy's arithmetic is computed for every
+// ray; the per-frame registers select what is put out. SPAWNS (a mask, bit s = hls::Spawn s)
+// chooses the strategies built: the operators and carries only others need are left out
+// (scripts/gen_hit.py's CLASS), and a strategy not built acts as none (127, the default: all;
+// 1: none alone, FP24 rtz STAGES 2 about half the area, docs/area.md).
 //   strategy_i  hls::Spawn: 0 none, 1 skip-origin, 2 ulp-offset, 3 error-bound, 4 skip-offset,
 //               5 skip-slab, 6 skip-back (7: as none)
 //   segment_i   shadow direction light - h, t in (tmin, 1) (else the unit direction, t in
@@ -41,7 +44,14 @@
 //
 // Handshake: valid/ready as every rtl/fp operator; the operators of a sublevel share in_valid and
 // out_ready and have the same depth, so the sublevel's carry fp_pipe stands for all of them (as
-// ist.v); in_ready_o depends combinationally on out_ready_i.
+// ist.v); in_ready_o depends combinationally on out_ready_i. FREE = 1 (hit_unit, which never
+// holds a result back): the carries' data in fp_delay memories instead of a register per stage.
+// lint: also FREE=1
+// lint: also FREE=1 SPAWNS=1
+// lint: also SPAWNS=1
+// lint: also SPAWNS=64
+// lint: also SPAWNS=8
+// lint: also SPAWNS=52
 module hit #(
   parameter integer EXP_BITS = 7,
   parameter integer MAN_BITS = 16,
@@ -49,7 +59,9 @@ module hit #(
   parameter integer RAYCORE  = 0,   // rounding mode raycore (hls Rounding::raycore; RNE ignored)
   parameter integer STAGES   = 2,
   parameter integer IN_REGS  = 0,   // <= @LPS@ x STAGES
-  parameter integer TAG_BITS = 16
+  parameter integer TAG_BITS = 16,
+  parameter integer SPAWNS   = 127, // the strategies built (bit s: hls::Spawn s; 127: all seven)
+  parameter integer FREE     = 0    // 1: out_ready_i is 1 whenever out_valid_o (fp_delay's FREE)
 ) (
   input  wire                       clk_i,
   input  wire                       rst_ni,
@@ -225,11 +237,13 @@ module hit #(
   endfunction
 
   // ---- per-frame strategy decode ------------------------------------------------------------------
-  wire s_eb   = strategy_i == 3'd3;
-  wire s_ulp  = strategy_i == 3'd2 || strategy_i == 3'd4;
-  wire s_slab = strategy_i == 3'd5 || strategy_i == 3'd6;
-  wire s_skip = strategy_i == 3'd1 || strategy_i == 3'd4 || s_slab;
-  wire s_back = strategy_i == 3'd6;
+  // A strategy not in SPAWNS acts as none (its operators are not built).
+  localparam [6:0] SP = SPAWNS[6:0];
+  wire s_eb   = SP[3] && strategy_i == 3'd3;
+  wire s_ulp  = (SP[2] && strategy_i == 3'd2) || (SP[4] && strategy_i == 3'd4);
+  wire s_slab = (SP[5] && strategy_i == 3'd5) || (SP[6] && strategy_i == 3'd6);
+  wire s_skip = (SP[1] && strategy_i == 3'd1) || (SP[4] && strategy_i == 3'd4) || s_slab;
+  wire s_back = SP[6] && strategy_i == 3'd6;
 
   // ---- level 0: the inputs as the levels read them (operand muxes, skip-back's t) ------------
   wire [TAG_BITS-1:0] tag_0 = in_tag_i;
@@ -241,8 +255,12 @@ module hit #(
   // m = |t|'s bits + (back_i ^ s) + s, s = t's sign, with back_i sign-extended.
   wire [35:0] bk_u = {{4{back_i[31]}}, back_i} ^ {36{in_t_i[W-1]}};
   wire [35:0] bk_m;
-  fp_padd #(.WIDTH(36)) u_back (
-    .a_i({{(36-(W-1)){1'b0}}, in_t_i[W-2:0]}), .b_i(bk_u), .ci_i(in_t_i[W-1]), .sum_o(bk_m));
+  generate if (SP[6]) begin : g_back
+    fp_padd #(.WIDTH(36)) u_back (
+      .a_i({{(36-(W-1)){1'b0}}, in_t_i[W-2:0]}), .b_i(bk_u), .ci_i(in_t_i[W-1]), .sum_o(bk_m));
+  end else begin : g_back_none
+    assign bk_m = 36'd0;
+  end endgenerate
   wire [W-1:0] th_0  = s_back ? ulps_clamp(in_t_i[W-1], bk_m) : in_t_i;
   wire [W-1:0] t_0   = in_t_i;
   wire [W-1:0] at_0  = fabs(in_t_i);

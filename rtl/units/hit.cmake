@@ -10,3 +10,12 @@ raycore_rtl_library(raycore_rtl_hit hit SOURCES ${RAYCORE_RTL_HIT_SOURCES} VARIA
   "hit FP24 rne 1"
   "hit FP32 rne 3"
   "hit FP24 raycore 2")
+# hit.v built for fewer spawn strategies (SPAWNS, the mask of hls::Spawn values it supports): the
+# others' operators and carries are not built and their strategy_i acts as none. SPAWNS 1 (none,
+# the cycle model's default strategy) is what `make area-rtu` synthesises as the RTU at the
+# defaults; test_rtl_hit runs it against hls::hit_shadow_regs as the full variants, built FREE = 1
+# as hit_unit builds it (the carries in fp_delay memories; no back-pressure in its runs).
+# rtl_hit_spawns_variants.h: RAYCORE_RTL_HIT_SPAWNS_VARIANT(prefix, spawns, free).
+raycore_rtl_library(raycore_rtl_hit_spawns hit_spawns SOURCES ${RAYCORE_RTL_HIT_SOURCES}
+  TOP hit PARAMS SPAWNS FREE FIXED STAGES=2 TAG_BITS=16
+  PREFIX "Vhit_fp24_rtz_s2_spawns@SPAWNS@_free@FREE@" VARIANTS "1 1")

@@ -5,8 +5,11 @@
 // Bit-exact twin of hls::hit_shadow_regs (hls/hit.h; SystemC twin systemc/pins/hit.h): the same
 // operations in the same order, each rounded once by the rtl/fp operators, so every output equals
 // the C++ reference's for every input, for every strategy, both shadow-ray forms and
-// --shadow-spawn front|all. In hardware every strategy's arithmetic is computed for every ray;
-// the per-frame registers select what is put out:
+// --shadow-spawn front|all. In hardware every built strategy's arithmetic is computed for every
+// ray; the per-frame registers select what is put out. SPAWNS (a mask, bit s = hls::Spawn s)
+// chooses the strategies built: the operators and carries only others need are left out
+// (scripts/gen_hit.py's CLASS), and a strategy not built acts as none (127, the default: all;
+// 1: none alone, FP24 rtz STAGES 2 about half the area, docs/area.md).
 //   strategy_i  hls::Spawn: 0 none, 1 skip-origin, 2 ulp-offset, 3 error-bound, 4 skip-offset,
 //               5 skip-slab, 6 skip-back (7: as none)
 //   segment_i   shadow direction light - h, t in (tmin, 1) (else the unit direction, t in
@@ -41,7 +44,14 @@
 //
 // Handshake: valid/ready as every rtl/fp operator; the operators of a sublevel share in_valid and
 // out_ready and have the same depth, so the sublevel's carry fp_pipe stands for all of them (as
-// ist.v); in_ready_o depends combinationally on out_ready_i.
+// ist.v); in_ready_o depends combinationally on out_ready_i. FREE = 1 (hit_unit, which never
+// holds a result back): the carries' data in fp_delay memories instead of a register per stage.
+// lint: also FREE=1
+// lint: also FREE=1 SPAWNS=1
+// lint: also SPAWNS=1
+// lint: also SPAWNS=64
+// lint: also SPAWNS=8
+// lint: also SPAWNS=52
 module hit #(
   parameter integer EXP_BITS = 7,
   parameter integer MAN_BITS = 16,
@@ -49,7 +59,9 @@ module hit #(
   parameter integer RAYCORE  = 0,   // rounding mode raycore (hls Rounding::raycore; RNE ignored)
   parameter integer STAGES   = 2,
   parameter integer IN_REGS  = 0,   // <= 24 x STAGES
-  parameter integer TAG_BITS = 16
+  parameter integer TAG_BITS = 16,
+  parameter integer SPAWNS   = 127, // the strategies built (bit s: hls::Spawn s; 127: all seven)
+  parameter integer FREE     = 0    // 1: out_ready_i is 1 whenever out_valid_o (fp_delay's FREE)
 ) (
   input  wire                       clk_i,
   input  wire                       rst_ni,
@@ -225,11 +237,13 @@ module hit #(
   endfunction
 
   // ---- per-frame strategy decode ------------------------------------------------------------------
-  wire s_eb   = strategy_i == 3'd3;
-  wire s_ulp  = strategy_i == 3'd2 || strategy_i == 3'd4;
-  wire s_slab = strategy_i == 3'd5 || strategy_i == 3'd6;
-  wire s_skip = strategy_i == 3'd1 || strategy_i == 3'd4 || s_slab;
-  wire s_back = strategy_i == 3'd6;
+  // A strategy not in SPAWNS acts as none (its operators are not built).
+  localparam [6:0] SP = SPAWNS[6:0];
+  wire s_eb   = SP[3] && strategy_i == 3'd3;
+  wire s_ulp  = (SP[2] && strategy_i == 3'd2) || (SP[4] && strategy_i == 3'd4);
+  wire s_slab = (SP[5] && strategy_i == 3'd5) || (SP[6] && strategy_i == 3'd6);
+  wire s_skip = (SP[1] && strategy_i == 3'd1) || (SP[4] && strategy_i == 3'd4) || s_slab;
+  wire s_back = SP[6] && strategy_i == 3'd6;
 
   // ---- level 0: the inputs as the levels read them (operand muxes, skip-back's t) ------------
   wire [TAG_BITS-1:0] tag_0 = in_tag_i;
@@ -241,8 +255,12 @@ module hit #(
   // m = |t|'s bits + (back_i ^ s) + s, s = t's sign, with back_i sign-extended.
   wire [35:0] bk_u = {{4{back_i[31]}}, back_i} ^ {36{in_t_i[W-1]}};
   wire [35:0] bk_m;
-  fp_padd #(.WIDTH(36)) u_back (
-    .a_i({{(36-(W-1)){1'b0}}, in_t_i[W-2:0]}), .b_i(bk_u), .ci_i(in_t_i[W-1]), .sum_o(bk_m));
+  generate if (SP[6]) begin : g_back
+    fp_padd #(.WIDTH(36)) u_back (
+      .a_i({{(36-(W-1)){1'b0}}, in_t_i[W-2:0]}), .b_i(bk_u), .ci_i(in_t_i[W-1]), .sum_o(bk_m));
+  end else begin : g_back_none
+    assign bk_m = 36'd0;
+  end endgenerate
   wire [W-1:0] th_0  = s_back ? ulps_clamp(in_t_i[W-1], bk_m) : in_t_i;
   wire [W-1:0] t_0   = in_t_i;
   wire [W-1:0] at_0  = fabs(in_t_i);
@@ -280,7 +298,7 @@ module hit #(
   localparam integer S12 = (R * 47) / 47 - (R * 46) / 47;  // weight 1
 
   // ---- sublevel 1 ------------------------------------------------------------------------------
-  localparam integer C1_W = TAG_BITS + 32 + 2 + W + W + W + W + W + W + W + W + W + W;
+  localparam integer C1_W = TAG_BITS + 2 + W + W + W + W + W + W + W;
   wire [TAG_BITS-1:0] tag_c1;
   wire [32-1:0] id_c1;
   wire [2-1:0] k_c1;
@@ -294,41 +312,78 @@ module hit #(
   wire [W-1:0] o_y_c1;
   wire [W-1:0] o_z_c1;
   wire [W-1:0] dk_c1;
-  fp_pipe #(.WIDTH(C1_W), .STAGES(S1)) u_c1 (
+  fp_delay #(.WIDTH(C1_W), .STAGES(S1), .FREE(FREE)) u_c1 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(r[1]),
-    .in_data_i({tag_0, id_0, k_0, at_0, and_0, den_0, n_x_0, n_y_0, n_z_0, o_x_0, o_y_0, o_z_0, dk_0}),
+    .in_data_i({tag_0, k_0, den_0, n_x_0, n_y_0, n_z_0, o_x_0, o_y_0, o_z_0}),
     .out_valid_o(v[1]), .out_ready_i(r[2]),
-    .out_data_o({tag_c1, id_c1, k_c1, at_c1, and_c1, den_c1, n_x_c1, n_y_c1, n_z_c1, o_x_c1, o_y_c1, o_z_c1, dk_c1}));
-  wire [8*W-1:0] g1_mul_res;
+    .out_data_o({tag_c1, k_c1, den_c1, n_x_c1, n_y_c1, n_z_c1, o_x_c1, o_y_c1, o_z_c1}));
+  wire c1_eb_ur, c1_eb_uv;
+  generate if ((SPAWNS & 8) != 0) begin : g_c1_eb
+    fp_delay #(.WIDTH(W + W + W), .STAGES(S1), .FREE(FREE)) u_c1_eb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(c1_eb_ur),
+      .in_data_i({at_0, and_0, dk_0}),
+      .out_valid_o(c1_eb_uv), .out_ready_i(r[2]),
+      .out_data_o({at_c1, and_c1, dk_c1}));
+  end else begin : g_c1_eb_none
+    assign {c1_eb_ur, c1_eb_uv, at_c1, and_c1, dk_c1} = {(2 + W + W + W){1'b0}};
+  end endgenerate
+  wire c1_skip_ur, c1_skip_uv;
+  generate if ((SPAWNS & 114) != 0) begin : g_c1_skip
+    fp_delay #(.WIDTH(32), .STAGES(S1), .FREE(FREE)) u_c1_skip (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(c1_skip_ur),
+      .in_data_i({id_0}),
+      .out_valid_o(c1_skip_uv), .out_ready_i(r[2]),
+      .out_data_o({id_c1}));
+  end else begin : g_c1_skip_none
+    assign {c1_skip_ur, c1_skip_uv, id_c1} = {(2 + 32){1'b0}};
+  end endgenerate
+  wire [3*W-1:0] g1_mul_res;
   wire g1_mul_ur, g1_mul_uv;
   spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1),
-              .OP(0), .N(8)) u_g1_mul (
+              .OP(0), .N(3)) u_g1_mul (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(g1_mul_ur),
-    .in_a_i({t_0, nv_0, nu_0, nv_0, nu_0, th_0, th_0, th_0}),
-    .in_b_i({den_0, dv_0, du_0, ov_0, ou_0, d_z_0, d_y_0, d_x_0}),
-    .in_c_i({{W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}}), .in_sub_i({1'b0, 1'b0, 1'b0, 1'b0, 1'b0, 1'b0, 1'b0, 1'b0}),
+    .in_a_i({th_0, th_0, th_0}),
+    .in_b_i({d_z_0, d_y_0, d_x_0}),
+    .in_c_i({{W{1'b0}}, {W{1'b0}}, {W{1'b0}}}), .in_sub_i({1'b0, 1'b0, 1'b0}),
     .out_valid_o(g1_mul_uv), .out_ready_i(r[2]), .out_res_o(g1_mul_res));
   wire [W-1:0] td_x = g1_mul_res[0*W +: W];
   wire [W-1:0] td_y = g1_mul_res[1*W +: W];
   wire [W-1:0] td_z = g1_mul_res[2*W +: W];
-  wire [W-1:0] nuou = g1_mul_res[3*W +: W];
-  wire [W-1:0] nvov = g1_mul_res[4*W +: W];
-  wire [W-1:0] nudu = g1_mul_res[5*W +: W];
-  wire [W-1:0] nvdv = g1_mul_res[6*W +: W];
-  wire [W-1:0] tden = g1_mul_res[7*W +: W];
-  wire [1*W-1:0] g1_add_res;
-  wire g1_add_ur, g1_add_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1),
-              .OP(1), .N(1)) u_g1_add (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(g1_add_ur),
-    .in_a_i({and_0}),
-    .in_b_i({fabs(ok_0)}),
-    .in_c_i({{W{1'b0}}}), .in_sub_i({1'b0}),
-    .out_valid_o(g1_add_uv), .out_ready_i(r[2]), .out_res_o(g1_add_res));
-  wire [W-1:0] ndok = g1_add_res[0*W +: W];
+  wire [5*W-1:0] g1_mul_eb_res;
+  wire g1_mul_eb_ur, g1_mul_eb_uv;
+  generate if ((SPAWNS & 8) != 0) begin : u_g1_mul_eb_on
+    spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1),
+                .OP(0), .N(5)) u_g1_mul_eb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(g1_mul_eb_ur),
+      .in_a_i({t_0, nv_0, nu_0, nv_0, nu_0}),
+      .in_b_i({den_0, dv_0, du_0, ov_0, ou_0}),
+      .in_c_i({{W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}}), .in_sub_i({1'b0, 1'b0, 1'b0, 1'b0, 1'b0}),
+      .out_valid_o(g1_mul_eb_uv), .out_ready_i(r[2]), .out_res_o(g1_mul_eb_res));
+  end else begin : u_g1_mul_eb_off
+    assign {g1_mul_eb_ur, g1_mul_eb_uv, g1_mul_eb_res} = {(2 + 5 * W){1'b0}};
+  end endgenerate
+  wire [W-1:0] nuou = g1_mul_eb_res[0*W +: W];
+  wire [W-1:0] nvov = g1_mul_eb_res[1*W +: W];
+  wire [W-1:0] nudu = g1_mul_eb_res[2*W +: W];
+  wire [W-1:0] nvdv = g1_mul_eb_res[3*W +: W];
+  wire [W-1:0] tden = g1_mul_eb_res[4*W +: W];
+  wire [1*W-1:0] g1_add_eb_res;
+  wire g1_add_eb_ur, g1_add_eb_uv;
+  generate if ((SPAWNS & 8) != 0) begin : u_g1_add_eb_on
+    spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1),
+                .OP(1), .N(1)) u_g1_add_eb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(g1_add_eb_ur),
+      .in_a_i({and_0}),
+      .in_b_i({fabs(ok_0)}),
+      .in_c_i({{W{1'b0}}}), .in_sub_i({1'b0}),
+      .out_valid_o(g1_add_eb_uv), .out_ready_i(r[2]), .out_res_o(g1_add_eb_res));
+  end else begin : u_g1_add_eb_off
+    assign {g1_add_eb_ur, g1_add_eb_uv, g1_add_eb_res} = {(2 + 1 * W){1'b0}};
+  end endgenerate
+  wire [W-1:0] ndok = g1_add_eb_res[0*W +: W];
 
   // ---- sublevel 2 ------------------------------------------------------------------------------
-  localparam integer C2_W = TAG_BITS + 32 + 2 + W + W + W + W + W + W + W + W + W + W;
+  localparam integer C2_W = TAG_BITS + 2 + W + W + W + W;
   wire [TAG_BITS-1:0] tag_c2;
   wire [32-1:0] id_c2;
   wire [2-1:0] k_c2;
@@ -342,11 +397,31 @@ module hit #(
   wire [W-1:0] td_y_c2;
   wire [W-1:0] td_z_c2;
   wire [W-1:0] tden_c2;
-  fp_pipe #(.WIDTH(C2_W), .STAGES(S2)) u_c2 (
+  fp_delay #(.WIDTH(C2_W), .STAGES(S2), .FREE(FREE)) u_c2 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(r[2]),
-    .in_data_i({tag_c1, id_c1, k_c1, at_c1, and_c1, den_c1, n_x_c1, n_y_c1, n_z_c1, td_x, td_y, td_z, tden}),
+    .in_data_i({tag_c1, k_c1, den_c1, n_x_c1, n_y_c1, n_z_c1}),
     .out_valid_o(v[2]), .out_ready_i(r[3]),
-    .out_data_o({tag_c2, id_c2, k_c2, at_c2, and_c2, den_c2, n_x_c2, n_y_c2, n_z_c2, td_x_c2, td_y_c2, td_z_c2, tden_c2}));
+    .out_data_o({tag_c2, k_c2, den_c2, n_x_c2, n_y_c2, n_z_c2}));
+  wire c2_eb_ur, c2_eb_uv;
+  generate if ((SPAWNS & 8) != 0) begin : g_c2_eb
+    fp_delay #(.WIDTH(W + W + W + W + W + W), .STAGES(S2), .FREE(FREE)) u_c2_eb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(c2_eb_ur),
+      .in_data_i({at_c1, and_c1, td_x, td_y, td_z, tden}),
+      .out_valid_o(c2_eb_uv), .out_ready_i(r[3]),
+      .out_data_o({at_c2, and_c2, td_x_c2, td_y_c2, td_z_c2, tden_c2}));
+  end else begin : g_c2_eb_none
+    assign {c2_eb_ur, c2_eb_uv, at_c2, and_c2, td_x_c2, td_y_c2, td_z_c2, tden_c2} = {(2 + W + W + W + W + W + W){1'b0}};
+  end endgenerate
+  wire c2_skip_ur, c2_skip_uv;
+  generate if ((SPAWNS & 114) != 0) begin : g_c2_skip
+    fp_delay #(.WIDTH(32), .STAGES(S2), .FREE(FREE)) u_c2_skip (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(c2_skip_ur),
+      .in_data_i({id_c1}),
+      .out_valid_o(c2_skip_uv), .out_ready_i(r[3]),
+      .out_data_o({id_c2}));
+  end else begin : g_c2_skip_none
+    assign {c2_skip_ur, c2_skip_uv, id_c2} = {(2 + 32){1'b0}};
+  end endgenerate
   wire [3*W-1:0] g2_add_res;
   wire g2_add_ur, g2_add_uv;
   spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S2),
@@ -359,20 +434,24 @@ module hit #(
   wire [W-1:0] h_x = g2_add_res[0*W +: W];
   wire [W-1:0] h_y = g2_add_res[1*W +: W];
   wire [W-1:0] h_z = g2_add_res[2*W +: W];
-  wire [2*W-1:0] g2_add3_res;
-  wire g2_add3_ur, g2_add3_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S2),
-              .OP(2), .N(2)) u_g2_add3 (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(g2_add3_ur),
-    .in_a_i({fabs(dk_c1), ndok}),
-    .in_b_i({fabs(nudu), fabs(nuou)}),
-    .in_c_i({fabs(nvdv), fabs(nvov)}), .in_sub_i({1'b0, 1'b0}),
-    .out_valid_o(g2_add3_uv), .out_ready_i(r[3]), .out_res_o(g2_add3_res));
-  wire [W-1:0] e_num = g2_add3_res[0*W +: W];
-  wire [W-1:0] e_den = g2_add3_res[1*W +: W];
+  wire [2*W-1:0] g2_add3_eb_res;
+  wire g2_add3_eb_ur, g2_add3_eb_uv;
+  generate if ((SPAWNS & 8) != 0) begin : u_g2_add3_eb_on
+    spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S2),
+                .OP(2), .N(2)) u_g2_add3_eb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(g2_add3_eb_ur),
+      .in_a_i({fabs(dk_c1), ndok}),
+      .in_b_i({fabs(nudu), fabs(nuou)}),
+      .in_c_i({fabs(nvdv), fabs(nvov)}), .in_sub_i({1'b0, 1'b0}),
+      .out_valid_o(g2_add3_eb_uv), .out_ready_i(r[3]), .out_res_o(g2_add3_eb_res));
+  end else begin : u_g2_add3_eb_off
+    assign {g2_add3_eb_ur, g2_add3_eb_uv, g2_add3_eb_res} = {(2 + 2 * W){1'b0}};
+  end endgenerate
+  wire [W-1:0] e_num = g2_add3_eb_res[0*W +: W];
+  wire [W-1:0] e_den = g2_add3_eb_res[1*W +: W];
 
   // ---- sublevel 3 ------------------------------------------------------------------------------
-  localparam integer C3_W = TAG_BITS + 32 + 2 + W + W + W + W + W + W + W;
+  localparam integer C3_W = TAG_BITS + 2 + W + W + W + W + W + W + W;
   wire [TAG_BITS-1:0] tag_c3;
   wire [32-1:0] id_c3;
   wire [2-1:0] k_c3;
@@ -383,11 +462,21 @@ module hit #(
   wire [W-1:0] h_x_c3;
   wire [W-1:0] h_y_c3;
   wire [W-1:0] h_z_c3;
-  fp_pipe #(.WIDTH(C3_W), .STAGES(S3)) u_c3 (
+  fp_delay #(.WIDTH(C3_W), .STAGES(S3), .FREE(FREE)) u_c3 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(r[3]),
-    .in_data_i({tag_c2, id_c2, k_c2, den_c2, n_x_c2, n_y_c2, n_z_c2, h_x, h_y, h_z}),
+    .in_data_i({tag_c2, k_c2, den_c2, n_x_c2, n_y_c2, n_z_c2, h_x, h_y, h_z}),
     .out_valid_o(v[3]), .out_ready_i(r[4]),
-    .out_data_o({tag_c3, id_c3, k_c3, den_c3, n_x_c3, n_y_c3, n_z_c3, h_x_c3, h_y_c3, h_z_c3}));
+    .out_data_o({tag_c3, k_c3, den_c3, n_x_c3, n_y_c3, n_z_c3, h_x_c3, h_y_c3, h_z_c3}));
+  wire c3_skip_ur, c3_skip_uv;
+  generate if ((SPAWNS & 114) != 0) begin : g_c3_skip
+    fp_delay #(.WIDTH(32), .STAGES(S3), .FREE(FREE)) u_c3_skip (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(c3_skip_ur),
+      .in_data_i({id_c2}),
+      .out_valid_o(c3_skip_uv), .out_ready_i(r[4]),
+      .out_data_o({id_c3}));
+  end else begin : g_c3_skip_none
+    assign {c3_skip_ur, c3_skip_uv, id_c3} = {(2 + 32){1'b0}};
+  end endgenerate
   wire [3*W-1:0] g3_sub_res;
   wire g3_sub_ur, g3_sub_uv;
   spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S3),
@@ -400,40 +489,61 @@ module hit #(
   wire [W-1:0] ld_x = g3_sub_res[0*W +: W];
   wire [W-1:0] ld_y = g3_sub_res[1*W +: W];
   wire [W-1:0] ld_z = g3_sub_res[2*W +: W];
-  wire [4*W-1:0] g3_add_res;
-  wire g3_add_ur, g3_add_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S3),
-              .OP(1), .N(4)) u_g3_add (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(g3_add_ur),
-    .in_a_i({and_c2, fabs(td_z_c2), fabs(td_y_c2), fabs(td_x_c2)}),
-    .in_b_i({fabs(pk(k_c2, h_x, h_y, h_z)), fabs(h_z), fabs(h_y), fabs(h_x)}),
-    .in_c_i({{W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}}), .in_sub_i({1'b0, 1'b0, 1'b0, 1'b0}),
-    .out_valid_o(g3_add_uv), .out_ready_i(r[4]), .out_res_o(g3_add_res));
-  wire [W-1:0] s_x = g3_add_res[0*W +: W];
-  wire [W-1:0] s_y = g3_add_res[1*W +: W];
-  wire [W-1:0] s_z = g3_add_res[2*W +: W];
-  wire [W-1:0] ndhk = g3_add_res[3*W +: W];
-  wire [9*W-1:0] g3_mul_res;
-  wire g3_mul_ur, g3_mul_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S3),
-              .OP(0), .N(9)) u_g3_mul (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(g3_mul_ur),
-    .in_a_i({slab_scale_i, C2, at_c2, C5, pv(k_c2, n_x_c2, n_y_c2, n_z_c2), pu(k_c2, n_x_c2, n_y_c2, n_z_c2), fabs(n_z_c2), fabs(n_y_c2), fabs(n_x_c2)}),
-    .in_b_i({ulp_max(h_x[W-2:M], h_y[W-2:M], h_z[W-2:M]), fabs(tden_c2), e_den, e_num, pv(k_c2, h_x, h_y, h_z), pu(k_c2, h_x, h_y, h_z), fabs(h_z), fabs(h_y), fabs(h_x)}),
-    .in_c_i({{W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}}), .in_sub_i({1'b0, 1'b0, 1'b0, 1'b0, 1'b0, 1'b0, 1'b0, 1'b0, 1'b0}),
-    .out_valid_o(g3_mul_uv), .out_ready_i(r[4]), .out_res_o(g3_mul_res));
-  wire [W-1:0] m_x = g3_mul_res[0*W +: W];
-  wire [W-1:0] m_y = g3_mul_res[1*W +: W];
-  wire [W-1:0] m_z = g3_mul_res[2*W +: W];
-  wire [W-1:0] nuhu = g3_mul_res[3*W +: W];
-  wire [W-1:0] nvhv = g3_mul_res[4*W +: W];
-  wire [W-1:0] c5num = g3_mul_res[5*W +: W];
-  wire [W-1:0] ated = g3_mul_res[6*W +: W];
-  wire [W-1:0] c2tden = g3_mul_res[7*W +: W];
-  wire [W-1:0] slab = g3_mul_res[8*W +: W];
+  wire [4*W-1:0] g3_add_eb_res;
+  wire g3_add_eb_ur, g3_add_eb_uv;
+  generate if ((SPAWNS & 8) != 0) begin : u_g3_add_eb_on
+    spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S3),
+                .OP(1), .N(4)) u_g3_add_eb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(g3_add_eb_ur),
+      .in_a_i({and_c2, fabs(td_z_c2), fabs(td_y_c2), fabs(td_x_c2)}),
+      .in_b_i({fabs(pk(k_c2, h_x, h_y, h_z)), fabs(h_z), fabs(h_y), fabs(h_x)}),
+      .in_c_i({{W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}}), .in_sub_i({1'b0, 1'b0, 1'b0, 1'b0}),
+      .out_valid_o(g3_add_eb_uv), .out_ready_i(r[4]), .out_res_o(g3_add_eb_res));
+  end else begin : u_g3_add_eb_off
+    assign {g3_add_eb_ur, g3_add_eb_uv, g3_add_eb_res} = {(2 + 4 * W){1'b0}};
+  end endgenerate
+  wire [W-1:0] s_x = g3_add_eb_res[0*W +: W];
+  wire [W-1:0] s_y = g3_add_eb_res[1*W +: W];
+  wire [W-1:0] s_z = g3_add_eb_res[2*W +: W];
+  wire [W-1:0] ndhk = g3_add_eb_res[3*W +: W];
+  wire [1*W-1:0] g3_mul_slab_res;
+  wire g3_mul_slab_ur, g3_mul_slab_uv;
+  generate if ((SPAWNS & 96) != 0) begin : u_g3_mul_slab_on
+    spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S3),
+                .OP(0), .N(1)) u_g3_mul_slab (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(g3_mul_slab_ur),
+      .in_a_i({slab_scale_i}),
+      .in_b_i({ulp_max(h_x[W-2:M], h_y[W-2:M], h_z[W-2:M])}),
+      .in_c_i({{W{1'b0}}}), .in_sub_i({1'b0}),
+      .out_valid_o(g3_mul_slab_uv), .out_ready_i(r[4]), .out_res_o(g3_mul_slab_res));
+  end else begin : u_g3_mul_slab_off
+    assign {g3_mul_slab_ur, g3_mul_slab_uv, g3_mul_slab_res} = {(2 + 1 * W){1'b0}};
+  end endgenerate
+  wire [W-1:0] slab = g3_mul_slab_res[0*W +: W];
+  wire [8*W-1:0] g3_mul_eb_res;
+  wire g3_mul_eb_ur, g3_mul_eb_uv;
+  generate if ((SPAWNS & 8) != 0) begin : u_g3_mul_eb_on
+    spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S3),
+                .OP(0), .N(8)) u_g3_mul_eb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(g3_mul_eb_ur),
+      .in_a_i({C2, at_c2, C5, pv(k_c2, n_x_c2, n_y_c2, n_z_c2), pu(k_c2, n_x_c2, n_y_c2, n_z_c2), fabs(n_z_c2), fabs(n_y_c2), fabs(n_x_c2)}),
+      .in_b_i({fabs(tden_c2), e_den, e_num, pv(k_c2, h_x, h_y, h_z), pu(k_c2, h_x, h_y, h_z), fabs(h_z), fabs(h_y), fabs(h_x)}),
+      .in_c_i({{W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}}), .in_sub_i({1'b0, 1'b0, 1'b0, 1'b0, 1'b0, 1'b0, 1'b0, 1'b0}),
+      .out_valid_o(g3_mul_eb_uv), .out_ready_i(r[4]), .out_res_o(g3_mul_eb_res));
+  end else begin : u_g3_mul_eb_off
+    assign {g3_mul_eb_ur, g3_mul_eb_uv, g3_mul_eb_res} = {(2 + 8 * W){1'b0}};
+  end endgenerate
+  wire [W-1:0] m_x = g3_mul_eb_res[0*W +: W];
+  wire [W-1:0] m_y = g3_mul_eb_res[1*W +: W];
+  wire [W-1:0] m_z = g3_mul_eb_res[2*W +: W];
+  wire [W-1:0] nuhu = g3_mul_eb_res[3*W +: W];
+  wire [W-1:0] nvhv = g3_mul_eb_res[4*W +: W];
+  wire [W-1:0] c5num = g3_mul_eb_res[5*W +: W];
+  wire [W-1:0] ated = g3_mul_eb_res[6*W +: W];
+  wire [W-1:0] c2tden = g3_mul_eb_res[7*W +: W];
 
   // ---- sublevel 4 ------------------------------------------------------------------------------
-  localparam integer C4_W = TAG_BITS + 32 + 2 + W + W + W + W + W + W + W + W + W + W + W + W + W + W;
+  localparam integer C4_W = TAG_BITS + 2 + W + W + W + W + W + W + W + W + W + W;
   wire [TAG_BITS-1:0] tag_c4;
   wire [32-1:0] id_c4;
   wire [2-1:0] k_c4;
@@ -451,50 +561,101 @@ module hit #(
   wire [W-1:0] c5num_c4;
   wire [W-1:0] c2tden_c4;
   wire [W-1:0] slab_c4;
-  fp_pipe #(.WIDTH(C4_W), .STAGES(S4)) u_c4 (
+  fp_delay #(.WIDTH(C4_W), .STAGES(S4), .FREE(FREE)) u_c4 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(r[4]),
-    .in_data_i({tag_c3, id_c3, k_c3, den_c3, n_x_c3, n_y_c3, n_z_c3, h_x_c3, h_y_c3, h_z_c3, ld_x, ld_y, ld_z, m_z, c5num, c2tden, slab}),
+    .in_data_i({tag_c3, k_c3, den_c3, n_x_c3, n_y_c3, n_z_c3, h_x_c3, h_y_c3, h_z_c3, ld_x, ld_y, ld_z}),
     .out_valid_o(v[4]), .out_ready_i(r[5]),
-    .out_data_o({tag_c4, id_c4, k_c4, den_c4, n_x_c4, n_y_c4, n_z_c4, h_x_c4, h_y_c4, h_z_c4, ld_x_c4, ld_y_c4, ld_z_c4, m_z_c4, c5num_c4, c2tden_c4, slab_c4}));
-  wire [7*W-1:0] g4_mul_res;
+    .out_data_o({tag_c4, k_c4, den_c4, n_x_c4, n_y_c4, n_z_c4, h_x_c4, h_y_c4, h_z_c4, ld_x_c4, ld_y_c4, ld_z_c4}));
+  wire c4_eb_ur, c4_eb_uv;
+  generate if ((SPAWNS & 8) != 0) begin : g_c4_eb
+    fp_delay #(.WIDTH(W + W + W), .STAGES(S4), .FREE(FREE)) u_c4_eb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(c4_eb_ur),
+      .in_data_i({m_z, c5num, c2tden}),
+      .out_valid_o(c4_eb_uv), .out_ready_i(r[5]),
+      .out_data_o({m_z_c4, c5num_c4, c2tden_c4}));
+  end else begin : g_c4_eb_none
+    assign {c4_eb_ur, c4_eb_uv, m_z_c4, c5num_c4, c2tden_c4} = {(2 + W + W + W){1'b0}};
+  end endgenerate
+  wire c4_slab_ur, c4_slab_uv;
+  generate if ((SPAWNS & 96) != 0) begin : g_c4_slab
+    fp_delay #(.WIDTH(W), .STAGES(S4), .FREE(FREE)) u_c4_slab (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(c4_slab_ur),
+      .in_data_i({slab}),
+      .out_valid_o(c4_slab_uv), .out_ready_i(r[5]),
+      .out_data_o({slab_c4}));
+  end else begin : g_c4_slab_none
+    assign {c4_slab_ur, c4_slab_uv, slab_c4} = {(2 + W){1'b0}};
+  end endgenerate
+  wire c4_skip_ur, c4_skip_uv;
+  generate if ((SPAWNS & 114) != 0) begin : g_c4_skip
+    fp_delay #(.WIDTH(32), .STAGES(S4), .FREE(FREE)) u_c4_skip (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(c4_skip_ur),
+      .in_data_i({id_c3}),
+      .out_valid_o(c4_skip_uv), .out_ready_i(r[5]),
+      .out_data_o({id_c4}));
+  end else begin : g_c4_skip_none
+    assign {c4_skip_ur, c4_skip_uv, id_c4} = {(2 + 32){1'b0}};
+  end endgenerate
+  wire [3*W-1:0] g4_mul_res;
   wire g4_mul_ur, g4_mul_uv;
   spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S4),
-              .OP(0), .N(7)) u_g4_mul (
+              .OP(0), .N(3)) u_g4_mul (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(g4_mul_ur),
-    .in_a_i({C3, fabs(n_z_c3), fabs(n_y_c3), fabs(n_x_c3), ld_z, ld_y, ld_x}),
-    .in_b_i({ated, s_z, s_y, s_x, ld_z, ld_y, ld_x}),
-    .in_c_i({{W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}}), .in_sub_i({1'b0, 1'b0, 1'b0, 1'b0, 1'b0, 1'b0, 1'b0}),
+    .in_a_i({ld_z, ld_y, ld_x}),
+    .in_b_i({ld_z, ld_y, ld_x}),
+    .in_c_i({{W{1'b0}}, {W{1'b0}}, {W{1'b0}}}), .in_sub_i({1'b0, 1'b0, 1'b0}),
     .out_valid_o(g4_mul_uv), .out_ready_i(r[5]), .out_res_o(g4_mul_res));
   wire [W-1:0] sq_x = g4_mul_res[0*W +: W];
   wire [W-1:0] sq_y = g4_mul_res[1*W +: W];
   wire [W-1:0] sq_z = g4_mul_res[2*W +: W];
-  wire [W-1:0] x_x = g4_mul_res[3*W +: W];
-  wire [W-1:0] x_y = g4_mul_res[4*W +: W];
-  wire [W-1:0] x_z = g4_mul_res[5*W +: W];
-  wire [W-1:0] c3ted = g4_mul_res[6*W +: W];
-  wire [1*W-1:0] g4_add_res;
-  wire g4_add_ur, g4_add_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S4),
-              .OP(1), .N(1)) u_g4_add (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(g4_add_ur),
-    .in_a_i({m_x}),
-    .in_b_i({m_y}),
-    .in_c_i({{W{1'b0}}}), .in_sub_i({1'b0}),
-    .out_valid_o(g4_add_uv), .out_ready_i(r[5]), .out_res_o(g4_add_res));
-  wire [W-1:0] em1 = g4_add_res[0*W +: W];
-  wire [1*W-1:0] g4_add3_res;
-  wire g4_add3_ur, g4_add3_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S4),
-              .OP(2), .N(1)) u_g4_add3 (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(g4_add3_ur),
-    .in_a_i({ndhk}),
-    .in_b_i({fabs(nuhu)}),
-    .in_c_i({fabs(nvhv)}), .in_sub_i({1'b0}),
-    .out_valid_o(g4_add3_uv), .out_ready_i(r[5]), .out_res_o(g4_add3_res));
-  wire [W-1:0] e_snum = g4_add3_res[0*W +: W];
+  wire [4*W-1:0] g4_mul_eb_res;
+  wire g4_mul_eb_ur, g4_mul_eb_uv;
+  generate if ((SPAWNS & 8) != 0) begin : u_g4_mul_eb_on
+    spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S4),
+                .OP(0), .N(4)) u_g4_mul_eb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(g4_mul_eb_ur),
+      .in_a_i({C3, fabs(n_z_c3), fabs(n_y_c3), fabs(n_x_c3)}),
+      .in_b_i({ated, s_z, s_y, s_x}),
+      .in_c_i({{W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}}), .in_sub_i({1'b0, 1'b0, 1'b0, 1'b0}),
+      .out_valid_o(g4_mul_eb_uv), .out_ready_i(r[5]), .out_res_o(g4_mul_eb_res));
+  end else begin : u_g4_mul_eb_off
+    assign {g4_mul_eb_ur, g4_mul_eb_uv, g4_mul_eb_res} = {(2 + 4 * W){1'b0}};
+  end endgenerate
+  wire [W-1:0] x_x = g4_mul_eb_res[0*W +: W];
+  wire [W-1:0] x_y = g4_mul_eb_res[1*W +: W];
+  wire [W-1:0] x_z = g4_mul_eb_res[2*W +: W];
+  wire [W-1:0] c3ted = g4_mul_eb_res[3*W +: W];
+  wire [1*W-1:0] g4_add_eb_res;
+  wire g4_add_eb_ur, g4_add_eb_uv;
+  generate if ((SPAWNS & 8) != 0) begin : u_g4_add_eb_on
+    spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S4),
+                .OP(1), .N(1)) u_g4_add_eb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(g4_add_eb_ur),
+      .in_a_i({m_x}),
+      .in_b_i({m_y}),
+      .in_c_i({{W{1'b0}}}), .in_sub_i({1'b0}),
+      .out_valid_o(g4_add_eb_uv), .out_ready_i(r[5]), .out_res_o(g4_add_eb_res));
+  end else begin : u_g4_add_eb_off
+    assign {g4_add_eb_ur, g4_add_eb_uv, g4_add_eb_res} = {(2 + 1 * W){1'b0}};
+  end endgenerate
+  wire [W-1:0] em1 = g4_add_eb_res[0*W +: W];
+  wire [1*W-1:0] g4_add3_eb_res;
+  wire g4_add3_eb_ur, g4_add3_eb_uv;
+  generate if ((SPAWNS & 8) != 0) begin : u_g4_add3_eb_on
+    spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S4),
+                .OP(2), .N(1)) u_g4_add3_eb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(g4_add3_eb_ur),
+      .in_a_i({ndhk}),
+      .in_b_i({fabs(nuhu)}),
+      .in_c_i({fabs(nvhv)}), .in_sub_i({1'b0}),
+      .out_valid_o(g4_add3_eb_uv), .out_ready_i(r[5]), .out_res_o(g4_add3_eb_res));
+  end else begin : u_g4_add3_eb_off
+    assign {g4_add3_eb_ur, g4_add3_eb_uv, g4_add3_eb_res} = {(2 + 1 * W){1'b0}};
+  end endgenerate
+  wire [W-1:0] e_snum = g4_add3_eb_res[0*W +: W];
 
   // ---- sublevel 5 ------------------------------------------------------------------------------
-  localparam integer C5_W = TAG_BITS + 32 + 2 + W + W + W + W + W + W + W + W + W + W + W + W;
+  localparam integer C5_W = TAG_BITS + 2 + W + W + W + W + W + W + W + W + W + W;
   wire [TAG_BITS-1:0] tag_c5;
   wire [32-1:0] id_c5;
   wire [2-1:0] k_c5;
@@ -510,46 +671,97 @@ module hit #(
   wire [W-1:0] ld_z_c5;
   wire [W-1:0] slab_c5;
   wire [W-1:0] x_z_c5;
-  fp_pipe #(.WIDTH(C5_W), .STAGES(S5)) u_c5 (
+  fp_delay #(.WIDTH(C5_W), .STAGES(S5), .FREE(FREE)) u_c5 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(r[5]),
-    .in_data_i({tag_c4, id_c4, k_c4, den_c4, n_x_c4, n_y_c4, n_z_c4, h_x_c4, h_y_c4, h_z_c4, ld_x_c4, ld_y_c4, ld_z_c4, slab_c4, x_z}),
+    .in_data_i({tag_c4, k_c4, den_c4, n_x_c4, n_y_c4, n_z_c4, h_x_c4, h_y_c4, h_z_c4, ld_x_c4, ld_y_c4, ld_z_c4}),
     .out_valid_o(v[5]), .out_ready_i(r[6]),
-    .out_data_o({tag_c5, id_c5, k_c5, den_c5, n_x_c5, n_y_c5, n_z_c5, h_x_c5, h_y_c5, h_z_c5, ld_x_c5, ld_y_c5, ld_z_c5, slab_c5, x_z_c5}));
-  wire [2*W-1:0] g5_add3_res;
+    .out_data_o({tag_c5, k_c5, den_c5, n_x_c5, n_y_c5, n_z_c5, h_x_c5, h_y_c5, h_z_c5, ld_x_c5, ld_y_c5, ld_z_c5}));
+  wire c5_eb_ur, c5_eb_uv;
+  generate if ((SPAWNS & 8) != 0) begin : g_c5_eb
+    fp_delay #(.WIDTH(W), .STAGES(S5), .FREE(FREE)) u_c5_eb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(c5_eb_ur),
+      .in_data_i({x_z}),
+      .out_valid_o(c5_eb_uv), .out_ready_i(r[6]),
+      .out_data_o({x_z_c5}));
+  end else begin : g_c5_eb_none
+    assign {c5_eb_ur, c5_eb_uv, x_z_c5} = {(2 + W){1'b0}};
+  end endgenerate
+  wire c5_slab_ur, c5_slab_uv;
+  generate if ((SPAWNS & 96) != 0) begin : g_c5_slab
+    fp_delay #(.WIDTH(W), .STAGES(S5), .FREE(FREE)) u_c5_slab (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(c5_slab_ur),
+      .in_data_i({slab_c4}),
+      .out_valid_o(c5_slab_uv), .out_ready_i(r[6]),
+      .out_data_o({slab_c5}));
+  end else begin : g_c5_slab_none
+    assign {c5_slab_ur, c5_slab_uv, slab_c5} = {(2 + W){1'b0}};
+  end endgenerate
+  wire c5_skip_ur, c5_skip_uv;
+  generate if ((SPAWNS & 114) != 0) begin : g_c5_skip
+    fp_delay #(.WIDTH(32), .STAGES(S5), .FREE(FREE)) u_c5_skip (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(c5_skip_ur),
+      .in_data_i({id_c4}),
+      .out_valid_o(c5_skip_uv), .out_ready_i(r[6]),
+      .out_data_o({id_c5}));
+  end else begin : g_c5_skip_none
+    assign {c5_skip_ur, c5_skip_uv, id_c5} = {(2 + 32){1'b0}};
+  end endgenerate
+  wire [1*W-1:0] g5_add3_res;
   wire g5_add3_ur, g5_add3_uv;
   spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S5),
-              .OP(2), .N(2)) u_g5_add3 (
+              .OP(2), .N(1)) u_g5_add3 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(g5_add3_ur),
-    .in_a_i({c5num_c4, sq_x}),
-    .in_b_i({c3ted, sq_y}),
-    .in_c_i({c2tden_c4, sq_z}), .in_sub_i({1'b0, 1'b0}),
+    .in_a_i({sq_x}),
+    .in_b_i({sq_y}),
+    .in_c_i({sq_z}), .in_sub_i({1'b0}),
     .out_valid_o(g5_add3_uv), .out_ready_i(r[6]), .out_res_o(g5_add3_res));
   wire [W-1:0] len2 = g5_add3_res[0*W +: W];
-  wire [W-1:0] b1 = g5_add3_res[1*W +: W];
-  wire [2*W-1:0] g5_add_res;
-  wire g5_add_ur, g5_add_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S5),
-              .OP(1), .N(2)) u_g5_add (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(g5_add_ur),
-    .in_a_i({em1, x_x}),
-    .in_b_i({m_z_c4, x_y}),
-    .in_c_i({{W{1'b0}}, {W{1'b0}}}), .in_sub_i({1'b0, 1'b0}),
-    .out_valid_o(g5_add_uv), .out_ready_i(r[6]), .out_res_o(g5_add_res));
-  wire [W-1:0] eh1 = g5_add_res[0*W +: W];
-  wire [W-1:0] em = g5_add_res[1*W +: W];
-  wire [1*W-1:0] g5_mul_res;
-  wire g5_mul_ur, g5_mul_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S5),
-              .OP(0), .N(1)) u_g5_mul (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(g5_mul_ur),
-    .in_a_i({C5}),
-    .in_b_i({e_snum}),
-    .in_c_i({{W{1'b0}}}), .in_sub_i({1'b0}),
-    .out_valid_o(g5_mul_uv), .out_ready_i(r[6]), .out_res_o(g5_mul_res));
-  wire [W-1:0] c5snum = g5_mul_res[0*W +: W];
+  wire [1*W-1:0] g5_add3_eb_res;
+  wire g5_add3_eb_ur, g5_add3_eb_uv;
+  generate if ((SPAWNS & 8) != 0) begin : u_g5_add3_eb_on
+    spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S5),
+                .OP(2), .N(1)) u_g5_add3_eb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(g5_add3_eb_ur),
+      .in_a_i({c5num_c4}),
+      .in_b_i({c3ted}),
+      .in_c_i({c2tden_c4}), .in_sub_i({1'b0}),
+      .out_valid_o(g5_add3_eb_uv), .out_ready_i(r[6]), .out_res_o(g5_add3_eb_res));
+  end else begin : u_g5_add3_eb_off
+    assign {g5_add3_eb_ur, g5_add3_eb_uv, g5_add3_eb_res} = {(2 + 1 * W){1'b0}};
+  end endgenerate
+  wire [W-1:0] b1 = g5_add3_eb_res[0*W +: W];
+  wire [2*W-1:0] g5_add_eb_res;
+  wire g5_add_eb_ur, g5_add_eb_uv;
+  generate if ((SPAWNS & 8) != 0) begin : u_g5_add_eb_on
+    spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S5),
+                .OP(1), .N(2)) u_g5_add_eb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(g5_add_eb_ur),
+      .in_a_i({em1, x_x}),
+      .in_b_i({m_z_c4, x_y}),
+      .in_c_i({{W{1'b0}}, {W{1'b0}}}), .in_sub_i({1'b0, 1'b0}),
+      .out_valid_o(g5_add_eb_uv), .out_ready_i(r[6]), .out_res_o(g5_add_eb_res));
+  end else begin : u_g5_add_eb_off
+    assign {g5_add_eb_ur, g5_add_eb_uv, g5_add_eb_res} = {(2 + 2 * W){1'b0}};
+  end endgenerate
+  wire [W-1:0] eh1 = g5_add_eb_res[0*W +: W];
+  wire [W-1:0] em = g5_add_eb_res[1*W +: W];
+  wire [1*W-1:0] g5_mul_eb_res;
+  wire g5_mul_eb_ur, g5_mul_eb_uv;
+  generate if ((SPAWNS & 8) != 0) begin : u_g5_mul_eb_on
+    spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S5),
+                .OP(0), .N(1)) u_g5_mul_eb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(g5_mul_eb_ur),
+      .in_a_i({C5}),
+      .in_b_i({e_snum}),
+      .in_c_i({{W{1'b0}}}), .in_sub_i({1'b0}),
+      .out_valid_o(g5_mul_eb_uv), .out_ready_i(r[6]), .out_res_o(g5_mul_eb_res));
+  end else begin : u_g5_mul_eb_off
+    assign {g5_mul_eb_ur, g5_mul_eb_uv, g5_mul_eb_res} = {(2 + 1 * W){1'b0}};
+  end endgenerate
+  wire [W-1:0] c5snum = g5_mul_eb_res[0*W +: W];
 
   // ---- sublevel 6 ------------------------------------------------------------------------------
-  localparam integer C6_W = TAG_BITS + 32 + 2 + W + W + W + W + W + W + W + W + W + W + W + W;
+  localparam integer C6_W = TAG_BITS + 2 + W + W + W + W + W + W + W + W + W + W;
   wire [TAG_BITS-1:0] tag_c6;
   wire [32-1:0] id_c6;
   wire [2-1:0] k_c6;
@@ -565,11 +777,41 @@ module hit #(
   wire [W-1:0] ld_z_c6;
   wire [W-1:0] slab_c6;
   wire [W-1:0] b1_c6;
-  fp_pipe #(.WIDTH(C6_W), .STAGES(S6)) u_c6 (
+  fp_delay #(.WIDTH(C6_W), .STAGES(S6), .FREE(FREE)) u_c6 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(r[6]),
-    .in_data_i({tag_c5, id_c5, k_c5, den_c5, n_x_c5, n_y_c5, n_z_c5, h_x_c5, h_y_c5, h_z_c5, ld_x_c5, ld_y_c5, ld_z_c5, slab_c5, b1}),
+    .in_data_i({tag_c5, k_c5, den_c5, n_x_c5, n_y_c5, n_z_c5, h_x_c5, h_y_c5, h_z_c5, ld_x_c5, ld_y_c5, ld_z_c5}),
     .out_valid_o(v[6]), .out_ready_i(r[7]),
-    .out_data_o({tag_c6, id_c6, k_c6, den_c6, n_x_c6, n_y_c6, n_z_c6, h_x_c6, h_y_c6, h_z_c6, ld_x_c6, ld_y_c6, ld_z_c6, slab_c6, b1_c6}));
+    .out_data_o({tag_c6, k_c6, den_c6, n_x_c6, n_y_c6, n_z_c6, h_x_c6, h_y_c6, h_z_c6, ld_x_c6, ld_y_c6, ld_z_c6}));
+  wire c6_eb_ur, c6_eb_uv;
+  generate if ((SPAWNS & 8) != 0) begin : g_c6_eb
+    fp_delay #(.WIDTH(W), .STAGES(S6), .FREE(FREE)) u_c6_eb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(c6_eb_ur),
+      .in_data_i({b1}),
+      .out_valid_o(c6_eb_uv), .out_ready_i(r[7]),
+      .out_data_o({b1_c6}));
+  end else begin : g_c6_eb_none
+    assign {c6_eb_ur, c6_eb_uv, b1_c6} = {(2 + W){1'b0}};
+  end endgenerate
+  wire c6_slab_ur, c6_slab_uv;
+  generate if ((SPAWNS & 96) != 0) begin : g_c6_slab
+    fp_delay #(.WIDTH(W), .STAGES(S6), .FREE(FREE)) u_c6_slab (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(c6_slab_ur),
+      .in_data_i({slab_c5}),
+      .out_valid_o(c6_slab_uv), .out_ready_i(r[7]),
+      .out_data_o({slab_c6}));
+  end else begin : g_c6_slab_none
+    assign {c6_slab_ur, c6_slab_uv, slab_c6} = {(2 + W){1'b0}};
+  end endgenerate
+  wire c6_skip_ur, c6_skip_uv;
+  generate if ((SPAWNS & 114) != 0) begin : g_c6_skip
+    fp_delay #(.WIDTH(32), .STAGES(S6), .FREE(FREE)) u_c6_skip (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(c6_skip_ur),
+      .in_data_i({id_c5}),
+      .out_valid_o(c6_skip_uv), .out_ready_i(r[7]),
+      .out_data_o({id_c6}));
+  end else begin : g_c6_skip_none
+    assign {c6_skip_ur, c6_skip_uv, id_c6} = {(2 + 32){1'b0}};
+  end endgenerate
   wire [1*W-1:0] g6_sqrt_res;
   wire g6_sqrt_ur, g6_sqrt_uv;
   spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S6),
@@ -580,20 +822,24 @@ module hit #(
     .in_c_i({{W{1'b0}}}), .in_sub_i({1'b0}),
     .out_valid_o(g6_sqrt_uv), .out_ready_i(r[7]), .out_res_o(g6_sqrt_res));
   wire [W-1:0] len = g6_sqrt_res[0*W +: W];
-  wire [2*W-1:0] g6_add_res;
-  wire g6_add_ur, g6_add_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S6),
-              .OP(1), .N(2)) u_g6_add (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(g6_add_ur),
-    .in_a_i({c5snum, eh1}),
-    .in_b_i({em, x_z_c5}),
-    .in_c_i({{W{1'b0}}, {W{1'b0}}}), .in_sub_i({1'b0, 1'b0}),
-    .out_valid_o(g6_add_uv), .out_ready_i(r[7]), .out_res_o(g6_add_res));
-  wire [W-1:0] eh = g6_add_res[0*W +: W];
-  wire [W-1:0] snmv = g6_add_res[1*W +: W];
+  wire [2*W-1:0] g6_add_eb_res;
+  wire g6_add_eb_ur, g6_add_eb_uv;
+  generate if ((SPAWNS & 8) != 0) begin : u_g6_add_eb_on
+    spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S6),
+                .OP(1), .N(2)) u_g6_add_eb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(g6_add_eb_ur),
+      .in_a_i({c5snum, eh1}),
+      .in_b_i({em, x_z_c5}),
+      .in_c_i({{W{1'b0}}, {W{1'b0}}}), .in_sub_i({1'b0, 1'b0}),
+      .out_valid_o(g6_add_eb_uv), .out_ready_i(r[7]), .out_res_o(g6_add_eb_res));
+  end else begin : u_g6_add_eb_off
+    assign {g6_add_eb_ur, g6_add_eb_uv, g6_add_eb_res} = {(2 + 2 * W){1'b0}};
+  end endgenerate
+  wire [W-1:0] eh = g6_add_eb_res[0*W +: W];
+  wire [W-1:0] snmv = g6_add_eb_res[1*W +: W];
 
   // ---- sublevel 7 ------------------------------------------------------------------------------
-  localparam integer C7_W = TAG_BITS + 32 + 2 + W + W + W + W + W + W + W + W + W + W + W + W + W + W;
+  localparam integer C7_W = TAG_BITS + 2 + W + W + W + W + W + W + W + W + W + W + W;
   wire [TAG_BITS-1:0] tag_c7;
   wire [32-1:0] id_c7;
   wire [2-1:0] k_c7;
@@ -611,11 +857,41 @@ module hit #(
   wire [W-1:0] b1_c7;
   wire [W-1:0] len_c7;
   wire [W-1:0] snmv_c7;
-  fp_pipe #(.WIDTH(C7_W), .STAGES(S7)) u_c7 (
+  fp_delay #(.WIDTH(C7_W), .STAGES(S7), .FREE(FREE)) u_c7 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(r[7]),
-    .in_data_i({tag_c6, id_c6, k_c6, den_c6, n_x_c6, n_y_c6, n_z_c6, h_x_c6, h_y_c6, h_z_c6, ld_x_c6, ld_y_c6, ld_z_c6, slab_c6, b1_c6, len, snmv}),
+    .in_data_i({tag_c6, k_c6, den_c6, n_x_c6, n_y_c6, n_z_c6, h_x_c6, h_y_c6, h_z_c6, ld_x_c6, ld_y_c6, ld_z_c6, len}),
     .out_valid_o(v[7]), .out_ready_i(r[8]),
-    .out_data_o({tag_c7, id_c7, k_c7, den_c7, n_x_c7, n_y_c7, n_z_c7, h_x_c7, h_y_c7, h_z_c7, ld_x_c7, ld_y_c7, ld_z_c7, slab_c7, b1_c7, len_c7, snmv_c7}));
+    .out_data_o({tag_c7, k_c7, den_c7, n_x_c7, n_y_c7, n_z_c7, h_x_c7, h_y_c7, h_z_c7, ld_x_c7, ld_y_c7, ld_z_c7, len_c7}));
+  wire c7_eb_ur, c7_eb_uv;
+  generate if ((SPAWNS & 8) != 0) begin : g_c7_eb
+    fp_delay #(.WIDTH(W + W), .STAGES(S7), .FREE(FREE)) u_c7_eb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(c7_eb_ur),
+      .in_data_i({b1_c6, snmv}),
+      .out_valid_o(c7_eb_uv), .out_ready_i(r[8]),
+      .out_data_o({b1_c7, snmv_c7}));
+  end else begin : g_c7_eb_none
+    assign {c7_eb_ur, c7_eb_uv, b1_c7, snmv_c7} = {(2 + W + W){1'b0}};
+  end endgenerate
+  wire c7_slab_ur, c7_slab_uv;
+  generate if ((SPAWNS & 96) != 0) begin : g_c7_slab
+    fp_delay #(.WIDTH(W), .STAGES(S7), .FREE(FREE)) u_c7_slab (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(c7_slab_ur),
+      .in_data_i({slab_c6}),
+      .out_valid_o(c7_slab_uv), .out_ready_i(r[8]),
+      .out_data_o({slab_c7}));
+  end else begin : g_c7_slab_none
+    assign {c7_slab_ur, c7_slab_uv, slab_c7} = {(2 + W){1'b0}};
+  end endgenerate
+  wire c7_skip_ur, c7_skip_uv;
+  generate if ((SPAWNS & 114) != 0) begin : g_c7_skip
+    fp_delay #(.WIDTH(32), .STAGES(S7), .FREE(FREE)) u_c7_skip (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(c7_skip_ur),
+      .in_data_i({id_c6}),
+      .out_valid_o(c7_skip_uv), .out_ready_i(r[8]),
+      .out_data_o({id_c7}));
+  end else begin : g_c7_skip_none
+    assign {c7_skip_ur, c7_skip_uv, id_c7} = {(2 + 32){1'b0}};
+  end endgenerate
   wire [1*W-1:0] g7_rcp_res;
   wire g7_rcp_ur, g7_rcp_uv;
   spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S7),
@@ -626,19 +902,23 @@ module hit #(
     .in_c_i({{W{1'b0}}}), .in_sub_i({1'b0}),
     .out_valid_o(g7_rcp_uv), .out_ready_i(r[8]), .out_res_o(g7_rcp_res));
   wire [W-1:0] rl = g7_rcp_res[0*W +: W];
-  wire [1*W-1:0] g7_mul_res;
-  wire g7_mul_ur, g7_mul_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S7),
-              .OP(0), .N(1)) u_g7_mul (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(g7_mul_ur),
-    .in_a_i({C2}),
-    .in_b_i({eh}),
-    .in_c_i({{W{1'b0}}}), .in_sub_i({1'b0}),
-    .out_valid_o(g7_mul_uv), .out_ready_i(r[8]), .out_res_o(g7_mul_res));
-  wire [W-1:0] c2hit = g7_mul_res[0*W +: W];
+  wire [1*W-1:0] g7_mul_eb_res;
+  wire g7_mul_eb_ur, g7_mul_eb_uv;
+  generate if ((SPAWNS & 8) != 0) begin : u_g7_mul_eb_on
+    spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S7),
+                .OP(0), .N(1)) u_g7_mul_eb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(g7_mul_eb_ur),
+      .in_a_i({C2}),
+      .in_b_i({eh}),
+      .in_c_i({{W{1'b0}}}), .in_sub_i({1'b0}),
+      .out_valid_o(g7_mul_eb_uv), .out_ready_i(r[8]), .out_res_o(g7_mul_eb_res));
+  end else begin : u_g7_mul_eb_off
+    assign {g7_mul_eb_ur, g7_mul_eb_uv, g7_mul_eb_res} = {(2 + 1 * W){1'b0}};
+  end endgenerate
+  wire [W-1:0] c2hit = g7_mul_eb_res[0*W +: W];
 
   // ---- sublevel 8 ------------------------------------------------------------------------------
-  localparam integer C8_W = TAG_BITS + 32 + 2 + W + W + W + W + W + W + W + W + W + W + W + W;
+  localparam integer C8_W = TAG_BITS + 2 + W + W + W + W + W + W + W + W + W + W + W;
   wire [TAG_BITS-1:0] tag_c8;
   wire [32-1:0] id_c8;
   wire [2-1:0] k_c8;
@@ -654,11 +934,31 @@ module hit #(
   wire [W-1:0] ld_z_c8;
   wire [W-1:0] slab_c8;
   wire [W-1:0] len_c8;
-  fp_pipe #(.WIDTH(C8_W), .STAGES(S8)) u_c8 (
+  fp_delay #(.WIDTH(C8_W), .STAGES(S8), .FREE(FREE)) u_c8 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(r[8]),
-    .in_data_i({tag_c7, id_c7, k_c7, den_c7, n_x_c7, n_y_c7, n_z_c7, h_x_c7, h_y_c7, h_z_c7, ld_x_c7, ld_y_c7, ld_z_c7, slab_c7, len_c7}),
+    .in_data_i({tag_c7, k_c7, den_c7, n_x_c7, n_y_c7, n_z_c7, h_x_c7, h_y_c7, h_z_c7, ld_x_c7, ld_y_c7, ld_z_c7, len_c7}),
     .out_valid_o(v[8]), .out_ready_i(r[9]),
-    .out_data_o({tag_c8, id_c8, k_c8, den_c8, n_x_c8, n_y_c8, n_z_c8, h_x_c8, h_y_c8, h_z_c8, ld_x_c8, ld_y_c8, ld_z_c8, slab_c8, len_c8}));
+    .out_data_o({tag_c8, k_c8, den_c8, n_x_c8, n_y_c8, n_z_c8, h_x_c8, h_y_c8, h_z_c8, ld_x_c8, ld_y_c8, ld_z_c8, len_c8}));
+  wire c8_slab_ur, c8_slab_uv;
+  generate if ((SPAWNS & 96) != 0) begin : g_c8_slab
+    fp_delay #(.WIDTH(W), .STAGES(S8), .FREE(FREE)) u_c8_slab (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(c8_slab_ur),
+      .in_data_i({slab_c7}),
+      .out_valid_o(c8_slab_uv), .out_ready_i(r[9]),
+      .out_data_o({slab_c8}));
+  end else begin : g_c8_slab_none
+    assign {c8_slab_ur, c8_slab_uv, slab_c8} = {(2 + W){1'b0}};
+  end endgenerate
+  wire c8_skip_ur, c8_skip_uv;
+  generate if ((SPAWNS & 114) != 0) begin : g_c8_skip
+    fp_delay #(.WIDTH(32), .STAGES(S8), .FREE(FREE)) u_c8_skip (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(c8_skip_ur),
+      .in_data_i({id_c7}),
+      .out_valid_o(c8_skip_uv), .out_ready_i(r[9]),
+      .out_data_o({id_c8}));
+  end else begin : g_c8_skip_none
+    assign {c8_skip_ur, c8_skip_uv, id_c8} = {(2 + 32){1'b0}};
+  end endgenerate
   wire [3*W-1:0] g8_mul_res;
   wire g8_mul_ur, g8_mul_uv;
   spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S8),
@@ -671,22 +971,26 @@ module hit #(
   wire [W-1:0] dd_x = g8_mul_res[0*W +: W];
   wire [W-1:0] dd_y = g8_mul_res[1*W +: W];
   wire [W-1:0] dd_z = g8_mul_res[2*W +: W];
-  wire [1*W-1:0] g8_add3_res;
-  wire g8_add3_ur, g8_add3_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S8),
-              .OP(2), .N(1)) u_g8_add3 (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(g8_add3_ur),
-    .in_a_i({b1_c7}),
-    .in_b_i({c2hit}),
-    .in_c_i({snmv_c7}), .in_sub_i({1'b0}),
-    .out_valid_o(g8_add3_uv), .out_ready_i(r[9]), .out_res_o(g8_add3_res));
-  wire [W-1:0] b2 = g8_add3_res[0*W +: W];
+  wire [1*W-1:0] g8_add3_eb_res;
+  wire g8_add3_eb_ur, g8_add3_eb_uv;
+  generate if ((SPAWNS & 8) != 0) begin : u_g8_add3_eb_on
+    spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S8),
+                .OP(2), .N(1)) u_g8_add3_eb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(g8_add3_eb_ur),
+      .in_a_i({b1_c7}),
+      .in_b_i({c2hit}),
+      .in_c_i({snmv_c7}), .in_sub_i({1'b0}),
+      .out_valid_o(g8_add3_eb_uv), .out_ready_i(r[9]), .out_res_o(g8_add3_eb_res));
+  end else begin : u_g8_add3_eb_off
+    assign {g8_add3_eb_ur, g8_add3_eb_uv, g8_add3_eb_res} = {(2 + 1 * W){1'b0}};
+  end endgenerate
+  wire [W-1:0] b2 = g8_add3_eb_res[0*W +: W];
   wire [W-1:0] ds_x = segment_i ? ld_x_c8 : dd_x;
   wire [W-1:0] ds_y = segment_i ? ld_y_c8 : dd_y;
   wire [W-1:0] ds_z = segment_i ? ld_z_c8 : dd_z;
 
   // ---- sublevel 9 ------------------------------------------------------------------------------
-  localparam integer C9_W = TAG_BITS + 32 + 2 + W + W + W + W + W + W + W + W + W + W + W + W;
+  localparam integer C9_W = TAG_BITS + 2 + W + W + W + W + W + W + W + W;
   wire [TAG_BITS-1:0] tag_c9;
   wire [32-1:0] id_c9;
   wire [2-1:0] k_c9;
@@ -702,11 +1006,41 @@ module hit #(
   wire [W-1:0] ds_x_c9;
   wire [W-1:0] ds_y_c9;
   wire [W-1:0] ds_z_c9;
-  fp_pipe #(.WIDTH(C9_W), .STAGES(S9)) u_c9 (
+  fp_delay #(.WIDTH(C9_W), .STAGES(S9), .FREE(FREE)) u_c9 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[8]), .in_ready_o(r[9]),
-    .in_data_i({tag_c8, id_c8, k_c8, den_c8, n_x_c8, n_y_c8, n_z_c8, h_x_c8, h_y_c8, h_z_c8, slab_c8, len_c8, ds_x, ds_y, ds_z}),
+    .in_data_i({tag_c8, k_c8, den_c8, h_x_c8, h_y_c8, h_z_c8, len_c8, ds_x, ds_y, ds_z}),
     .out_valid_o(v[9]), .out_ready_i(r[10]),
-    .out_data_o({tag_c9, id_c9, k_c9, den_c9, n_x_c9, n_y_c9, n_z_c9, h_x_c9, h_y_c9, h_z_c9, slab_c9, len_c9, ds_x_c9, ds_y_c9, ds_z_c9}));
+    .out_data_o({tag_c9, k_c9, den_c9, h_x_c9, h_y_c9, h_z_c9, len_c9, ds_x_c9, ds_y_c9, ds_z_c9}));
+  wire c9_ulpeb_ur, c9_ulpeb_uv;
+  generate if ((SPAWNS & 28) != 0) begin : g_c9_ulpeb
+    fp_delay #(.WIDTH(W + W + W), .STAGES(S9), .FREE(FREE)) u_c9_ulpeb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[8]), .in_ready_o(c9_ulpeb_ur),
+      .in_data_i({n_x_c8, n_y_c8, n_z_c8}),
+      .out_valid_o(c9_ulpeb_uv), .out_ready_i(r[10]),
+      .out_data_o({n_x_c9, n_y_c9, n_z_c9}));
+  end else begin : g_c9_ulpeb_none
+    assign {c9_ulpeb_ur, c9_ulpeb_uv, n_x_c9, n_y_c9, n_z_c9} = {(2 + W + W + W){1'b0}};
+  end endgenerate
+  wire c9_slab_ur, c9_slab_uv;
+  generate if ((SPAWNS & 96) != 0) begin : g_c9_slab
+    fp_delay #(.WIDTH(W), .STAGES(S9), .FREE(FREE)) u_c9_slab (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[8]), .in_ready_o(c9_slab_ur),
+      .in_data_i({slab_c8}),
+      .out_valid_o(c9_slab_uv), .out_ready_i(r[10]),
+      .out_data_o({slab_c9}));
+  end else begin : g_c9_slab_none
+    assign {c9_slab_ur, c9_slab_uv, slab_c9} = {(2 + W){1'b0}};
+  end endgenerate
+  wire c9_skip_ur, c9_skip_uv;
+  generate if ((SPAWNS & 114) != 0) begin : g_c9_skip
+    fp_delay #(.WIDTH(32), .STAGES(S9), .FREE(FREE)) u_c9_skip (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[8]), .in_ready_o(c9_skip_ur),
+      .in_data_i({id_c8}),
+      .out_valid_o(c9_skip_uv), .out_ready_i(r[10]),
+      .out_data_o({id_c9}));
+  end else begin : g_c9_skip_none
+    assign {c9_skip_ur, c9_skip_uv, id_c9} = {(2 + 32){1'b0}};
+  end endgenerate
   wire [3*W-1:0] g9_rcp_res;
   wire g9_rcp_ur, g9_rcp_uv;
   spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S9),
@@ -719,21 +1053,34 @@ module hit #(
   wire [W-1:0] inv_x = g9_rcp_res[0*W +: W];
   wire [W-1:0] inv_y = g9_rcp_res[1*W +: W];
   wire [W-1:0] inv_z = g9_rcp_res[2*W +: W];
-  wire [3*W-1:0] g9_mul_res;
+  wire [2*W-1:0] g9_mul_res;
   wire g9_mul_ur, g9_mul_uv;
   spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S9),
-              .OP(0), .N(3)) u_g9_mul (
+              .OP(0), .N(2)) u_g9_mul (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[8]), .in_ready_o(g9_mul_ur),
-    .in_a_i({UU, pv(k_c8, n_x_c8, n_y_c8, n_z_c8), pu(k_c8, n_x_c8, n_y_c8, n_z_c8)}),
-    .in_b_i({b2, pv(k_c8, ds_x, ds_y, ds_z), pu(k_c8, ds_x, ds_y, ds_z)}),
-    .in_c_i({{W{1'b0}}, {W{1'b0}}, {W{1'b0}}}), .in_sub_i({1'b0, 1'b0, 1'b0}),
+    .in_a_i({pv(k_c8, n_x_c8, n_y_c8, n_z_c8), pu(k_c8, n_x_c8, n_y_c8, n_z_c8)}),
+    .in_b_i({pv(k_c8, ds_x, ds_y, ds_z), pu(k_c8, ds_x, ds_y, ds_z)}),
+    .in_c_i({{W{1'b0}}, {W{1'b0}}}), .in_sub_i({1'b0, 1'b0}),
     .out_valid_o(g9_mul_uv), .out_ready_i(r[10]), .out_res_o(g9_mul_res));
   wire [W-1:0] nud = g9_mul_res[0*W +: W];
   wire [W-1:0] nvd = g9_mul_res[1*W +: W];
-  wire [W-1:0] ub = g9_mul_res[2*W +: W];
+  wire [1*W-1:0] g9_mul_eb_res;
+  wire g9_mul_eb_ur, g9_mul_eb_uv;
+  generate if ((SPAWNS & 8) != 0) begin : u_g9_mul_eb_on
+    spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S9),
+                .OP(0), .N(1)) u_g9_mul_eb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[8]), .in_ready_o(g9_mul_eb_ur),
+      .in_a_i({UU}),
+      .in_b_i({b2}),
+      .in_c_i({{W{1'b0}}}), .in_sub_i({1'b0}),
+      .out_valid_o(g9_mul_eb_uv), .out_ready_i(r[10]), .out_res_o(g9_mul_eb_res));
+  end else begin : u_g9_mul_eb_off
+    assign {g9_mul_eb_ur, g9_mul_eb_uv, g9_mul_eb_res} = {(2 + 1 * W){1'b0}};
+  end endgenerate
+  wire [W-1:0] ub = g9_mul_eb_res[0*W +: W];
 
   // ---- sublevel 10 ------------------------------------------------------------------------------
-  localparam integer C10_W = TAG_BITS + 32 + W + W + W + W + W + W + W + W + W + W + W + W + W + W + W;
+  localparam integer C10_W = TAG_BITS + W + W + W + W + W + W + W + W + W + W + W;
   wire [TAG_BITS-1:0] tag_c10;
   wire [32-1:0] id_c10;
   wire [W-1:0] den_c10;
@@ -751,11 +1098,41 @@ module hit #(
   wire [W-1:0] inv_x_c10;
   wire [W-1:0] inv_y_c10;
   wire [W-1:0] inv_z_c10;
-  fp_pipe #(.WIDTH(C10_W), .STAGES(S10)) u_c10 (
+  fp_delay #(.WIDTH(C10_W), .STAGES(S10), .FREE(FREE)) u_c10 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[9]), .in_ready_o(r[10]),
-    .in_data_i({tag_c9, id_c9, den_c9, n_x_c9, n_y_c9, n_z_c9, h_x_c9, h_y_c9, h_z_c9, slab_c9, len_c9, ds_x_c9, ds_y_c9, ds_z_c9, inv_x, inv_y, inv_z}),
+    .in_data_i({tag_c9, den_c9, h_x_c9, h_y_c9, h_z_c9, len_c9, ds_x_c9, ds_y_c9, ds_z_c9, inv_x, inv_y, inv_z}),
     .out_valid_o(v[10]), .out_ready_i(r[11]),
-    .out_data_o({tag_c10, id_c10, den_c10, n_x_c10, n_y_c10, n_z_c10, h_x_c10, h_y_c10, h_z_c10, slab_c10, len_c10, ds_x_c10, ds_y_c10, ds_z_c10, inv_x_c10, inv_y_c10, inv_z_c10}));
+    .out_data_o({tag_c10, den_c10, h_x_c10, h_y_c10, h_z_c10, len_c10, ds_x_c10, ds_y_c10, ds_z_c10, inv_x_c10, inv_y_c10, inv_z_c10}));
+  wire c10_ulpeb_ur, c10_ulpeb_uv;
+  generate if ((SPAWNS & 28) != 0) begin : g_c10_ulpeb
+    fp_delay #(.WIDTH(W + W + W), .STAGES(S10), .FREE(FREE)) u_c10_ulpeb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[9]), .in_ready_o(c10_ulpeb_ur),
+      .in_data_i({n_x_c9, n_y_c9, n_z_c9}),
+      .out_valid_o(c10_ulpeb_uv), .out_ready_i(r[11]),
+      .out_data_o({n_x_c10, n_y_c10, n_z_c10}));
+  end else begin : g_c10_ulpeb_none
+    assign {c10_ulpeb_ur, c10_ulpeb_uv, n_x_c10, n_y_c10, n_z_c10} = {(2 + W + W + W){1'b0}};
+  end endgenerate
+  wire c10_slab_ur, c10_slab_uv;
+  generate if ((SPAWNS & 96) != 0) begin : g_c10_slab
+    fp_delay #(.WIDTH(W), .STAGES(S10), .FREE(FREE)) u_c10_slab (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[9]), .in_ready_o(c10_slab_ur),
+      .in_data_i({slab_c9}),
+      .out_valid_o(c10_slab_uv), .out_ready_i(r[11]),
+      .out_data_o({slab_c10}));
+  end else begin : g_c10_slab_none
+    assign {c10_slab_ur, c10_slab_uv, slab_c10} = {(2 + W){1'b0}};
+  end endgenerate
+  wire c10_skip_ur, c10_skip_uv;
+  generate if ((SPAWNS & 114) != 0) begin : g_c10_skip
+    fp_delay #(.WIDTH(32), .STAGES(S10), .FREE(FREE)) u_c10_skip (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[9]), .in_ready_o(c10_skip_ur),
+      .in_data_i({id_c9}),
+      .out_valid_o(c10_skip_uv), .out_ready_i(r[11]),
+      .out_data_o({id_c10}));
+  end else begin : g_c10_skip_none
+    assign {c10_skip_ur, c10_skip_uv, id_c10} = {(2 + 32){1'b0}};
+  end endgenerate
   wire [1*W-1:0] g10_add3_res;
   wire g10_add3_ur, g10_add3_uv;
   spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S10),
@@ -766,16 +1143,20 @@ module hit #(
     .in_c_i({nvd}), .in_sub_i({1'b0}),
     .out_valid_o(g10_add3_uv), .out_ready_i(r[11]), .out_res_o(g10_add3_res));
   wire [W-1:0] dens = g10_add3_res[0*W +: W];
-  wire [1*W-1:0] g10_mul_res;
-  wire g10_mul_ur, g10_mul_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S10),
-              .OP(0), .N(1)) u_g10_mul (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[9]), .in_ready_o(g10_mul_ur),
-    .in_a_i({C2}),
-    .in_b_i({ub}),
-    .in_c_i({{W{1'b0}}}), .in_sub_i({1'b0}),
-    .out_valid_o(g10_mul_uv), .out_ready_i(r[11]), .out_res_o(g10_mul_res));
-  wire [W-1:0] delta = g10_mul_res[0*W +: W];
+  wire [1*W-1:0] g10_mul_eb_res;
+  wire g10_mul_eb_ur, g10_mul_eb_uv;
+  generate if ((SPAWNS & 8) != 0) begin : u_g10_mul_eb_on
+    spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S10),
+                .OP(0), .N(1)) u_g10_mul_eb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[9]), .in_ready_o(g10_mul_eb_ur),
+      .in_a_i({C2}),
+      .in_b_i({ub}),
+      .in_c_i({{W{1'b0}}}), .in_sub_i({1'b0}),
+      .out_valid_o(g10_mul_eb_uv), .out_ready_i(r[11]), .out_res_o(g10_mul_eb_res));
+  end else begin : u_g10_mul_eb_off
+    assign {g10_mul_eb_ur, g10_mul_eb_uv, g10_mul_eb_res} = {(2 + 1 * W){1'b0}};
+  end endgenerate
+  wire [W-1:0] delta = g10_mul_eb_res[0*W +: W];
   wire [1-1:0] front = dens[W-2:M] != {E{1'b0}} && den_c10[W-2:M] != {E{1'b0}} && dens[W-1] != den_c10[W-1];
   wire [W-1:0] sn_x = dens[W-1] ? fneg(n_x_c10) : n_x_c10;
   wire [W-1:0] sn_y = dens[W-1] ? fneg(n_y_c10) : n_y_c10;
@@ -783,7 +1164,7 @@ module hit #(
   wire [W-1:0] dmax = fmax_sixteenth(dens);
 
   // ---- sublevel 11 ------------------------------------------------------------------------------
-  localparam integer C11_W = TAG_BITS + 32 + W + W + W + W + W + W + W + W + W + W + W + W + 1;
+  localparam integer C11_W = TAG_BITS + W + W + W + W + W + W + W + W + W + W + W + 1;
   wire [TAG_BITS-1:0] tag_c11;
   wire [32-1:0] id_c11;
   wire [W-1:0] h_x_c11;
@@ -799,42 +1180,83 @@ module hit #(
   wire [W-1:0] inv_z_c11;
   wire [W-1:0] dens_c11;
   wire [1-1:0] front_c11;
-  fp_pipe #(.WIDTH(C11_W), .STAGES(S11)) u_c11 (
+  fp_delay #(.WIDTH(C11_W), .STAGES(S11), .FREE(FREE)) u_c11 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[10]), .in_ready_o(r[11]),
-    .in_data_i({tag_c10, id_c10, h_x_c10, h_y_c10, h_z_c10, slab_c10, len_c10, ds_x_c10, ds_y_c10, ds_z_c10, inv_x_c10, inv_y_c10, inv_z_c10, dens, front}),
+    .in_data_i({tag_c10, h_x_c10, h_y_c10, h_z_c10, len_c10, ds_x_c10, ds_y_c10, ds_z_c10, inv_x_c10, inv_y_c10, inv_z_c10, dens, front}),
     .out_valid_o(v[11]), .out_ready_i(r[12]),
-    .out_data_o({tag_c11, id_c11, h_x_c11, h_y_c11, h_z_c11, slab_c11, len_c11, ds_x_c11, ds_y_c11, ds_z_c11, inv_x_c11, inv_y_c11, inv_z_c11, dens_c11, front_c11}));
-  wire [1*W-1:0] g11_rcp_res;
-  wire g11_rcp_ur, g11_rcp_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S11),
-              .OP(3), .N(1)) u_g11_rcp (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[10]), .in_ready_o(g11_rcp_ur),
-    .in_a_i({ONE}),
-    .in_b_i({dmax}),
-    .in_c_i({{W{1'b0}}}), .in_sub_i({1'b0}),
-    .out_valid_o(g11_rcp_uv), .out_ready_i(r[12]), .out_res_o(g11_rcp_res));
-  wire [W-1:0] rd = g11_rcp_res[0*W +: W];
-  wire [6*W-1:0] g11_mul_res;
-  wire g11_mul_ur, g11_mul_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S11),
-              .OP(0), .N(6)) u_g11_mul (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[10]), .in_ready_o(g11_mul_ur),
-    .in_a_i({scale_i, scale_i, scale_i, s_eb ? delta : fixed_i, s_eb ? delta : fixed_i, s_eb ? delta : fixed_i}),
-    .in_b_i({sn_z, sn_y, sn_x, s_eb ? n_z_c10 : sn_z, s_eb ? n_y_c10 : sn_y, s_eb ? n_x_c10 : sn_x}),
-    .in_c_i({{W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}, {W{1'b0}}}), .in_sub_i({1'b0, 1'b0, 1'b0, 1'b0, 1'b0, 1'b0}),
-    .out_valid_o(g11_mul_uv), .out_ready_i(r[12]), .out_res_o(g11_mul_res));
-  wire [W-1:0] ma_x = g11_mul_res[0*W +: W];
-  wire [W-1:0] ma_y = g11_mul_res[1*W +: W];
-  wire [W-1:0] ma_z = g11_mul_res[2*W +: W];
-  wire [W-1:0] ps_x = g11_mul_res[3*W +: W];
-  wire [W-1:0] ps_y = g11_mul_res[4*W +: W];
-  wire [W-1:0] ps_z = g11_mul_res[5*W +: W];
+    .out_data_o({tag_c11, h_x_c11, h_y_c11, h_z_c11, len_c11, ds_x_c11, ds_y_c11, ds_z_c11, inv_x_c11, inv_y_c11, inv_z_c11, dens_c11, front_c11}));
+  wire c11_slab_ur, c11_slab_uv;
+  generate if ((SPAWNS & 96) != 0) begin : g_c11_slab
+    fp_delay #(.WIDTH(W), .STAGES(S11), .FREE(FREE)) u_c11_slab (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[10]), .in_ready_o(c11_slab_ur),
+      .in_data_i({slab_c10}),
+      .out_valid_o(c11_slab_uv), .out_ready_i(r[12]),
+      .out_data_o({slab_c11}));
+  end else begin : g_c11_slab_none
+    assign {c11_slab_ur, c11_slab_uv, slab_c11} = {(2 + W){1'b0}};
+  end endgenerate
+  wire c11_skip_ur, c11_skip_uv;
+  generate if ((SPAWNS & 114) != 0) begin : g_c11_skip
+    fp_delay #(.WIDTH(32), .STAGES(S11), .FREE(FREE)) u_c11_skip (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[10]), .in_ready_o(c11_skip_ur),
+      .in_data_i({id_c10}),
+      .out_valid_o(c11_skip_uv), .out_ready_i(r[12]),
+      .out_data_o({id_c11}));
+  end else begin : g_c11_skip_none
+    assign {c11_skip_ur, c11_skip_uv, id_c11} = {(2 + 32){1'b0}};
+  end endgenerate
+  wire [1*W-1:0] g11_rcp_slab_res;
+  wire g11_rcp_slab_ur, g11_rcp_slab_uv;
+  generate if ((SPAWNS & 96) != 0) begin : u_g11_rcp_slab_on
+    spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S11),
+                .OP(3), .N(1)) u_g11_rcp_slab (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[10]), .in_ready_o(g11_rcp_slab_ur),
+      .in_a_i({ONE}),
+      .in_b_i({dmax}),
+      .in_c_i({{W{1'b0}}}), .in_sub_i({1'b0}),
+      .out_valid_o(g11_rcp_slab_uv), .out_ready_i(r[12]), .out_res_o(g11_rcp_slab_res));
+  end else begin : u_g11_rcp_slab_off
+    assign {g11_rcp_slab_ur, g11_rcp_slab_uv, g11_rcp_slab_res} = {(2 + 1 * W){1'b0}};
+  end endgenerate
+  wire [W-1:0] rd = g11_rcp_slab_res[0*W +: W];
+  wire [3*W-1:0] g11_mul_ulpeb_res;
+  wire g11_mul_ulpeb_ur, g11_mul_ulpeb_uv;
+  generate if ((SPAWNS & 28) != 0) begin : u_g11_mul_ulpeb_on
+    spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S11),
+                .OP(0), .N(3)) u_g11_mul_ulpeb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[10]), .in_ready_o(g11_mul_ulpeb_ur),
+      .in_a_i({s_eb ? delta : fixed_i, s_eb ? delta : fixed_i, s_eb ? delta : fixed_i}),
+      .in_b_i({s_eb ? n_z_c10 : sn_z, s_eb ? n_y_c10 : sn_y, s_eb ? n_x_c10 : sn_x}),
+      .in_c_i({{W{1'b0}}, {W{1'b0}}, {W{1'b0}}}), .in_sub_i({1'b0, 1'b0, 1'b0}),
+      .out_valid_o(g11_mul_ulpeb_uv), .out_ready_i(r[12]), .out_res_o(g11_mul_ulpeb_res));
+  end else begin : u_g11_mul_ulpeb_off
+    assign {g11_mul_ulpeb_ur, g11_mul_ulpeb_uv, g11_mul_ulpeb_res} = {(2 + 3 * W){1'b0}};
+  end endgenerate
+  wire [W-1:0] ma_x = g11_mul_ulpeb_res[0*W +: W];
+  wire [W-1:0] ma_y = g11_mul_ulpeb_res[1*W +: W];
+  wire [W-1:0] ma_z = g11_mul_ulpeb_res[2*W +: W];
+  wire [3*W-1:0] g11_mul_ulp_res;
+  wire g11_mul_ulp_ur, g11_mul_ulp_uv;
+  generate if ((SPAWNS & 20) != 0) begin : u_g11_mul_ulp_on
+    spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S11),
+                .OP(0), .N(3)) u_g11_mul_ulp (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[10]), .in_ready_o(g11_mul_ulp_ur),
+      .in_a_i({scale_i, scale_i, scale_i}),
+      .in_b_i({sn_z, sn_y, sn_x}),
+      .in_c_i({{W{1'b0}}, {W{1'b0}}, {W{1'b0}}}), .in_sub_i({1'b0, 1'b0, 1'b0}),
+      .out_valid_o(g11_mul_ulp_uv), .out_ready_i(r[12]), .out_res_o(g11_mul_ulp_res));
+  end else begin : u_g11_mul_ulp_off
+    assign {g11_mul_ulp_ur, g11_mul_ulp_uv, g11_mul_ulp_res} = {(2 + 3 * W){1'b0}};
+  end endgenerate
+  wire [W-1:0] ps_x = g11_mul_ulp_res[0*W +: W];
+  wire [W-1:0] ps_y = g11_mul_ulp_res[1*W +: W];
+  wire [W-1:0] ps_z = g11_mul_ulp_res[2*W +: W];
   wire [W-1:0] q_x = add_ulps_num(h_x_c11, ps_x);
   wire [W-1:0] q_y = add_ulps_num(h_y_c11, ps_y);
   wire [W-1:0] q_z = add_ulps_num(h_z_c11, ps_z);
 
   // ---- sublevel 12 ------------------------------------------------------------------------------
-  localparam integer C12_W = TAG_BITS + 32 + W + W + W + W + W + W + W + W + W + W + W + 1 + W + W + W;
+  localparam integer C12_W = TAG_BITS + W + W + W + W + W + W + W + W + W + W + W + 1;
   wire [TAG_BITS-1:0] tag_c12;
   wire [32-1:0] id_c12;
   wire [W-1:0] h_x_c12;
@@ -852,33 +1274,61 @@ module hit #(
   wire [W-1:0] q_x_c12;
   wire [W-1:0] q_y_c12;
   wire [W-1:0] q_z_c12;
-  fp_pipe #(.WIDTH(C12_W), .STAGES(S12)) u_c12 (
+  fp_delay #(.WIDTH(C12_W), .STAGES(S12), .FREE(FREE)) u_c12 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[11]), .in_ready_o(r[12]),
-    .in_data_i({tag_c11, id_c11, h_x_c11, h_y_c11, h_z_c11, len_c11, ds_x_c11, ds_y_c11, ds_z_c11, inv_x_c11, inv_y_c11, inv_z_c11, dens_c11, front_c11, q_x, q_y, q_z}),
+    .in_data_i({tag_c11, h_x_c11, h_y_c11, h_z_c11, len_c11, ds_x_c11, ds_y_c11, ds_z_c11, inv_x_c11, inv_y_c11, inv_z_c11, dens_c11, front_c11}),
     .out_valid_o(v[12]), .out_ready_i(r[13]),
-    .out_data_o({tag_c12, id_c12, h_x_c12, h_y_c12, h_z_c12, len_c12, ds_x_c12, ds_y_c12, ds_z_c12, inv_x_c12, inv_y_c12, inv_z_c12, dens_c12, front_c12, q_x_c12, q_y_c12, q_z_c12}));
-  wire [1*W-1:0] g12_mul_res;
-  wire g12_mul_ur, g12_mul_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S12),
-              .OP(0), .N(1)) u_g12_mul (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[11]), .in_ready_o(g12_mul_ur),
-    .in_a_i({slab_c11}),
-    .in_b_i({rd}),
-    .in_c_i({{W{1'b0}}}), .in_sub_i({1'b0}),
-    .out_valid_o(g12_mul_uv), .out_ready_i(r[13]), .out_res_o(g12_mul_res));
-  wire [W-1:0] t0 = g12_mul_res[0*W +: W];
-  wire [3*W-1:0] g12_add_res;
-  wire g12_add_ur, g12_add_uv;
-  spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S12),
-              .OP(1), .N(3)) u_g12_add (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[11]), .in_ready_o(g12_add_ur),
-    .in_a_i({h_z_c11, h_y_c11, h_x_c11}),
-    .in_b_i({ma_z, ma_y, ma_x}),
-    .in_c_i({{W{1'b0}}, {W{1'b0}}, {W{1'b0}}}), .in_sub_i({s_eb & dens_c11[W-1], s_eb & dens_c11[W-1], s_eb & dens_c11[W-1]}),
-    .out_valid_o(g12_add_uv), .out_ready_i(r[13]), .out_res_o(g12_add_res));
-  wire [W-1:0] oa_x = g12_add_res[0*W +: W];
-  wire [W-1:0] oa_y = g12_add_res[1*W +: W];
-  wire [W-1:0] oa_z = g12_add_res[2*W +: W];
+    .out_data_o({tag_c12, h_x_c12, h_y_c12, h_z_c12, len_c12, ds_x_c12, ds_y_c12, ds_z_c12, inv_x_c12, inv_y_c12, inv_z_c12, dens_c12, front_c12}));
+  wire c12_ulp_ur, c12_ulp_uv;
+  generate if ((SPAWNS & 20) != 0) begin : g_c12_ulp
+    fp_delay #(.WIDTH(W + W + W), .STAGES(S12), .FREE(FREE)) u_c12_ulp (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[11]), .in_ready_o(c12_ulp_ur),
+      .in_data_i({q_x, q_y, q_z}),
+      .out_valid_o(c12_ulp_uv), .out_ready_i(r[13]),
+      .out_data_o({q_x_c12, q_y_c12, q_z_c12}));
+  end else begin : g_c12_ulp_none
+    assign {c12_ulp_ur, c12_ulp_uv, q_x_c12, q_y_c12, q_z_c12} = {(2 + W + W + W){1'b0}};
+  end endgenerate
+  wire c12_skip_ur, c12_skip_uv;
+  generate if ((SPAWNS & 114) != 0) begin : g_c12_skip
+    fp_delay #(.WIDTH(32), .STAGES(S12), .FREE(FREE)) u_c12_skip (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[11]), .in_ready_o(c12_skip_ur),
+      .in_data_i({id_c11}),
+      .out_valid_o(c12_skip_uv), .out_ready_i(r[13]),
+      .out_data_o({id_c12}));
+  end else begin : g_c12_skip_none
+    assign {c12_skip_ur, c12_skip_uv, id_c12} = {(2 + 32){1'b0}};
+  end endgenerate
+  wire [1*W-1:0] g12_mul_slab_res;
+  wire g12_mul_slab_ur, g12_mul_slab_uv;
+  generate if ((SPAWNS & 96) != 0) begin : u_g12_mul_slab_on
+    spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S12),
+                .OP(0), .N(1)) u_g12_mul_slab (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[11]), .in_ready_o(g12_mul_slab_ur),
+      .in_a_i({slab_c11}),
+      .in_b_i({rd}),
+      .in_c_i({{W{1'b0}}}), .in_sub_i({1'b0}),
+      .out_valid_o(g12_mul_slab_uv), .out_ready_i(r[13]), .out_res_o(g12_mul_slab_res));
+  end else begin : u_g12_mul_slab_off
+    assign {g12_mul_slab_ur, g12_mul_slab_uv, g12_mul_slab_res} = {(2 + 1 * W){1'b0}};
+  end endgenerate
+  wire [W-1:0] t0 = g12_mul_slab_res[0*W +: W];
+  wire [3*W-1:0] g12_add_ulpeb_res;
+  wire g12_add_ulpeb_ur, g12_add_ulpeb_uv;
+  generate if ((SPAWNS & 28) != 0) begin : u_g12_add_ulpeb_on
+    spawn_ops #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S12),
+                .OP(1), .N(3)) u_g12_add_ulpeb (
+      .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[11]), .in_ready_o(g12_add_ulpeb_ur),
+      .in_a_i({h_z_c11, h_y_c11, h_x_c11}),
+      .in_b_i({ma_z, ma_y, ma_x}),
+      .in_c_i({{W{1'b0}}, {W{1'b0}}, {W{1'b0}}}), .in_sub_i({s_eb & dens_c11[W-1], s_eb & dens_c11[W-1], s_eb & dens_c11[W-1]}),
+      .out_valid_o(g12_add_ulpeb_uv), .out_ready_i(r[13]), .out_res_o(g12_add_ulpeb_res));
+  end else begin : u_g12_add_ulpeb_off
+    assign {g12_add_ulpeb_ur, g12_add_ulpeb_uv, g12_add_ulpeb_res} = {(2 + 3 * W){1'b0}};
+  end endgenerate
+  wire [W-1:0] oa_x = g12_add_ulpeb_res[0*W +: W];
+  wire [W-1:0] oa_y = g12_add_ulpeb_res[1*W +: W];
+  wire [W-1:0] oa_z = g12_add_ulpeb_res[2*W +: W];
 
   // ---- outputs ------------------------------------------------------------------------------------
   assign out_valid_o = v[12];
@@ -904,7 +1354,9 @@ module hit #(
   assign out_skip_id_o = spawn12 && s_skip ? id_c12 : 32'hFFFF_FFFF;
   assign out_tag_o = tag_c12;
 
+  wire unused_spawns;
+  assign unused_spawns = ^{id_0, id_c1, id_c2, id_c3, id_c4, id_c5, id_c6, id_c7, id_c8, id_c9, id_c10, id_c11, id_c12, t_0, at_0, at_c1, at_c2, and_0, and_c1, and_c2, nu_0, nv_0, n_x_c9, n_x_c10, n_y_c9, n_y_c10, n_z_c9, n_z_c10, ok_0, ou_0, ov_0, dk_0, dk_c1, du_0, dv_0, td_x_c2, td_y_c2, td_z_c2, nuou, nvov, nudu, nvdv, tden, tden_c2, ndok, e_num, e_den, s_x, s_y, s_z, ndhk, m_x, m_y, m_z, m_z_c4, nuhu, nvhv, c5num, c5num_c4, ated, c2tden, c2tden_c4, slab, slab_c4, slab_c5, slab_c6, slab_c7, slab_c8, slab_c9, slab_c10, slab_c11, x_x, x_y, x_z, x_z_c5, c3ted, em1, e_snum, b1, b1_c6, b1_c7, eh1, em, c5snum, eh, snmv, snmv_c7, c2hit, b2, ub, delta, sn_x, sn_y, sn_z, dmax, rd, ma_x, ma_y, ma_z, ps_x, ps_y, ps_z, q_x, q_x_c12, q_y, q_y_c12, q_z, q_z_c12, t0, oa_x, oa_y, oa_z, strategy_i, scale_i, fixed_i, slab_scale_i, back_i, bk_m, bk_u};
   wire unused_hs;
-  assign unused_hs = ^{g1_mul_ur, g1_mul_uv, g1_add_ur, g1_add_uv, g2_add_ur, g2_add_uv, g2_add3_ur, g2_add3_uv, g3_sub_ur, g3_sub_uv, g3_add_ur, g3_add_uv, g3_mul_ur, g3_mul_uv, g4_mul_ur, g4_mul_uv, g4_add_ur, g4_add_uv, g4_add3_ur, g4_add3_uv, g5_add3_ur, g5_add3_uv, g5_add_ur, g5_add_uv, g5_mul_ur, g5_mul_uv, g6_sqrt_ur, g6_sqrt_uv, g6_add_ur, g6_add_uv, g7_rcp_ur, g7_rcp_uv, g7_mul_ur, g7_mul_uv, g8_mul_ur, g8_mul_uv, g8_add3_ur, g8_add3_uv, g9_rcp_ur, g9_rcp_uv, g9_mul_ur, g9_mul_uv, g10_add3_ur, g10_add3_uv, g10_mul_ur, g10_mul_uv, g11_rcp_ur, g11_rcp_uv, g11_mul_ur, g11_mul_uv, g12_mul_ur, g12_mul_uv, g12_add_ur, g12_add_uv};
+  assign unused_hs = ^{c1_eb_ur, c1_eb_uv, c1_skip_ur, c1_skip_uv, g1_mul_ur, g1_mul_uv, g1_mul_eb_ur, g1_mul_eb_uv, g1_add_eb_ur, g1_add_eb_uv, c2_eb_ur, c2_eb_uv, c2_skip_ur, c2_skip_uv, g2_add_ur, g2_add_uv, g2_add3_eb_ur, g2_add3_eb_uv, c3_skip_ur, c3_skip_uv, g3_sub_ur, g3_sub_uv, g3_add_eb_ur, g3_add_eb_uv, g3_mul_slab_ur, g3_mul_slab_uv, g3_mul_eb_ur, g3_mul_eb_uv, c4_eb_ur, c4_eb_uv, c4_slab_ur, c4_slab_uv, c4_skip_ur, c4_skip_uv, g4_mul_ur, g4_mul_uv, g4_mul_eb_ur, g4_mul_eb_uv, g4_add_eb_ur, g4_add_eb_uv, g4_add3_eb_ur, g4_add3_eb_uv, c5_eb_ur, c5_eb_uv, c5_slab_ur, c5_slab_uv, c5_skip_ur, c5_skip_uv, g5_add3_ur, g5_add3_uv, g5_add3_eb_ur, g5_add3_eb_uv, g5_add_eb_ur, g5_add_eb_uv, g5_mul_eb_ur, g5_mul_eb_uv, c6_eb_ur, c6_eb_uv, c6_slab_ur, c6_slab_uv, c6_skip_ur, c6_skip_uv, g6_sqrt_ur, g6_sqrt_uv, g6_add_eb_ur, g6_add_eb_uv, c7_eb_ur, c7_eb_uv, c7_slab_ur, c7_slab_uv, c7_skip_ur, c7_skip_uv, g7_rcp_ur, g7_rcp_uv, g7_mul_eb_ur, g7_mul_eb_uv, c8_slab_ur, c8_slab_uv, c8_skip_ur, c8_skip_uv, g8_mul_ur, g8_mul_uv, g8_add3_eb_ur, g8_add3_eb_uv, c9_ulpeb_ur, c9_ulpeb_uv, c9_slab_ur, c9_slab_uv, c9_skip_ur, c9_skip_uv, g9_rcp_ur, g9_rcp_uv, g9_mul_ur, g9_mul_uv, g9_mul_eb_ur, g9_mul_eb_uv, c10_ulpeb_ur, c10_ulpeb_uv, c10_slab_ur, c10_slab_uv, c10_skip_ur, c10_skip_uv, g10_add3_ur, g10_add3_uv, g10_mul_eb_ur, g10_mul_eb_uv, c11_slab_ur, c11_slab_uv, c11_skip_ur, c11_skip_uv, g11_rcp_slab_ur, g11_rcp_slab_uv, g11_mul_ulpeb_ur, g11_mul_ulpeb_uv, g11_mul_ulp_ur, g11_mul_ulp_uv, c12_ulp_ur, c12_ulp_uv, c12_skip_ur, c12_skip_uv, g12_mul_slab_ur, g12_mul_slab_uv, g12_add_ulpeb_ur, g12_add_ulpeb_uv};
 
 endmodule

@@ -20,6 +20,7 @@
 // are 32-bit cycle numbers compared with now_i as a signed difference.
 // lint: also SLOT_BITS=7 PIPES=4 STAGES=2
 // lint: also SLOT_BITS=1 PIPES=1 STAGES=1
+// lint: also SLOT_BITS=7 PIPES=4 STAGES=2 SPAWNS=1
 module hit_unit #(
   parameter integer EXP_BITS  = 7,
   parameter integer MAN_BITS  = 16,
@@ -27,7 +28,8 @@ module hit_unit #(
   parameter integer RAYCORE   = 0,
   parameter integer STAGES    = 2,
   parameter integer SLOT_BITS = 3,
-  parameter integer PIPES     = 2
+  parameter integer PIPES     = 2,
+  parameter integer SPAWNS    = 127  // hit.v's: the spawn strategies built (bit s: hls::Spawn s)
 ) (
   input  wire                            clk_i,
   input  wire                            rst_ni,
@@ -137,7 +139,7 @@ module hit_unit #(
   wire [W-1:0]  o_tmin, o_tmax;
   wire          o_front, o_spawn;
   hit #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
-        .IN_REGS(IR), .TAG_BITS(TW)) u_hit (
+        .IN_REGS(IR), .TAG_BITS(TW), .SPAWNS(SPAWNS), .FREE(1)) u_hit (
     .clk_i(clk_i), .rst_ni(rst_ni),
     .light_x_i(light_x_i), .light_y_i(light_y_i), .light_z_i(light_z_i), .tmin_i(tmin_i),
     .strategy_i(strategy_i), .segment_i(segment_i), .all_i(all_i), .back_i(back_i),

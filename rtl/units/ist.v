@@ -36,13 +36,17 @@
 // out_valid are the level's), and the operators' own handshake outputs are equal copies, left
 // unused. Back-pressure stalls the whole chain (a register takes a new item if it is empty or its
 // item leaves), so in_ready_o depends combinationally on out_ready_i.
+// FREE = 1 (ist_unit, which never holds a result back: out_ready_i 1): the carries' data in
+// fp_delay memories instead of a register per stage.
+// lint: also FREE=1
 module ist #(
   parameter integer EXP_BITS = 7,
   parameter integer MAN_BITS = 16,
   parameter integer RNE      = 0,
   parameter integer RAYCORE  = 0,   // rounding mode raycore (hls Rounding::raycore; RNE ignored)
   parameter integer STAGES   = 2,
-  parameter integer TAG_BITS = 16
+  parameter integer TAG_BITS = 16,
+  parameter integer FREE     = 0    // 1: out_ready_i is 1 whenever out_valid_o (fp_delay's FREE)
 ) (
   input  wire                       clk_i,
   input  wire                       rst_ni,
@@ -135,7 +139,7 @@ module ist #(
   wire [6*W-1:0] c1_ka, c2_ka, c3_ka, c4_ka, c1_kb, c2_kb, c3_kb, c4_kb;
   wire [W-1:0] c1_dk, c1_du, c1_dv, c1_ou, c1_ov, c1_tmin, c1_tmax;
   assign c1_ka = {c1_tmin, c1_tmax, c1_du, c1_dv, c1_ou, c1_ov};
-  fp_pipe #(.WIDTH(C_W), .STAGES(S1)) u_carry1 (
+  fp_delay #(.WIDTH(C_W), .STAGES(S1), .FREE(FREE)) u_carry1 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(r[1]),
     .in_data_i({in_tag_i, in_tmin_i, in_tmax_i, d_k, d_u, d_v, o_u, o_v,
                 in_c3_i, in_c4_i, in_c5_i, in_c6_i, in_c7_i, in_c8_i}),
@@ -165,7 +169,7 @@ module ist #(
   wire [W-1:0] l2_den, l2_s2;
   wire [1:0]   l2_unused_v, l2_unused_r;
   wire [W-1:0] c2_s1;
-  fp_pipe #(.WIDTH(C_W), .STAGES(S2)) u_carry2 (
+  fp_delay #(.WIDTH(C_W), .STAGES(S2), .FREE(FREE)) u_carry2 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(r[2]),
     .in_data_i({c1_tag, c1_ka, l1_s1, c1_kb}), .out_valid_o(v[2]), .out_ready_i(r[3]),
     .out_data_o({c2_tag, c2_ka, c2_s1, c2_kb}));
@@ -182,7 +186,7 @@ module ist #(
   wire [W-1:0] l3_num, l3_rcp;
   wire [1:0]   l3_unused_v, l3_unused_r;
   wire [W-1:0] c3_den;
-  fp_pipe #(.WIDTH(C_W), .STAGES(S3)) u_carry3 (
+  fp_delay #(.WIDTH(C_W), .STAGES(S3), .FREE(FREE)) u_carry3 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(r[3]),
     .in_data_i({c2_tag, c2_ka, l2_den, c2_kb}), .out_valid_o(v[3]), .out_ready_i(r[4]),
     .out_data_o({c3_tag, c3_ka, c3_den, c3_kb}));
@@ -209,7 +213,7 @@ module ist #(
   wire [W-1:0] l4_t;
   wire         l4_unused_v, l4_unused_r;
   wire [W-1:0] c4_den;
-  fp_pipe #(.WIDTH(C_W), .STAGES(S4)) u_carry4 (
+  fp_delay #(.WIDTH(C_W), .STAGES(S4), .FREE(FREE)) u_carry4 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(r[4]),
     .in_data_i({c3_tag, c3_ka, c3_den, c3_kb}), .out_valid_o(v[4]), .out_ready_i(r[5]),
     .out_data_o({c4_tag, c4_ka, c4_den, c4_kb}));
@@ -227,7 +231,7 @@ module ist #(
   wire [TAG_BITS-1:0] c5_tag;
   wire [W-1:0] c5_ou, c5_ov, c5_den, c5_t;
   wire [6*W-1:0] c5_kb;
-  fp_pipe #(.WIDTH(C5_W), .STAGES(S5)) u_carry5 (
+  fp_delay #(.WIDTH(C5_W), .STAGES(S5), .FREE(FREE)) u_carry5 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(r[5]),
     .in_data_i({c4_tag, c4_ka[0 +: 2*W], c4_den, l4_t, c4_kb}),
     .out_valid_o(v[5]), .out_ready_i(r[6]),
@@ -260,7 +264,7 @@ module ist #(
   wire [TAG_BITS-1:0] c6_tag;
   wire [W-1:0] c6_den, c6_t, c6_bnu, c6_bnv, c6_bd, c6_cnu, c6_cnv, c6_cd;
   wire         c6_p1;  // phase 1 passed: tmin < t < tmax
-  fp_pipe #(.WIDTH(C6_W), .STAGES(S6)) u_carry6 (
+  fp_delay #(.WIDTH(C6_W), .STAGES(S6), .FREE(FREE)) u_carry6 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[5]), .in_ready_o(r[6]),
     .in_data_i({c5_tag, c5_den, c5_t, c5_kb, &l5_lt}),
     .out_valid_o(v[6]), .out_ready_i(r[7]),
@@ -284,7 +288,7 @@ module ist #(
   wire [TAG_BITS-1:0] c7_tag;
   wire [W-1:0] c7_den, c7_t, c7_bd, c7_cd;
   wire         c7_p1;
-  fp_pipe #(.WIDTH(C7_W), .STAGES(S7)) u_carry7 (
+  fp_delay #(.WIDTH(C7_W), .STAGES(S7), .FREE(FREE)) u_carry7 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[6]), .in_ready_o(r[7]),
     .in_data_i({c6_tag, c6_den, c6_t, c6_bd, c6_cd, c6_p1}),
     .out_valid_o(v[7]), .out_ready_i(r[8]),
@@ -309,7 +313,7 @@ module ist #(
   wire [TAG_BITS-1:0] c8_tag;
   wire [W-1:0] c8_den, c8_t;
   wire         c8_p1;
-  fp_pipe #(.WIDTH(C8_W), .STAGES(S8)) u_carry8 (
+  fp_delay #(.WIDTH(C8_W), .STAGES(S8), .FREE(FREE)) u_carry8 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[7]), .in_ready_o(r[8]),
     .in_data_i({c7_tag, c7_den, c7_t, c7_p1}),
     .out_valid_o(v[8]), .out_ready_i(r[9]),
@@ -343,7 +347,7 @@ module ist #(
   wire [TAG_BITS-1:0] c9_tag;
   wire [W-1:0] c9_den, c9_t;
   wire         c9_p1, c9_bfail, c9_gfail;
-  fp_pipe #(.WIDTH(C9_W), .STAGES(S9)) u_carry9 (
+  fp_delay #(.WIDTH(C9_W), .STAGES(S9), .FREE(FREE)) u_carry9 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[8]), .in_ready_o(r[9]),
     .in_data_i({c8_tag, c8_den, c8_t, c8_p1, l8_bfail, l8_gfail}),
     .out_valid_o(v[9]), .out_ready_i(r[10]),
@@ -359,7 +363,7 @@ module ist #(
   wire         l10_unused_v, l10_unused_r;
   localparam integer C10_W = TAG_BITS + 2 * W + 3;
   wire         c10_p1, c10_bfail, c10_gfail;
-  fp_pipe #(.WIDTH(C10_W), .STAGES(S10)) u_carry10 (
+  fp_delay #(.WIDTH(C10_W), .STAGES(S10), .FREE(FREE)) u_carry10 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[9]), .in_ready_o(r[10]),
     .in_data_i({c9_tag, c9_den, c9_t, c9_p1, c9_bfail, c9_gfail}),
     .out_valid_o(v[10]), .out_ready_i(r[11]),

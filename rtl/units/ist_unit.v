@@ -222,20 +222,27 @@ module ist_unit #(
       wire [2:0]    o_exit;
       wire [W-1:0]  o_t, o_den;
       wire [TW-1:0] o_tag;
+      // The side data beside the test, not through it: ist.v never stalls here (out_ready 1), so
+      // its latency is exactly 10 x STAGES and one fp_delay memory of that depth holds the tag
+      // (ist.v's own carries are fp_delay memories too, FREE = 1).
+      wire          s_valid_unused, s_ready_unused, o_tag0_unused;
+      fp_delay #(.WIDTH(TW), .STAGES(10 * STAGES), .FREE(1)) u_side (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(ev), .in_ready_o(s_ready_unused),
+        .in_data_i(itag), .out_valid_o(s_valid_unused), .out_ready_i(1'b1), .out_data_o(o_tag));
       if (WATERTIGHT != 0) begin : g_wt  // the plane, then the vertices A, B, C ({z, y, x} each)
         ist_watertight #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE),
-                         .STAGES(STAGES), .TAG_BITS(TW)) u_ist (
+                         .STAGES(STAGES), .TAG_BITS(1), .FREE(1)) u_ist (
           .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(ev), .in_ready_o(o_ready_unused),
           .in_k_i(ed[EW-1 -: 2]), .in_nu_i(ec[0 +: W]), .in_nv_i(ec[W +: W]), .in_nd_i(ec[2*W +: W]),
           .in_va_i(ec[3*W +: 3*W]), .in_vb_i(ec[6*W +: 3*W]), .in_vc_i(ec[9*W +: 3*W]),
           .in_o_i(eray[0 +: 3*W]), .in_d_i(eray[3*W +: 3*W]),
-          .in_tmin_i(eray[6*W +: W]), .in_tmax_i(eray[7*W +: W]), .in_tag_i(itag),
+          .in_tmin_i(eray[6*W +: W]), .in_tmax_i(eray[7*W +: W]), .in_tag_i(1'b0),
           .out_valid_o(o_valid), .out_ready_i(1'b1), .out_exit_o(o_exit), .out_t_o(o_t),
-          .out_den_o(o_den), .out_tag_o(o_tag));
+          .out_den_o(o_den), .out_tag_o(o_tag0_unused));
         wire unused_eps = ^{eps_i, one_eps_i};  // Wald's margin registers
       end else begin : g_wald
         ist #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
-              .TAG_BITS(TW)) u_ist (
+              .TAG_BITS(1), .FREE(1)) u_ist (
           .clk_i(clk_i), .rst_ni(rst_ni), .eps_i(eps_i), .one_eps_i(one_eps_i),
           .in_valid_i(ev), .in_ready_o(o_ready_unused), .in_k_i(ed[EW-1 -: 2]),
           .in_c0_i(ec[0 +: W]), .in_c1_i(ec[W +: W]), .in_c2_i(ec[2*W +: W]), .in_c3_i(ec[3*W +: W]),
@@ -243,9 +250,9 @@ module ist_unit #(
           .in_c7_i(ec[7*W +: W]), .in_c8_i(ec[8*W +: W]),
           .in_o_x_i(eray[0 +: W]), .in_o_y_i(eray[W +: W]), .in_o_z_i(eray[2*W +: W]),
           .in_d_x_i(eray[3*W +: W]), .in_d_y_i(eray[4*W +: W]), .in_d_z_i(eray[5*W +: W]),
-          .in_tmin_i(eray[6*W +: W]), .in_tmax_i(eray[7*W +: W]), .in_tag_i(itag),
+          .in_tmin_i(eray[6*W +: W]), .in_tmax_i(eray[7*W +: W]), .in_tag_i(1'b0),
           .out_valid_o(o_valid), .out_ready_i(1'b1), .out_exit_o(o_exit), .out_t_o(o_t),
-          .out_den_o(o_den), .out_tag_o(o_tag));
+          .out_den_o(o_den), .out_tag_o(o_tag0_unused));
       end
       // The result as the trv takes it: {hit, slot, {1, t, den, pos, id, k, nu, nv, nd}}.
       wire [SLOT_BITS-1:0] t_slot = o_tag[TW-1 -: SLOT_BITS];

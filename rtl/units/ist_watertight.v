@@ -34,13 +34,17 @@
 //
 // Handshake: as ist.v's (valid/ready; the operators of a level in lockstep with its carry pipe,
 // whose in_ready and out_valid stand for the level; back-pressure stalls the whole chain).
+// FREE = 1 (ist_unit, which never holds a result back: out_ready_i 1): the carries' data in
+// fp_delay memories instead of a register per stage.
+// lint: also FREE=1
 module ist_watertight #(
   parameter integer EXP_BITS = 7,
   parameter integer MAN_BITS = 16,
   parameter integer RNE      = 0,
   parameter integer RAYCORE  = 0,   // rounding mode raycore (hls Rounding::raycore; RNE ignored)
   parameter integer STAGES   = 2,
-  parameter integer TAG_BITS = 16
+  parameter integer TAG_BITS = 16,
+  parameter integer FREE     = 0    // 1: out_ready_i is 1 whenever out_valid_o (fp_delay's FREE)
 ) (
   input  wire                       clk_i,
   input  wire                       rst_ni,
@@ -154,7 +158,7 @@ module ist_watertight #(
   wire [TAG_BITS-1:0] c1_tag;
   wire [W-1:0] c1_tmin, c1_tmax, c1_dk, c1_dz, c1_ndx, c1_ndy;
   wire [9*W-1:0] c1_vs;
-  fp_pipe #(.WIDTH(C1_W), .STAGES(S1)) u_carry1 (
+  fp_delay #(.WIDTH(C1_W), .STAGES(S1), .FREE(FREE)) u_carry1 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(r[1]),
     .in_data_i({in_tag_i, in_tmin_i, in_tmax_i, d_k, dz, ndx, ndy, vs}),
     .out_valid_o(v[1]), .out_ready_i(r[2]),
@@ -190,7 +194,7 @@ module ist_watertight #(
   localparam integer C2_W = TAG_BITS + 3 * W;
   wire [TAG_BITS-1:0] c2_tag;
   wire [W-1:0] c2_tmin, c2_tmax, c2_s1;
-  fp_pipe #(.WIDTH(C2_W), .STAGES(S2)) u_carry2 (
+  fp_delay #(.WIDTH(C2_W), .STAGES(S2), .FREE(FREE)) u_carry2 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(r[2]),
     .in_data_i({c1_tag, c1_tmin, c1_tmax, l1_s1}),
     .out_valid_o(v[2]), .out_ready_i(r[3]),
@@ -226,7 +230,7 @@ module ist_watertight #(
   localparam integer C3_W = TAG_BITS + 3 * W;
   wire [TAG_BITS-1:0] c3_tag;
   wire [W-1:0] c3_tmin, c3_tmax, c3_den;
-  fp_pipe #(.WIDTH(C3_W), .STAGES(S3)) u_carry3 (
+  fp_delay #(.WIDTH(C3_W), .STAGES(S3), .FREE(FREE)) u_carry3 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(r[3]),
     .in_data_i({c2_tag, c2_tmin, c2_tmax, l2_den}),
     .out_valid_o(v[3]), .out_ready_i(r[4]),
@@ -274,7 +278,7 @@ module ist_watertight #(
   wire [TAG_BITS-1:0] c4_tag;
   wire [W-1:0] c4_tmin, c4_tmax, c4_den;
   wire         c4_out;
-  fp_pipe #(.WIDTH(C4_W), .STAGES(S4)) u_carry4 (
+  fp_delay #(.WIDTH(C4_W), .STAGES(S4), .FREE(FREE)) u_carry4 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(r[4]),
     .in_data_i({c3_tag, c3_tmin, c3_tmax, c3_den, l3_out}),
     .out_valid_o(v[4]), .out_ready_i(r[5]),
@@ -295,7 +299,7 @@ module ist_watertight #(
   wire [SW-1:0] unused_det_rest = l4_det;  // only its exponent field is read
   localparam integer C5_W = TAG_BITS + 2 * W + 2;
   wire         c5_out, c5_dz0;
-  fp_pipe #(.WIDTH(C5_W), .STAGES(S5)) u_carry5 (
+  fp_delay #(.WIDTH(C5_W), .STAGES(S5), .FREE(FREE)) u_carry5 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[4]), .in_ready_o(r[5]),
     .in_data_i({c4_tag, c4_den, l4_t, c4_out, l4_dz0}),
     .out_valid_o(v[5]), .out_ready_i(r[6]),

@@ -30,7 +30,9 @@
 //
 // Parameters: the cycle model's defaults (systemc/config.h SimConfig) for FP24: 128 slots (96 rays
 // in flight), 64 stack entries, 4 trv pipes, 2 ist units, 16 list words per read, an ist queue of
-// up to 64 entries, caches of 16 / 8 / 32 KB (4 ways, 64-byte lines, 8 MSHRs each).
+// up to 64 entries, caches of 16 / 8 / 32 KB (4 ways, 64-byte lines, 8 MSHRs each). SPAWNS (the
+// hit unit's spawn strategies, hit.v) 127: every --spawn, as `--rtl rtu` is built; `make area-rtu`
+// also synthesises SPAWNS 1 (spawn none alone, the defaults).
 // lint: also SLOT_BITS=4 DEPTH=8 PIPES=2 IST=2 WORDS=4 QBITS=3 NODE_SETS=4 LIST_SETS=2 TRI_SETS=4 WAYS=2 MSHRS=2 NODE_LB=32 LIST_LB=16 TRI_LB=32
 // lint: also SLOT_BITS=4 DEPTH=8 PIPES=2 IST=2 WORDS=4 QBITS=3 NODE_SETS=4 LIST_SETS=2 TRI_SETS=4 WAYS=2 MSHRS=2 NODE_LB=32 LIST_LB=16 TRI_LB=32 BEAT_REG=1
 module rtu #(
@@ -62,6 +64,7 @@ module rtu #(
   parameter integer L2_BEAT    = 32,  // the L2's beats
   parameter integer LEN_BITS   = 12,
   parameter integer BEAT_REG   = 0,   // 1: beat_*_i and l2_*_i are the next cycle's, registered here
+  parameter integer SPAWNS     = 127, // the hit unit's spawn strategies (bit s: hls::Spawn s; 127: all)
   // Derived (not to be overridden).
   parameter integer W_     = 1 + EXP_BITS + MAN_BITS,
   parameter integer CB_    = (W_ <= 24) ? 3 : 4,
@@ -481,7 +484,7 @@ module rtu #(
 
   // ---- hit --------------------------------------------------------------------------------------
   hit_unit #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE),
-             .STAGES(STAGES), .SLOT_BITS(SLOT_BITS), .PIPES(PIPES)) u_hit (
+             .STAGES(STAGES), .SLOT_BITS(SLOT_BITS), .PIPES(PIPES), .SPAWNS(SPAWNS)) u_hit (
     .clk_i(clk_i), .rst_ni(rst_ni), .now_i(now_q),
     .light_x_i(light_q[0 +: W]), .light_y_i(light_q[W +: W]), .light_z_i(light_q[2*W +: W]),
     .tmin_i(tmin_q), .strategy_i(strategy_q), .segment_i(segment_q), .all_i(all_q),

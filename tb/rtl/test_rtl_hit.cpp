@@ -18,6 +18,10 @@
 //   shadow ray's o, d, inv, tmin, tmax, skip id, and the tag (a sequence number). Summary line
 //   `HITSUM <variant> <set> vectors=... mismatches=... spawned=... front=... per-strategy ...`;
 //   every strategy must have spawned rays.
+// RtlHit.<variant> (RAYCORE_RTL_HIT_SPAWNS_VARIANTS): hit.v built for fewer strategies (SPAWNS),
+// as hit_unit builds it (FREE = 1: the carries in fp_delay memories, the output never held back):
+// the same runs with the strategies it supports and without back-pressure, and a run with each
+// strategy it does not support driven on strategy_i, which must give strategy none's results.
 #include <gtest/gtest.h>
 #include <verilated.h>
 
@@ -30,6 +34,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "hls/fp.h"
 #include "hls/hit.h"
@@ -41,6 +46,9 @@
 #include "tb/rtl/stimulus.h"
 
 #include "rtl_hit_models.h"
+#if __has_include("rtl_hit_spawns_models.h")
+#include "rtl_hit_spawns_models.h"
+#endif
 
 namespace raycore::rtltest {
 namespace {
@@ -183,8 +191,10 @@ class HitCosim {
   using F = typename A::Fmt;
 
  public:
-  HitCosim(std::string name, int stages, uint64_t seed)
-      : name_(std::move(name)), stages_(stages), rng_(seed), stim_(seed ^ 0x5eedu), dut_(seed) {}
+  // free: the variant is built FREE = 1 (its output is never held back: no back-pressure).
+  HitCosim(std::string name, int stages, uint64_t seed, bool free = false)
+      : name_(std::move(name)), stages_(stages), free_(free), rng_(seed), stim_(seed ^ 0x5eedu),
+        dut_(seed) {}
 
   double uni(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng_); }
   uint32_t bits() { return uint32_t(rng_()) & F::mask; }
@@ -251,15 +261,19 @@ class HitCosim {
   }
 
   // Streams `count` hits under the registers r; returns the number checked.
-  uint64_t run(const Regs& r, uint64_t count, bool full) {
+  // drive >= 0: strategy_i is driven with it instead of r's (a strategy the variant lacks; r's is
+  // none, whose results it must give).
+  uint64_t run(const Regs& r, uint64_t count, bool full, int drive = -1) {
     struct Item {
       HitIn x;
       hls::ShadowSetup expected;
     };
     V& m = *dut_;
     drive_regs(m, r);
+    if (drive >= 0) set(m.strategy_i, uint32_t(drive));
     const uint64_t latency = uint64_t(sc::kHitLevels) * stages_;
-    const StreamSpec spec{name_, count, full, latency, "24*STAGES", 1000u + 64u * latency};
+    StreamSpec spec{name_, count, full, latency, "24*STAGES", 1000u + 64u * latency};
+    spec.never_stall = free_;
     const StreamStats st = stream(
         dut_, spec, rng_, rng_,
         [&](uint64_t) {
@@ -299,12 +313,14 @@ class HitCosim {
     return st.checked;
   }
 
-  void summary(const std::string& set_name, uint64_t vectors, bool every_strategy) {
+  // every_strategy: each strategy in the mask `spawns` must have spawned rays.
+  void summary(const std::string& set_name, uint64_t vectors, bool every_strategy,
+               unsigned spawns = 127) {
     EXPECT_EQ(mismatches_, 0u);
     std::string per;
     for (size_t i = 0; i < per_.size(); ++i) {
       per += " s" + std::to_string(i) + "=" + std::to_string(per_[i]);
-      if (every_strategy) {
+      if (every_strategy && ((spawns >> i) & 1u) != 0) {
         EXPECT_GT(per_[i], 0u) << name_ << ": strategy " << i << " never spawned";
       }
     }
@@ -323,6 +339,7 @@ class HitCosim {
  private:
   std::string name_;
   int stages_;
+  bool free_;
   std::mt19937_64 rng_;
   Stimulus<F, A::rounding> stim_;
   Dut<V> dut_;
@@ -331,11 +348,17 @@ class HitCosim {
   std::array<uint64_t, 7> per_{};
 };
 
+// spawns: the mask of strategies the variant supports (hit.v's SPAWNS).
 template <class V, class F, hls::Rounding R>
-void run_variant(const char* name, int stages) {
+void run_variant(const char* name, int stages, unsigned spawns = 127, bool free = false) {
   using A = hls::Arith<F, R>;
-  HitCosim<V, A> sim(name, stages, std::hash<std::string>{}(name));
-  Regs full = sim.regs(hls::Spawn::error_bound);
+  std::vector<hls::Spawn> have;
+  for (int s = 0; s < 7; ++s)
+    if ((spawns >> s) & 1u) have.push_back(hls::Spawn(s));
+  ASSERT_FALSE(have.empty()) << name << ": SPAWNS " << spawns << " supports no strategy";
+  HitCosim<V, A> sim(name, stages, std::hash<std::string>{}(name), free);
+  const bool eb = ((spawns >> int(hls::Spawn::error_bound)) & 1u) != 0;
+  Regs full = sim.regs(eb ? hls::Spawn::error_bound : have.back());
   full.sp.segment = false;
   full.sp.spawn_all = false;
   full.sp.ulps = 0;
@@ -347,16 +370,32 @@ void run_variant(const char* name, int stages) {
   uint64_t done = 0;
   for (uint64_t k = 0; k < kRuns; ++k) {
     const uint64_t c = n / kRuns + (k < n % kRuns ? 1 : 0);
-    done += sim.run(sim.regs(hls::Spawn(k % 7)), c, false);
+    done += sim.run(sim.regs(have[k % have.size()]), c, false);
   }
   EXPECT_EQ(done, n);
-  sim.summary("random", done, n >= 7000);
+  sim.summary("random", done, n >= 7000, spawns);
+  if (spawns == 127 || ((spawns & 1u) == 0)) return;
+  // The strategies not built act as none.
+  uint64_t lacking = 0;
+  for (int s = 1; s < 8; ++s) {
+    if (s < 7 && ((spawns >> s) & 1u) != 0) continue;
+    Regs r = sim.regs(hls::Spawn::none);
+    lacking += sim.run(r, 500, false, s);
+  }
+  sim.summary("lacking", lacking, false);
 }
 
 #define RAYCORE_RTL_HIT_VARIANT(V, module, fmt, mode, stages) \
   TEST(RtlHit, V) { run_variant<V, fmt, hls::Rounding::mode>(#V, stages); }
 #include "rtl_hit_variants.h"
 #undef RAYCORE_RTL_HIT_VARIANT
+
+#if __has_include("rtl_hit_spawns_variants.h")
+#define RAYCORE_RTL_HIT_SPAWNS_VARIANT(V, spawns, free) \
+  TEST(RtlHit, V) { run_variant<V, FP24, hls::Rounding::rtz>(#V, 2, spawns, free != 0); }
+#include "rtl_hit_spawns_variants.h"
+#undef RAYCORE_RTL_HIT_SPAWNS_VARIANT
+#endif
 
 }  // namespace
 }  // namespace raycore::rtltest
