@@ -145,11 +145,12 @@ module ascache #(
   /* verilator lint_on UNUSEDSIGNAL */
 
   // ---------------------------------------------------------------------------------------------
-  // State. The per-set arrays are flip-flops (yosys: mem2reg), read combinationally at the
-  // access's and the fill's set; only the data array is an SRAM.
+  // State. The tags are a per-set array, an SRAM like the data array (one write port, the fill;
+  // a read port per access and one for the fill, read combinationally at their sets); valid bits,
+  // pin bits and ranks are flip-flops (flat vectors: their reset is one assignment).
   reg [SETS*WAYS-1:0]             valid_q;              // way w of set s at [s*WAYS + w]
   reg [SETS*WAYS-1:0]             pin_q;                // filled, not hit since: not a victim
-  (* mem2reg *) reg [WAYS*TW-1:0] tag_q   [0:SETS-1];   // way w at [w*TW +: TW]
+  reg [WAYS*TW-1:0]               tag_q   [0:SETS-1];   // way w at [w*TW +: TW]
   reg [SETS*WAYS*RW-1:0]          rank_q;               // LRU ranks of set s at [s*WAYS*RW +: WAYS*RW]
   reg [MSHRS-1:0]        mv_q, mv_d;          // MSHR valid
   reg [MSHRS*LINE_W-1:0] ml_q, ml_d;          // MSHR line

@@ -390,12 +390,16 @@ module ist_unit #(
         out_v_q    <= next_now ? g_out_v : ring_v[rd1];
         ring_v[rd1] <= {IST{1'b0}};
         ring_v[wr] <= g_out_v;
-        ring_r[wr] <= g_out_r;
       end
     end
   end
 
-  always @(posedge clk_i) out_r_q <= next_now ? g_out_r : ring_r[rd1];
+  // The results themselves: a memory of HN words, one write and one (registered) read per cycle,
+  // meaningful where ring_v is set (written in reset too: harmless, ring_v is cleared).
+  always @(posedge clk_i) begin
+    if (!bypass) ring_r[wr] <= g_out_r;
+    out_r_q <= next_now ? g_out_r : ring_r[rd1];
+  end
 
   // The head window's refill: entry head_q + npop + u after this edge (no reset: read only below
   // cnt_q, and refilled at every edge).
