@@ -85,11 +85,11 @@ module vtu_unit #(
   output wire [3*MB_-1:0]       fill_tag_o,
   output wire [3*8*MAXLB_-1:0]  fill_data_o,
   // Cycles a group or record is driven into vtu.v (RtuStats::vtu_busy); groups or records inside.
-  output reg  [63:0]            cnt_busy_o,
+  output wire [63:0]            cnt_busy_o,
   // Cycles in which two lines were done (RtuStats::vtu_paired); bypassed lines waiting for their
   // cache's fill, summed over the cycles they wait (RtuStats::vtu_fill_waits).
-  output reg  [31:0]            cnt_pair_o,
-  output reg  [31:0]            cnt_wait_o,
+  output wire [31:0]            cnt_pair_o,
+  output wire [31:0]            cnt_wait_o,
   output wire                   busy_o
 );
 
@@ -427,17 +427,30 @@ module vtu_unit #(
     end
   end
   integer i, l, r;
+  // The counters: the sums of the cycles before plus the last cycle's registered increments (the
+  // same value in every cycle as adding at once; the sums' carry chains off the paths from the
+  // age order and the bypass queue).
+  reg [63:0]  busy_q;
+  reg [31:0]  pair_q, wait_q;
+  reg         take_q, pair_inc_q;
+  reg [BQB:0] wait_inc_q;
+  assign cnt_busy_o = busy_q + {63'd0, take_q};
+  assign cnt_pair_o = pair_q + {31'd0, pair_inc_q};
+  assign cnt_wait_o = wait_q + {{(31-BQB){1'b0}}, wait_inc_q};
   always @(posedge clk_i or negedge rst_ni) begin
     if (!rst_ni) begin
       head_q     <= {QB{1'b0}};
       cnt_q      <= {(QB+1){1'b0}};
       rec_q      <= {RIB{1'b0}};
       inside_q   <= 8'd0;
-      cnt_busy_o <= 64'd0;
+      busy_q     <= 64'd0;
+      take_q     <= 1'b0;
       bh_q       <= {BQB{1'b0}};
       bn_q       <= {(BQB+1){1'b0}};
-      cnt_pair_o <= 32'd0;
-      cnt_wait_o <= 32'd0;
+      pair_q     <= 32'd0;
+      wait_q     <= 32'd0;
+      pair_inc_q <= 1'b0;
+      wait_inc_q <= {(BQB+1){1'b0}};
     end else begin
       cnt_q <= cnt_q + {{QB{1'b0}}, f_v} + {{QB{1'b0}}, s_v} - {{QB{1'b0}}, pop};
       if (take) begin
@@ -445,11 +458,14 @@ module vtu_unit #(
         if (last) head_q <= nx_head;
       end
       inside_q   <= inside_q + {7'd0, take} - {7'd0, o_valid};
-      cnt_busy_o <= cnt_busy_o + {63'd0, take};
+      busy_q     <= cnt_busy_o;
+      take_q     <= take;
       bh_q <= bh_q + {{(BQB-2){1'b0}}, bq_pops};
       bn_q <= bn_next;
-      cnt_pair_o <= cnt_pair_o + {31'd0, d1_v};
-      cnt_wait_o <= cnt_wait_o + {{(31-BQB){1'b0}}, bn_next};
+      pair_q     <= cnt_pair_o;
+      pair_inc_q <= d1_v;
+      wait_q     <= cnt_wait_o;
+      wait_inc_q <= bn_next;
     end
   end
 
