@@ -221,6 +221,9 @@ whole_section() {
   echo "three caches, 24 lines, the record queue and vtu.v). Only vtu.v exists for the VTU's sake: without"
   echo "a VTU the fill path keeps its line buffers (a line is installed whole) and loses vtu.v and the"
   echo "record queue; so vtu.v's share is the VTU's cost and vtu_unit's an upper bound of it."
+  echo "**rtu whole, spawn none**: the same with \`SPAWNS 1\`, the hit unit built for the default \`--spawn"
+  echo "none\` alone (hit.v leaves out the other strategies' operators and carries; rtu.v's default,"
+  echo "\`SPAWNS 127\`, builds all seven, as \`--rtl rtu\` runs it)."
   echo
   for mode in "${MODES[@]}"; do
     echo "#### FP24 $mode"
