@@ -305,7 +305,7 @@ for li, (_, groups, posts) in enumerate(LEVELS, 1):
     w(f"    .in_data_i({{{', '.join(at(n, li - 1) for n in base)}}}),")
     w(f"    .out_valid_o(v[{li}]), .out_ready_i(r[{li+1}]),")
     w(f"    .out_data_o({{{', '.join(at(n, li) for n in base)}}}));")
-    # The carries of fewer strategies: one fp_pipe per class, built if the class is supported.
+    # The carries of fewer strategies: one fp_delay per class, built if the class is supported.
     for c in sorted({carry_cls(n, li) for n in cs} - {ALL}):
         part = [n for n in cs if carry_cls(n, li) == c]
         nm = f"c{li}_{cls_name(c)}"
@@ -321,7 +321,7 @@ for li, (_, groups, posts) in enumerate(LEVELS, 1):
         zw = " + ".join(["2"] + [width[n] for n in part])
         w(f"    assign {{{nm}_ur, {nm}_uv, {', '.join(at(n, li) for n in part)}}} = {{({zw}){{1'b0}}}};")
         w("  end endgenerate")
-    for gi, (op, all_items) in enumerate(groups):
+    for op, all_items in groups:
         for c in sorted({cls(it[0]) for it in all_items}, reverse=True):
             items = [it for it in all_items if cls(it[0]) == c]
             g = f"g{li}_{op}" + (f"_{cls_name(c)}" if c != ALL else "")

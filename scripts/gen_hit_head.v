@@ -9,7 +9,7 @@
 // ray; the per-frame registers select what is put out. SPAWNS (a mask, bit s = hls::Spawn s)
 // chooses the strategies built: the operators and carries only others need are left out
 // (scripts/gen_hit.py's CLASS), and a strategy not built acts as none (127, the default: all;
-// 1: none alone, FP24 rtz STAGES 2 about half the area, docs/area.md).
+// 1: none alone, FP24 rtz STAGES 2 about half the area, docs/architecture.md "The area levers").
 //   strategy_i  hls::Spawn: 0 none, 1 skip-origin, 2 ulp-offset, 3 error-bound, 4 skip-offset,
 //               5 skip-slab, 6 skip-back (7: as none)
 //   segment_i   shadow direction light - h, t in (tmin, 1) (else the unit direction, t in
