@@ -67,10 +67,10 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
         });
   };
   {
-    auto value = std::make_shared<double>(0);
+    auto value = std::make_shared<double>(o.cfg.l2.size_bytes / 1024.0);
     c.add_option("--l2-kb", *value, "L2 shared by all RTUs in front of the memory, KiB (0: none)")
         ->check(CLI::Range(0.0, 1048576.0))
-        ->default_str("0")
+        ->default_str(std::to_string(o.cfg.l2.size_bytes / 1024))
         ->each([&o, value](const std::string&) {
           o.overrides.push_back([value](SimConfig& s) { s.l2.size_bytes = uint32_t(*value * 1024); });
         });

@@ -78,7 +78,7 @@ struct SimConfig {
   uint32_t vtu_depth = 4;
   UnitView vtu_view = UnitView::model;
   // ascache, per RTU.
-  CacheConfig node_cache{16 * 1024, 4, 64, 8, 1};
+  CacheConfig node_cache{32 * 1024, 4, 64, 8, 1};
   CacheConfig list_cache{8 * 1024, 4, 64, 8, 1};
   CacheConfig tri_cache{32 * 1024, 4, 64, 8, 1};
   // The three caches: the model (systemc/ascache.h) or rtl/units/ascache.v Verilated at the
@@ -86,22 +86,24 @@ struct SimConfig {
   // answer within the cycle, the twin at ascache.v's registered pins does not).
   UnitView ascache_view = UnitView::model;
   // rgu / trv / ist / hit.
-  // Defaults of the levers below chosen by the numbers of `make throughput` (docs/results.md: the
-  // least RTU area that reaches 0.08 rays/cycle per RTU at <= 1.1 GB/s on sponza-paper); the
-  // RayCore-like baseline of the paper runs is configs/baseline.json.
+  // Defaults of the levers below (and the node cache's 32 KB above) chosen by the numbers of `make
+  // throughput` (docs/results.md: the least RTU area found that reaches 0.08 rays/cycle per RTU on
+  // sponza-paper, sibenik-paper and corridor at <= 1.1 GB/s: 5 trv pipes for sibenik-paper's 61
+  // passes per ray, 4 ist units for corridor's 40 tests per ray); the RayCore-like baseline of the
+  // paper runs is configs/baseline.json.
   uint32_t rays_in_flight = 96;  // ray slots per RTU (each with its own stack)
   uint32_t stack_depth = 64;     // stack entries per ray slot (1..64; a ray that needs more stops
                                  //   the run with an error: the report's stack_max says what a
                                  //   scene needs)
   uint32_t trv_latency = 5;      // cycles of one traversal step (loop back to the ready queue)
-  uint32_t trv_pipes = 4;        // traversal pipelines per RTU (steps per cycle; RayCore has 2),
+  uint32_t trv_pipes = 5;        // traversal pipelines per RTU (steps per cycle; RayCore has 2),
                                  //   sharing the ray slots and the node and list caches' ports
   bool trv_fuse = true;          // fuse a leaf's first list line into its node step, and the popped
                                  //   node's fetch into the leaf-end / pop step (a longer pass)
   uint32_t mailbox = 0;          // per-ray mailbox of the last M triangles tested (0: none); a list
                                  //   entry found in it is not tested again (its test could not win:
                                  //   a miss misses again, a hit is not closer than the best)
-  uint32_t ist_units = 2;        // intersection pipelines per RTU (tests issued per cycle),
+  uint32_t ist_units = 4;        // intersection pipelines per RTU (tests issued per cycle),
                                  //   sharing the triangle cache's ports
   uint32_t ist_latency = 20;     // rtl/units/ist.v (and ist_watertight.v): 10 levels x STAGES 2
   UnitView ist_view = UnitView::model;

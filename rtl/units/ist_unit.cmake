@@ -3,7 +3,7 @@
 # rtl/CMakeLists.txt. Verilated with --cc into the frame's library (raycore_rtl_frame) for
 # `raycore simulate --rtl ist` (systemc/ist_rtl.cpp steps it from C++); one model per format and
 # rounding at STAGES 2 (--ist-latency 20, the default) and the parameters the cycle model's defaults
-# need: 128 slots, 4 ist units, 4 trv pipes' hand-offs of up to 16 list words (64-byte list lines),
+# need: 128 slots, 4 ist units, 5 trv pipes' hand-offs of up to 16 list words (64-byte list lines),
 # an ist queue of up to 64 entries, the default triangle line (2 FP24 records, 1 FP32 record) and a
 # triangle-cache hit latency below 16; and FP24 rtz with the watertight test (--ist watertight:
 # WATERTIGHT 1, ist_watertight.v, 48-byte records, one per default line).
@@ -13,7 +13,7 @@ if(TARGET raycore_rtl_frame)
   set(_istu_stages 2)
   set(_istu_slot_bits 7)
   set(_istu_ist 4)
-  set(_istu_pipes 4)
+  set(_istu_pipes 5)
   set(_istu_words 16)
   set(_istu_qbits 6)
   set(_istu_hlbits 4)

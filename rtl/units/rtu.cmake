@@ -3,8 +3,8 @@
 # library (raycore_rtl_frame) for `raycore simulate --rtl rtu` (systemc/rtu_rtl.cpp steps one model
 # per RTU from C++, with the Verilated membus_if); one model, FP24 rtz (the default run's format),
 # with BEAT_REG = 1 (the host drives the next cycle's beats, see rtu.v), at rtu.v's parameter defaults = the cycle model's defaults (systemc/config.h SimConfig): STAGES 2,
-# 128 slots, 64 stack entries, 4 trv pipes, 2 ist units, 16 list words per read, an ist queue of up
-# to 64, 8 x 8 tiles, caches of 16 / 8 / 32 KB with 4 ways, 64-byte lines and 8 MSHRs, the L2's
+# 128 slots, 64 stack entries, 5 trv pipes, 4 ist units, 16 list words per read, an ist queue of up
+# to 32, 8 x 8 tiles, caches of 32 / 8 / 32 KB with 4 ways, 64-byte lines and 8 MSHRs, the L2's
 # beats of 32 bytes (membus_l2's at the model's default L2).
 # rtl_rtu_variants.h: RAYCORE_RTL_RTU_VARIANT(prefix, fmt, mode, width, stages, slot_bits, pipes,
 # ist, words, qbits, hlbits, tile, node_kb, list_kb, tri_kb, ways, line, mshrs, l2_beat), one line per model
@@ -32,7 +32,7 @@ if(TARGET raycore_rtl_frame)
       VERILATOR_ARGS ${RAYCORE_RTL_VERILATOR_ARGS} ${g} -GBEAT_REG=1)
     string(APPEND _rtu_models "#include \"${prefix}.h\"\n")
     string(APPEND _rtu_lines
-      "RAYCORE_RTL_RTU_VARIANT(${prefix}, FP24, ${mode}, 24, 2, 7, 4, 2, 16, 6, 4, 8, 16, 8, 32, 4, "
+      "RAYCORE_RTL_RTU_VARIANT(${prefix}, FP24, ${mode}, 24, 2, 7, 5, 4, 16, 5, 4, 8, 32, 8, 32, 4, "
       "64, 8, 32)\n")
   endforeach()
   file(CONFIGURE OUTPUT ${CMAKE_CURRENT_BINARY_DIR}/include_frame/rtl_rtu_models.h

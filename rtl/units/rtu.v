@@ -29,8 +29,9 @@
 // list 35, triangle 36); 37 vtu_paired, 38 vtu_fill_waits; others 0.
 //
 // Parameters: the cycle model's defaults (systemc/config.h SimConfig) for FP24: 128 slots (96 rays
-// in flight), 64 stack entries, 4 trv pipes, 2 ist units, 16 list words per read, an ist queue of
-// up to 64 entries, caches of 16 / 8 / 32 KB (4 ways, 64-byte lines, 8 MSHRs each). SPAWNS (the
+// in flight), 64 stack entries, 5 trv pipes, 4 ist units, 16 list words per read, an ist queue of
+// up to 32 entries (the model's ist_queue: the queue never holds more than its capacity, misses on
+// their way back included), caches of 32 / 8 / 32 KB (4 ways, 64-byte lines, 8 MSHRs each). SPAWNS (the
 // hit unit's spawn strategies, hit.v) 127: every --spawn, as `--rtl rtu` is built; `make area-rtu`
 // also synthesises SPAWNS 1 (spawn none alone, the defaults).
 // lint: also SLOT_BITS=4 DEPTH=8 PIPES=2 IST=2 WORDS=4 QBITS=3 NODE_SETS=4 LIST_SETS=2 TRI_SETS=4 WAYS=2 MSHRS=2 NODE_LB=32 LIST_LB=16 TRI_LB=32
@@ -43,15 +44,15 @@ module rtu #(
   parameter integer STAGES     = 2,
   parameter integer SLOT_BITS  = 7,
   parameter integer DEPTH      = 64,
-  parameter integer PIPES      = 4,
-  parameter integer IST        = 2,
+  parameter integer PIPES      = 5,
+  parameter integer IST        = 4,
   parameter integer WORDS      = 16,
-  parameter integer QBITS      = 6,
+  parameter integer QBITS      = 5,
   parameter integer HLBITS     = 4,
   parameter integer COORD_BITS = 16,
   parameter integer TILE_BITS  = 3,
   parameter integer RTU_BITS   = 8,
-  parameter integer NODE_SETS  = 64,
+  parameter integer NODE_SETS  = 128,
   parameter integer LIST_SETS  = 32,
   parameter integer TRI_SETS   = 128,
   parameter integer WAYS       = 4,

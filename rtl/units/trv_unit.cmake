@@ -2,7 +2,7 @@
 # the trv.v datapath at STAGES 0, the ist result reduction). Included by rtl/CMakeLists.txt.
 # Verilated with --cc into the frame's library (raycore_rtl_frame) for `raycore simulate --rtl trv`
 # (systemc/trv_rtl.cpp steps it from C++); one model per format and rounding (below) at the parameters the
-# cycle model's defaults need: 128 slots (--rays-in-flight <= 128), 64 stack entries, 4 pipes, 4 ist
+# cycle model's defaults need: 128 slots (--rays-in-flight <= 128), 64 stack entries, 5 pipes, 4 ist
 # results per cycle (--ist-units <= 4), 16 list words per read (64-byte list lines).
 # rtl_trv_unit_variants.h: RAYCORE_RTL_TRVU_VARIANT(prefix, fmt, mode, width, slot_bits, depth,
 # pipes, ist, words), one line per model.
@@ -10,7 +10,7 @@ if(TARGET raycore_rtl_frame)
   # One set of parameters: the -G flags and the variants header's values both come from these.
   set(_trvu_slot_bits 7)
   set(_trvu_depth 64)
-  set(_trvu_pipes 4)
+  set(_trvu_pipes 5)
   set(_trvu_ist 4)
   set(_trvu_words 16)
   set(_trvu_params SLOT_BITS=${_trvu_slot_bits} DEPTH=${_trvu_depth} PIPES=${_trvu_pipes}

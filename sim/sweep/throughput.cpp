@@ -18,7 +18,7 @@ std::vector<std::string> TpConfig::args() const {
   return {"--trv-pipes",   std::to_string(trv_pipes), "--ist-units",  std::to_string(ist_units),
           "--rays-in-flight", std::to_string(rays),   "--stack-depth", std::to_string(stack),
           "--trv-fuse",    fuse ? "on" : "off",       "--l2-kb",      std::to_string(l2_kb),
-          "--mailbox",     std::to_string(mailbox),
+          "--mailbox",     std::to_string(mailbox),   "--node-cache-kb", std::to_string(node_kb),
           "--shadow-hit",  any_hit ? "any" : "closest"};
 }
 
@@ -50,6 +50,14 @@ const std::vector<TpConfig>& tp_configs() {
     step("rays96", "96 rays in flight");
     c.l2_kb = 256;
     step("l2-256k", "256 KB L2 shared by the 6 RTUs");
+    // Issue 26 part 2: sibenik-paper's 61-65 passes and corridor's 40 tests per ray saturate 4 trv
+    // pipes and 2 ist units (95% and 99% busy) below 0.08 rays/cycle: more of both.
+    c.ist_units = 4;
+    step("ist4", "4 ist units (4-port triangle cache)");
+    c.trv_pipes = 5;
+    step("trv5", "5 trv pipes (5-port node and list caches)");
+    c.node_kb = 32;
+    step("node32k", "32 KB node cache (fewer passes lost to node misses; the defaults from here)");
     c.stack = 16;
     step("stack16", "16-entry stacks (the three scenes need 11-14)");
     c.mailbox = 8;
@@ -58,8 +66,8 @@ const std::vector<TpConfig>& tp_configs() {
     std::set<std::vector<std::string>> seen;
     for (const auto& x : v) seen.insert(x.args());
     for (int l2 : {0, 256})
-      for (int p : {1, 2, 3, 4, 6})
-        for (int i : {1, 2, 3}) {
+      for (int p : {1, 2, 3, 4, 5, 6})
+        for (int i : {1, 2, 3, 4}) {
           TpConfig g;
           g.trv_pipes = p;
           g.ist_units = i;

@@ -18,7 +18,7 @@ struct TpConfig {
   std::string name;
   std::string lever;  // what this ladder step adds ("" in the grid)
   bool ladder = false;
-  int trv_pipes = 1, ist_units = 1, rays = 64, stack = 64, l2_kb = 0, mailbox = 0;
+  int trv_pipes = 1, ist_units = 1, rays = 64, stack = 64, l2_kb = 0, mailbox = 0, node_kb = 16;
   bool fuse = false, any_hit = true;
   std::vector<std::string> args() const;
 };

@@ -534,8 +534,8 @@ TEST(TrvRtlFrame, RefusesWhatTheModelCannotRun) {
   expect_refused(tiny_scene(), tc, cfg, "the RTL has no mailbox");
   cfg.mailbox = 0;
   cfg.trv_pipes = 6;
-  expect_refused(tiny_scene(), tc, cfg, "is built for at most 4 --trv-pipes");
-  cfg.trv_pipes = 4;
+  expect_refused(tiny_scene(), tc, cfg, "is built for at most 5 --trv-pipes");
+  cfg.trv_pipes = 5;
   cfg.trv_latency = 4;  // the split's write-back: the ray must not come back before it
   cfg.node_cache.hit_latency = 1;
   expect_refused(tiny_scene(), tc, cfg, "plus the node cache's hit latency must be at least 6");
@@ -662,7 +662,7 @@ void ascache_lockstep(const sc::CacheConfig& cc, uint32_t line_bytes, uint64_t c
   EXPECT_GT(sa.mshr_full, 0u);
   EXPECT_GT(sa.set_full, 0u);
 }
-TEST(AscacheRtlLockstep, Node16k) { ascache_lockstep({16 * 1024, 4, 64, 8, 1}, 64, 200000, 1); }
+TEST(AscacheRtlLockstep, Node32k) { ascache_lockstep({32 * 1024, 4, 64, 8, 1}, 64, 200000, 1); }
 TEST(AscacheRtlLockstep, Node1k) { ascache_lockstep({1024, 2, 64, 2, 1}, 64, 200000, 2); }
 TEST(AscacheRtlLockstep, List512Lines32) { ascache_lockstep({512, 2, 32, 2, 1}, 32, 200000, 3); }
 TEST(AscacheRtlLockstep, Tri32kFp32Sets170) { ascache_lockstep({32 * 1024, 4, 48, 8, 1}, 48, 200000, 4); }
@@ -707,9 +707,9 @@ TEST(AscacheRtlFrame, RefusesWhatIsNotBuilt) {
   cfg.node_cache.size_bytes = 2048;  // 8 sets x 4 ways: not built; the message lists what is
   const Summary r = expect_refused(tiny_scene(), tc, cfg,
                                    "no Verilated ascache for the node_cache (8 sets x 4 ways");
-  EXPECT_NE(std::string(r.error).find("64 sets x 4 ways x 64 B, 8 MSHRs"), std::string::npos)
+  EXPECT_NE(std::string(r.error).find("128 sets x 4 ways x 64 B, 8 MSHRs"), std::string::npos)
       << r.error;
-  cfg.node_cache.size_bytes = 16 * 1024;  // built, but more pipes than its 8 ports a cycle
+  cfg.node_cache.size_bytes = 32 * 1024;  // built, but more pipes than its 8 ports a cycle
   cfg.trv_pipes = 9;
   expect_refused(tiny_scene(), tc, cfg, "takes 8 accesses a cycle, the node_cache may get 9");
 }
@@ -1104,11 +1104,11 @@ TEST(RtuRtlFrame, RefusesWhatItCannotRun) {
   expect_refused(tiny_scene(), config(FormatId::fp24, Rounding::rne, true, 8, 8), cfg,
                  "no Verilated rtu for fp24 rne in this build; built: rtu FP24 rtz");
   cfg.rays_in_flight = 200;
-  cfg.ist_units = 3;
+  cfg.ist_units = 5;
   cfg.tri_cache.size_bytes = 64 * 1024;
   const Summary r = expect_refused(tiny_scene(), tc, cfg, "--rays-in-flight <= 128");
-  EXPECT_NE(std::string(r.error).find("--ist-units <= 2"), std::string::npos) << r.error;
-  EXPECT_NE(std::string(r.error).find("caches of 16 / 8 / 32 KB"), std::string::npos) << r.error;
+  EXPECT_NE(std::string(r.error).find("--ist-units <= 4"), std::string::npos) << r.error;
+  EXPECT_NE(std::string(r.error).find("caches of 32 / 8 / 32 KB"), std::string::npos) << r.error;
   cfg = {};
   cfg.l2.size_bytes = 0;
   cfg.rtu_view = UnitView::rtl;
