@@ -5,9 +5,9 @@
 # throughput` (sim/sweep/throughput.cpp) fits its RTU logic area model to these rows and fails if
 # the model misses any of them by more than 10%; `make area-configs` runs this.
 #
-# Every configuration: FP24 rtz, STAGES 2, the cycle model's default caches (node 16 KB, list 8 KB,
-# triangle 32 KB; their ports follow the pipes and ist units: 1 per trv pipe on node, 2 on list, 1
-# per ist unit on the triangle cache), 2^7 ray slots (the study's 96 rays), stack depth 64 (the
+# Every configuration: FP24 rtz, STAGES 2, the cycle model's default caches (node 32 KB since
+# 2026-12-07, list 8 KB, triangle 32 KB; their ports follow the pipes and ist units: 1 per trv pipe
+# on node and list, 1 per ist unit on the triangle cache), a 32-entry ist queue, 2^7 ray slots (the study's 96 rays), stack depth 64 (the
 # study's 16 changes only the stack SRAM, which the study counts in bits), PIPES and IST as named.
 # Same measurement as make area (scripts/area_lib.sh: NAND2 weights, memories kept as $mem SRAM
 # macros); cached in out/area-cache by the sources' hash. RAYCORE_AREA_TIMEOUT (s, default 7200
@@ -29,15 +29,16 @@ CONFIGS=(
   "p2i3|2|3"
   "p3i1|3|1"
   "p4i2|4|2"
+  "p5i4|5|4"
 )
 
 rows=()
 for c in "${CONFIGS[@]}"; do
   IFS='|' read -r name p i <<< "$c"
-  # rtu.v's defaults (= the cycle model's) but PIPES and IST; at 4 x 2 exactly area_rtu.sh's
-  # "rtu whole" run (the same yosys script: one cache entry for both).
+  # rtu.v's defaults (= the cycle model's) but PIPES and IST; at 5 x 4 (the defaults since
+  # 2026-12-07) exactly area_rtu.sh's "rtu whole" run (the same yosys script: one cache entry).
   chp="-set EXP_BITS 7 -set MAN_BITS 16 -set RNE 0 "
-  [ "$p|$i" = "4|2" ] || chp+="-set PIPES $p -set IST $i"
+  [ "$p|$i" = "5|4" ] || chp+="-set PIPES $p -set IST $i"
   area_synth "rtu-$name" rtu noshare "$chp" hier
   if [ "$A_STATUS" != ok ]; then
     echo "area_configs: $name did not finish in ${AREA_TIMEOUT}s" >&2
@@ -59,9 +60,9 @@ done
   echo "rtl/units/rtu.v (one RTU) synthesised as one design with its hierarchy kept (as \`make area-rtu\`'s"
   echo "\"rtu whole\": every module once per parameter set, \`stat -top rtu\` summing the instances; yosys"
   echo "\`synth -noshare\`, NanGate45 NAND2 weights, memories kept as SRAM macros and counted in bits),"
-  echo "FP24 rtz, STAGES 2, the default caches (ports: 1 per trv pipe on node, 2 on list, 1 per ist unit"
+  echo "FP24 rtz, STAGES 2, the default caches (ports: 1 per trv pipe on node and list, 1 per ist unit"
   echo "on the triangle cache), 2^7 ray slots, stack depth 64 (rtu.v's defaults but PIPES trv pipes and IST"
-  echo "ist units; 4 x 2 is \`make area-rtu\`'s \"rtu whole\" run)."
+  echo "ist units; 5 x 4 is \`make area-rtu\`'s \"rtu whole\" run)."
   echo "\`make throughput\` fits its RTU logic model (a + b x pipes + c x ist units, least squares) to"
   echo "these rows and stops if it misses any of them by more than 10% (docs/results.md)."
   echo
