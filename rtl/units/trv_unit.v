@@ -855,8 +855,11 @@ module trv_unit #(
   // added into the 64-bit sums: a counter's output is its sum plus the events still registered,
   // exact in every cycle. (Registering the counts instead put their adder trees behind the pass's
   // stack read: 99.5 FO4 with 5 pipes.)
-  localparam integer NF = 13;  // flags per pipe
-  wire [NF*PIPES-1:0] flags;   // pipe c's flag f at [f*PIPES + c]
+  // Flag f of pipe c at [f*PIPES + c]: the pass's busy 0, pops 1, fused 2; the outcome's busy 3,
+  // node miss 4, inner 5, leaf 6, pops 7, fused 8; the list stage's busy 9, list miss 10, ist
+  // queue full 11, list step 12.
+  localparam integer NF = 13;
+  wire [NF*PIPES-1:0] flags;
   reg  [NF*PIPES-1:0] flags_q;
   reg [6:0] smax;
   reg [7:0] d_busy, d_node_miss, d_list_miss, d_ist_full, d_inner, d_leaf, d_pops, d_list_steps,

@@ -28,8 +28,9 @@ const std::vector<TpConfig>& tp_configs();  // the ladder, then the grid
 // trv pipes x ist units (docs/area_configs.md, `make area-configs`), fitted as a + b x pipes +
 // c x ist units by least squares; read_tp_area refuses a table the model misses by more than
 // kAreaModelTolerance at any synthesised configuration (the check of `make throughput`). Rays in
-// flight, stack depth and mailboxes change only SRAM in rtu.v (the slot and stack arrays), so the
-// logic does not follow them (the mailbox has no RTL: its logic is not counted). SRAM bits: the
+// flight, stack depth, mailboxes and the node cache's size are counted in SRAM only (the slot and
+// stack arrays, the cache's data), so the logic does not follow them (the mailbox has no RTL: its
+// logic is not counted; the 32 KB node cache's per-set state adds logic that the fit does not see). SRAM bits: the
 // three caches' data arrays, the ray slots (kSlotBits each), the stacks (rays x depth x
 // kEntryBits), the mailboxes (rays x entries x 24-bit triangle index) and the RTU's share of the
 // L2. A p-port SRAM bit costs (1 + (p - 1) / 2) single-port bits (node and list caches have one
