@@ -27,21 +27,21 @@ SRAM_BIT_NAND2=0.5  # NAND2 eq. per single-port SRAM bit (as sim/sweep/throughpu
 
 # The RTU's units: "name|module|instances|format (fmt: EXP_BITS/MAN_BITS/RNE set) or -|parameters".
 # The parameters (systemc/config.h defaults): vtu_depth 4, ist_latency 20, hit_latency 48,
-# rgu_latency 30 = STAGES 2; 96 rays in flight -> 2^7 = 128 slots; stack_depth 64; trv_pipes 4;
-# ist_units 2; list lines of 64 B = 16 words; caches node 16 KB, list 8 KB, tri 32 KB, 4 ways,
+# rgu_latency 30 = STAGES 2; 96 rays in flight -> 2^7 = 128 slots; stack_depth 64; trv_pipes 5;
+# ist_units 4; list lines of 64 B = 16 words; caches node 32 KB, list 8 KB, tri 32 KB, 4 ways,
 # 64 B lines (FP24: two 32-byte triangle records), 8 MSHRs, answering in the access's cycle
-# (HIT_LATENCY 0) on 1 port per trv pipe (node: access A), 2 per trv pipe (list: A and B) or 1
-# per ist unit (tri).
+# (HIT_LATENCY 0) on 1 port per trv pipe (node: access A; list: a pass reads the list once) or 1
+# per ist unit (tri): rtu.v's.
 CACHE_P="-set WAYS 4 -set LINE_BYTES 64 -set MSHRS 8 -set HIT_LATENCY 0 -set LINE_W 26 -set TAG_BITS 7"
 UNITS=(
   "vtu|vtu|1|fmt|-set STAGES 2 -set TAG_BITS 8"
-  "ist|ist|2|fmt|-set STAGES 2 -set TAG_BITS 1 -set FREE 1"
-  "trv_unit|trv_unit|1|fmt|-set SLOT_BITS 7 -set DEPTH 64 -set PIPES 4 -set IST 2 -set WORDS 16"
+  "ist|ist|4|fmt|-set STAGES 2 -set TAG_BITS 1 -set FREE 1"
+  "trv_unit|trv_unit|1|fmt|-set SLOT_BITS 7 -set DEPTH 64 -set PIPES 5 -set IST 4 -set WORDS 16"
   "hit|hit|1|fmt|-set STAGES 2 -set TAG_BITS 9 -set FREE 1"
   "rgu|rgu|1|fmt|-set STAGES 2"
-  "ascache node|ascache|1|-|-set SETS 64 -set PORTS 4 $CACHE_P"
-  "ascache list|ascache|1|-|-set SETS 32 -set PORTS 4 $CACHE_P"
-  "ascache tri|ascache|1|-|-set SETS 128 -set PORTS 2 $CACHE_P"
+  "ascache node|ascache|1|-|-set SETS 128 -set PORTS 5 $CACHE_P"
+  "ascache list|ascache|1|-|-set SETS 32 -set PORTS 5 $CACHE_P"
+  "ascache tri|ascache|1|-|-set SETS 128 -set PORTS 4 $CACHE_P"
 )
 # Shared by the chip, not in the RTU's sum: the bus interface of 6 RTUs x 3 caches.
 CHIP="membus_if|membus_if|chip|-|-set N 18 -set DEPTH 32 -set BEAT_BYTES 16"
@@ -132,12 +132,11 @@ section() {
   echo "  ist_unit (TAG_BITS 1: the side data travel beside it in one fp_delay memory; FREE 1: its"
   echo "  carries in fp_delay memories, ist_unit never holding a result back), hit as in hit_unit"
   echo "  (TAG_BITS 9 = slot 7 + 2, FREE 1, all seven spawn strategies); trv_unit 2^7 = 128 slots (the model's 96 ray"
-  echo "  slots rounded up: the RTL has 2^SLOT_BITS), 64 stack entries, 4 pipes, IST 2 results per cycle"
-  echo "  (ist_units; the frame's Verilated trv_unit, rtl/units/trv_unit.cmake, takes IST 4 to run with"
-  echo "  up to 4 ist units), 16 list words per read; caches 4 ways, 64 B lines, 8 MSHRs, HIT_LATENCY 0"
+  echo "  slots rounded up: the RTL has 2^SLOT_BITS), 64 stack entries, 5 pipes, IST 4 results per cycle"
+  echo "  (ist_units), 16 list words per read; caches 4 ways, 64 B lines, 8 MSHRs, HIT_LATENCY 0"
   echo "  (the frame's caches answer in the access's cycle: asynchronous data-array read ports), PORTS"
-  echo "  4 for node (access A of each trv pipe's node pass), 4 for list (access A of a list pass or B"
-  echo "  of a node pass: one list read per pass) and 2 for tri (1 per ist unit), line index"
+  echo "  5 for node (access A of each trv pipe's node pass), 5 for list (access A of a list pass or B"
+  echo "  of a node pass: one list read per pass) and 4 for tri (1 per ist unit), line index"
   echo "  LINE_W 26, requester tag 7 bits, 32-bit counters; rgu at its defaults (16-bit coordinates,"
   echo "  8 x 8 tiles, up to 255 RTUs)."
   echo "- **SRAM bits**: the \`\$mem\` cells yosys keeps (SIZE x WIDTH). **SRAM NAND2 eq.**: $SRAM_BIT_NAND2"
@@ -145,7 +144,7 @@ section() {
   echo "  periphery; the assumption of the throughput study in docs/results.md), a p-port array"
   echo "  weighted by 1 + (p - 1) / 2 single-port bits per bit, p = its read + write ports as yosys"
   echo "  leaves them (the same rule as sim/sweep/throughput.cpp). Arrays of many ports (the trv_unit's"
-  echo "  slot arrays, the caches' data with 4 read ports) are register files in practice and cost more"
+  echo "  slot arrays, the caches' data with 4 or 5 read ports) are register files in practice and cost more"
   echo "  per bit than this linear rule says; the single-port figure is a lower bound."
   echo "- **depth** (\`ltp -noff\`, cells): trv_unit's is a traversal pass in one cycle (the cycle"
   echo "  model's one-cycle pass, not a pipeline; an inner node's split is a cycle later, from registers);"
@@ -210,7 +209,7 @@ whole_section() {
   local mode k v f
   echo "### rtu.v synthesised whole"
   echo
-  echo "\`rtl/units/rtu.v\` (one RTU: rgu_unit, trv_unit with its slot read ports, 2 x ist in ist_unit, hit_unit,"
+  echo "\`rtl/units/rtu.v\` (one RTU: rgu_unit, trv_unit with its slot read ports, 4 x ist in ist_unit, hit_unit,"
   echo "the three ascaches, slot_ram, vtu_unit with vtu.v, and the wiring: the trv's cache responses"
   echo "aligned to the byte read, the hand-offs) synthesised as one design at its parameter defaults ="
   echo "the cycle model's (the parameters of the table above), its hierarchy kept: every module once"

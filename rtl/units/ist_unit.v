@@ -28,14 +28,16 @@
 // the caller answers the accesses in unit order. The counters add a cycle's registered increments
 // (their outputs the sums plus the increments still registered: exact in every cycle).
 //
-// Storage: the queue, 2^QBITS registers of {slot, list position, triangle index, ready cycle}
-// (qcap_i <= 2^QBITS at run time); the delay ring, 2^HLBITS x IST results (hl_i < 2^HLBITS).
+// Storage: the queue, 2^QBITS registers of {slot, list position (its run's start and its place
+// in the run), triangle index, ready cycle} (qcap_i <= 2^QBITS at run time, IST <= 2^QBITS); the
+// delay ring, 2^HLBITS x IST results (hl_i < 2^HLBITS).
 // A cycle's pushes are consecutive from the tail (misses, then pipe 0's run, pipe 1's ...), so an
-// entry is written from one of IST + PIPES sources, never from every pipe's every word: pipe p's
-// words (with their list positions) are rotated once by the run's start modulo J (J >= WORDS, a
-// power of two dividing 2^QBITS), and entry e, inside pipe p's run, takes position e mod J of the
-// rotation, a fixed wire. A mux per entry over all PIPES x WORDS words cost 2.4 M NAND2 eq. at the
-// RTU's parameters (64 entries, 4 pipes x 16 words); see docs/area.md. Each ist.v carries its test's side data (slot, skip,
+// entry is written from one of 1 + PIPES sources, never from every pipe's every word: pipe p's
+// words are rotated once by the run's start modulo J (J >= WORDS, a power of two dividing
+// 2^QBITS), and entry e, inside pipe p's run, takes position e mod J of the rotation, a fixed
+// wire; the misses are compacted and rotated by the tail alike. A mux per entry over all PIPES x
+// WORDS words cost 2.4 M NAND2 eq. at the RTU's parameters (64 entries, 4 pipes x 16 words); see
+// docs/area.md. Each ist.v carries its test's side data (slot, skip,
 // list position, the record's id, k and plane) as its tag. Parameters: SLOT_BITS, IST, PIPES and
 // WORDS (the hand-off: trv_unit's), RPL (triangle records per cache line, a power of two),
 // WATERTIGHT (0: Wald's records and ist.v; 1: watertight records, the plane and the vertices, and
@@ -127,8 +129,16 @@ module ist_unit #(
   // ---- the queue --------------------------------------------------------------------------------
   // Entry e's values after this edge (its registers, or what this cycle's pushes write into them:
   // g_q[e], below), read through these by the head window.
+  // An entry's list position is pb + off: a pipe's run stores its start pb and the entry's place
+  // in it off (< J, below), so that the run's words are rotated without their positions; a miss
+  // goes back with the pb and off it had.
+  localparam integer WB = (WORDS > 1) ? $clog2(WORDS) : 0;
+  localparam integer JB = (WB < QBITS) ? WB : QBITS;
+  localparam integer J  = 1 << JB;
+  localparam integer OW = (JB > 0) ? JB : 1;   // off's width
   wire [SLOT_BITS-1:0] n_slot  [0:QN-1];
-  wire [31:0]          n_pos   [0:QN-1];
+  wire [31:0]          n_pb    [0:QN-1];
+  wire [OW-1:0]        n_off   [0:QN-1];
   wire [31:0]          n_tri   [0:QN-1];
   wire [31:0]          n_ready [0:QN-1];
   reg [QBITS-1:0]     head_q;
@@ -139,7 +149,8 @@ module ist_unit #(
   // triangle-cache accesses and ray reads start from registers, not from a read of the queue
   // (issue 26's timing; the same cycles and bits). Beyond cnt_q the window is not read.
   reg [SLOT_BITS-1:0] w_slot_q  [0:IST-1];
-  reg [31:0]          w_pos_q   [0:IST-1];
+  reg [31:0]          w_pb_q    [0:IST-1];
+  reg [OW-1:0]        w_off_q   [0:IST-1];
   reg [31:0]          w_tri_q   [0:IST-1];
   reg [31:0]          w_ready_q [0:IST-1];
 
@@ -152,7 +163,8 @@ module ist_unit #(
   wire [IST-1:0]      rdy;       // entry u present, ready and unit u in use
   wire [IST-1:0]      g_out_v;   // unit u's ist.v result of this cycle
   wire [IST*RESW-1:0] g_out_r;
-  wire [IST*32-1:0]   u_pos, u_tri;
+  wire [IST*32-1:0]   u_pb, u_tri;
+  wire [IST*OW-1:0]   u_off;
   genvar u;
   generate
     for (u = 0; u < IST; u = u + 1) begin : g_issue
@@ -164,7 +176,9 @@ module ist_unit #(
       assign miss[u]  = take[u] && !rsp_hit_i[u];
       assign acc_valid_o[u] = take[u];
       assign ray_slot_o[u*SLOT_BITS +: SLOT_BITS] = w_slot_q[u];  // a miss copies it to the tail
-      assign u_pos[u*32 +: 32] = w_pos_q[u];
+      assign u_pb[u*32 +: 32] = w_pb_q[u];
+      assign u_off[u*OW +: OW] = w_off_q[u];
+      wire [31:0] upos = w_pb_q[u] + {{(32-OW){1'b0}}, w_off_q[u]};  // the entry's list position
       // The record: line tri / RPL, record tri % RPL of it.
       wire [31:0] tidx = w_tri_q[u];
       assign u_tri[u*32 +: 32] = tidx;
@@ -195,7 +209,7 @@ module ist_unit #(
       // The test entering the datapath: {k, c_{NC-1} .. c_0, the ray, slot, skip, list position,
       // id}; the side data rides as its tag (with k and the plane c0 .. c2, taken from the record
       // here).
-      wire [EW-1:0] ein = {k, cs, ray[0 +: 8*W], w_slot_q[u], skip, w_pos_q[u], id};
+      wire [EW-1:0] ein = {k, cs, ray[0 +: 8*W], w_slot_q[u], skip, upos, id};
       wire          ev;
       wire [EW-1:0] ed;
       if (ENTRY_REG != 0) begin : g_ereg  // registered: ist.v's level 1 starts from a register
@@ -269,13 +283,15 @@ module ist_unit #(
   // This cycle's misses, registered: they go back to the queue in the next cycle (3.).
   reg  [IST-1:0]           mq_v;
   reg  [IST*SLOT_BITS-1:0] mq_slot;
-  reg  [IST*32-1:0]        mq_pos, mq_tri;
+  reg  [IST*32-1:0]        mq_pb, mq_tri;
+  reg  [IST*OW-1:0]        mq_off;
   always @(posedge clk_i or negedge rst_ni)
     if (!rst_ni) mq_v <= {IST{1'b0}};
     else mq_v <= miss;
   always @(posedge clk_i) begin
     mq_slot <= ray_slot_o;
-    mq_pos  <= u_pos;
+    mq_pb   <= u_pb;
+    mq_off  <= u_off;
     mq_tri  <= u_tri;
   end
 
@@ -302,21 +318,14 @@ module ist_unit #(
   assign room_o = qcap_i - count_o;
 
   // ---- 3. pushes: the misses in unit order, then each pipe's run --------------------------------
+  // The misses go to tail .. tail + nmq - 1, pipe p's run from base[p].
   wire [QBITS-1:0] tail = head_q + cnt_q[QBITS-1:0];
   reg  [(PIPES+1)*QBITS-1:0] base;   // where pipe p's run starts: [p*QBITS +: QBITS]
-  reg  [IST*QBITS-1:0]       mpos;   // where unit u's last-cycle miss goes
-  reg  [QBITS-1:0]           at;
   reg  [15:0]                pushes, nb;
-  integer p, m;
+  integer p;
   always @* begin
-    at = tail;
-    mpos = {(IST*QBITS){1'b0}};
-    for (m = 0; m < IST; m = m + 1) begin
-      mpos[m*QBITS +: QBITS] = at;
-      if (mq_v[m]) at = at + 1'b1;
-    end
     base = {((PIPES+1)*QBITS){1'b0}};
-    base[0 +: QBITS] = at;
+    base[0 +: QBITS] = tail + nmq[QBITS-1:0];
     pushes = 16'd0;  // the trv's entries (the misses are in left already)
     for (p = 0; p < PIPES; p = p + 1) begin
       nb = {10'd0, hin_n_i[p*6 +: 6]};
@@ -409,7 +418,8 @@ module ist_unit #(
       wire [QBITS-1:0] w_at = head_q + npop16[QBITS-1:0] + UQ;
       always @(posedge clk_i) begin
         w_slot_q[u]  <= n_slot[w_at];
-        w_pos_q[u]   <= n_pos[w_at];
+        w_pb_q[u]    <= n_pb[w_at];
+        w_off_q[u]   <= n_off[w_at];
         w_tri_q[u]   <= n_tri[w_at];
         w_ready_q[u] <= n_ready[w_at];
       end
@@ -417,79 +427,100 @@ module ist_unit #(
   endgenerate
 
   // ---- the queue's registers: each entry written from one of this cycle's push sources ---------
-  // Pipe p's run rotated: element i of g_rot[p] is {list position, triangle index} of word
-  // (i - base_p) mod J. J: WORDS rounded up to a power of two, at most the queue (a run is no
-  // longer than the queue's room).
-  localparam integer WB = (WORDS > 1) ? $clog2(WORDS) : 0;
-  localparam integer JB = (WB < QBITS) ? WB : QBITS;
-  localparam integer J  = 1 << JB;
+  // Pipe p's run rotated: element i of g_rot[p] is the triangle index of word (i - base_p) mod J
+  // (J: WORDS rounded up to a power of two, at most the queue: a run is no longer than the
+  // queue's room), the entry's off (i - base_p) mod J. The misses compacted (element k the k-th
+  // of the registered misses in unit order) and rotated alike by the tail: element i of mrot is
+  // miss (i - tail) mod MJ. So every entry takes one source per pipe and one for the misses, each
+  // a fixed wire.
+  localparam integer MQW = SLOT_BITS + 32 + OW + 32;            // a miss: {slot, pb, off, tri}
+  localparam integer MB  = (IST > 1) ? $clog2(IST) : 0;
+  localparam integer MJB = (MB < QBITS) ? MB : QBITS;
+  localparam integer MJ  = 1 << MJB;
   genvar gp, gi, ge;
-  wire [PIPES*J*64-1:0] rot;   // pipe p's element i: [(p*J + i)*64 +: 64]
+  wire [PIPES*J*32-1:0] rot;   // pipe p's element i: [(p*J + i)*32 +: 32]
   generate
     for (gp = 0; gp < PIPES; gp = gp + 1) begin : g_rot
-      wire [J*64-1:0] run;   // element i: word i
+      wire [J*32-1:0] run;   // element i: word i
       for (gi = 0; gi < J; gi = gi + 1) begin : g_in
         if (gi < WORDS) begin : g_w
-          localparam [31:0] GI = gi;  // sized: a genvar has no width in a concatenation (Icarus)
-          assign run[gi*64 +: 64] = {hin_pos_i[gp*32 +: 32] + GI, hin_words_i[(gp*WORDS + gi)*32 +: 32]};
+          assign run[gi*32 +: 32] = hin_words_i[(gp*WORDS + gi)*32 +: 32];
         end else begin : g_z
-          assign run[gi*64 +: 64] = 64'd0;
+          assign run[gi*32 +: 32] = 32'd0;
         end
       end
       // A barrel rotator: level l moves every element 2^l up (modulo J) if bit l of the start is set.
-      reg [J*64-1:0] r;
+      reg [J*32-1:0] r;
       integer l;
       always @* begin
         r = run;
         for (l = 0; l < JB; l = l + 1)
-          if (base[gp*QBITS + l]) r = (r << ((1 << l) * 64)) | (r >> ((J - (1 << l)) * 64));
+          if (base[gp*QBITS + l]) r = (r << ((1 << l) * 32)) | (r >> ((J - (1 << l)) * 32));
       end
-      assign rot[gp*J*64 +: J*64] = r;
+      assign rot[gp*J*32 +: J*32] = r;
     end
+  endgenerate
 
+  reg [MJ*MQW-1:0] mrot;   // element i: [i*MQW +: MQW]
+  reg [MB:0]       mk;     // misses before unit m
+  integer mi, ml;
+  always @* begin
+    mrot = {(MJ*MQW){1'b0}};
+    mk = {(MB+1){1'b0}};
+    for (mi = 0; mi < IST; mi = mi + 1) begin
+      // Unit mi's miss is element mk: OR'd in (the elements' sources are disjoint).
+      mrot = mrot | ({(MJ*MQW){mq_v[mi]}} &
+                     ({{((MJ-1)*MQW){1'b0}}, mq_slot[mi*SLOT_BITS +: SLOT_BITS], mq_pb[mi*32 +: 32],
+                       mq_off[mi*OW +: OW], mq_tri[mi*32 +: 32]} << (mk * MQW)));
+      mk = mk + {{MB{1'b0}}, mq_v[mi]};
+    end
+    for (ml = 0; ml < MJB; ml = ml + 1)
+      if (tail[ml]) mrot = (mrot << ((1 << ml) * MQW)) | (mrot >> ((MJ - (1 << ml)) * MQW));
+  end
+
+  generate
     for (ge = 0; ge < QN; ge = ge + 1) begin : g_q
       localparam [QBITS-1:0] E = ge;
       reg [SLOT_BITS-1:0] slot_q;
-      reg [31:0]          pos_q, tri_q, ready_q;
+      reg [31:0]          pb_q, tri_q, ready_q;
+      reg [OW-1:0]        off_q;
       // The sources are disjoint (consecutive ranges of one cycle's pushes): their values OR'd.
       reg                 we;
       reg [SLOT_BITS-1:0] w_slot;
-      reg [31:0]          w_pos, w_tri, w_ready;
+      reg [31:0]          w_pb, w_tri, w_ready;
+      reg [OW-1:0]        w_off;
       reg [QBITS-1:0]     d;
       reg                 sel;
-      integer             mb, pp;
+      integer             pp;
       always @* begin
-        we = 1'b0;
-        w_slot = {SLOT_BITS{1'b0}};
-        w_pos = 32'd0; w_tri = 32'd0; w_ready = 32'd0;
-        for (mb = 0; mb < IST; mb = mb + 1) begin
-          sel = mq_v[mb] && (mpos[mb*QBITS +: QBITS] == E);
-          we = we | sel;
-          w_slot  = w_slot | ({SLOT_BITS{sel}} & mq_slot[mb*SLOT_BITS +: SLOT_BITS]);
-          w_pos   = w_pos | ({32{sel}} & mq_pos[mb*32 +: 32]);
-          w_tri   = w_tri | ({32{sel}} & mq_tri[mb*32 +: 32]);
-          w_ready = w_ready | ({32{sel}} & (now_i + 32'd1));
-        end
+        d = E - tail;
+        sel = ({{(16-QBITS){1'b0}}, d} < {10'd0, nmq});
+        we = sel;
+        {w_slot, w_pb, w_off, w_tri} = {MQW{sel}} & mrot[(ge % MJ)*MQW +: MQW];
+        w_ready = {32{sel}} & (now_i + 32'd1);
         for (pp = 0; pp < PIPES; pp = pp + 1) begin
           d = E - base[pp*QBITS +: QBITS];
           sel = ({{(16-QBITS){1'b0}}, d} < {10'd0, hin_n_i[pp*6 +: 6]});
           we = we | sel;
           w_slot  = w_slot | ({SLOT_BITS{sel}} & hin_slot_i[pp*SLOT_BITS +: SLOT_BITS]);
-          w_pos   = w_pos | ({32{sel}} & rot[(pp*J + ge % J)*64 + 32 +: 32]);
-          w_tri   = w_tri | ({32{sel}} & rot[(pp*J + ge % J)*64 +: 32]);
+          w_pb    = w_pb | ({32{sel}} & hin_pos_i[pp*32 +: 32]);
+          w_off   = w_off | ({OW{sel}} & d[OW-1:0]);   // d < the run's length <= J
+          w_tri   = w_tri | ({32{sel}} & rot[(pp*J + ge % J)*32 +: 32]);
           w_ready = w_ready | ({32{sel}} & hin_ready_i[pp*32 +: 32]);
         end
       end
       always @(posedge clk_i)
         if (we) begin
           slot_q  <= w_slot;
-          pos_q   <= w_pos;
+          pb_q    <= w_pb;
+          off_q   <= w_off;
           tri_q   <= w_tri;
           ready_q <= w_ready;
         end
       // The entry after this edge (the head window's refill reads it).
       assign n_slot[ge]  = we ? w_slot : slot_q;
-      assign n_pos[ge]   = we ? w_pos : pos_q;
+      assign n_pb[ge]    = we ? w_pb : pb_q;
+      assign n_off[ge]   = we ? w_off : off_q;
       assign n_tri[ge]   = we ? w_tri : tri_q;
       assign n_ready[ge] = we ? w_ready : ready_q;
     end
