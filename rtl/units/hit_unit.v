@@ -18,6 +18,14 @@
 // The queue is a FIFO whose head blocks the entries behind it until its ready cycle (the cycle
 // model's TimedFifo); it holds up to 2^SLOT_BITS entries (every slot at most once). Ready cycles
 // are 32-bit cycle numbers compared with now_i as a signed difference.
+// Storage: NB banks (PIPES rounded up to a power of two, at most 2^SLOT_BITS), bank b holding the
+// entries e with e mod NB = b, each a memory of one write and one read port: a cycle's pushes are
+// consecutive from the tail, so at most one lands in each bank (the pipes' rays compacted and
+// rotated by the tail: bank b takes one fixed element). The head is a register (w_*_q), refilled
+// at every edge with the entry after the head (read from its bank at an address from registers;
+// this cycle's push when one lands there) when the head leaves, so the ready test and the slot
+// read start from registers. (The queue in registers written from every pipe cost about 100 k
+// NAND2 eq. at the RTU's 128 entries and 5 pipes.)
 // lint: also SLOT_BITS=7 PIPES=4 STAGES=2
 // lint: also SLOT_BITS=1 PIPES=1 STAGES=1
 // lint: also SLOT_BITS=7 PIPES=4 STAGES=2 SPAWNS=1
@@ -76,25 +84,29 @@ module hit_unit #(
 
   localparam integer W  = 1 + EXP_BITS + MAN_BITS;
   localparam integer BW = 67 + 5 * W;
-  localparam integer NS = 1 << SLOT_BITS;
   localparam integer TW = SLOT_BITS + 2;  // hit.v's tag: {slot, shadow, found}
   localparam integer RDW = 1 + BW + 6 * W; // the slot read: {shadow, best, d zyx, o zyx}
   localparam [SLOT_BITS-1:0] ONE = 1;
 
   // ---- the queue --------------------------------------------------------------------------------
-  reg [SLOT_BITS-1:0] q_slot  [0:NS-1];
-  reg [31:0]          q_ready [0:NS-1];
+  localparam integer PB  = (PIPES > 1) ? $clog2(PIPES) : 0;
+  localparam integer NBB = (PB < SLOT_BITS) ? PB : SLOT_BITS;   // log2 of the banks
+  localparam integer NB  = 1 << NBB;
+  localparam integer DB  = SLOT_BITS - NBB;                     // log2 of a bank's entries
+  localparam integer QW  = SLOT_BITS + 32;                      // an entry: {slot, ready}
   reg [SLOT_BITS-1:0] head_q;
   reg [SLOT_BITS:0]   cnt_q;
+  reg [SLOT_BITS-1:0] w_slot_q;   // the head entry (meaningful while cnt_q > 0)
+  reg [31:0]          w_ready_q;
 
   assign head_valid_o = (cnt_q != {(SLOT_BITS+1){1'b0}});
-  assign head_ready_o = q_ready[head_q];
-  wire [31:0] dt   = q_ready[head_q] - now_i;
+  assign head_ready_o = w_ready_q;
+  wire [31:0] dt   = w_ready_q - now_i;
   wire        take = head_valid_o && ($signed(dt) <= 0);
 
   // ---- 2. the ray entering --------------------------------------------------------------------
   assign rd_valid_o = take;
-  assign rd_slot_o  = q_slot[head_q];
+  assign rd_slot_o  = w_slot_q;
   // The slot read and the ray's slot, registered (STAGES > 0): so no path runs from the hit
   // queue through the slot arrays into hit.v's first level.
   localparam integer IR = (STAGES > 0) ? 1 : 0;
@@ -111,7 +123,7 @@ module hit_unit #(
         else v_q <= take;
       always @(posedge clk_i) begin
         rd_q <= rd_i;
-        s_q <= q_slot[head_q];
+        s_q <= w_slot_q;
       end
       assign in_valid = v_q;
       assign rd = rd_q;
@@ -119,7 +131,7 @@ module hit_unit #(
     end else begin : g_in_wire
       assign in_valid = take;
       assign rd = rd_i;
-      assign in_slot = q_slot[head_q];
+      assign in_slot = w_slot_q;
     end
   endgenerate
   wire [6*W-1:0] ray    = rd[6*W-1:0];
@@ -170,23 +182,66 @@ module hit_unit #(
   assign out_dens_o   = o_dens;
   assign out_ray_o    = {o_ox, o_oy, o_oz, o_dx, o_dy, o_dz, o_ix, o_iy, o_iz, o_tmin, o_tmax};
 
-  // ---- 3. pushes: the finished rays in pipe order -----------------------------------------------
-  reg [PIPES*SLOT_BITS-1:0] at;   // where pipe p's ray goes
-  reg [SLOT_BITS:0]         npush;
-  reg [SLOT_BITS-1:0]       pos;
-  integer p;
+  // ---- 3. pushes: the finished rays in pipe order, to tail .. tail + npush - 1 ------------------
+  // The valid pipes' rays compacted (element k the k-th in pipe order; k < npush <= PIPES <= NB
+  // when NB = PIPES rounded up, and NB = 2^SLOT_BITS holds every entry), then rotated by the
+  // tail: element b of wrot goes to bank b (entry tail + ((b - tail) mod NB)).
+  wire [SLOT_BITS-1:0] tail = head_q + cnt_q[SLOT_BITS-1:0];
+  reg  [SLOT_BITS:0]   npush;
+  reg  [NB*QW-1:0]     wrot;
+  integer p, l;
   always @* begin
-    pos = head_q + cnt_q[SLOT_BITS-1:0];
     npush = {(SLOT_BITS+1){1'b0}};
-    at = {(PIPES*SLOT_BITS){1'b0}};
-    for (p = 0; p < PIPES; p = p + 1) begin
-      at[p*SLOT_BITS +: SLOT_BITS] = pos;
+    wrot = {(NB*QW){1'b0}};
+    for (p = 0; p < PIPES; p = p + 1)
       if (fin_valid_i[p]) begin
-        pos = pos + 1'b1;
+        wrot = wrot | ({{((NB-1)*QW){1'b0}}, fin_slot_i[p*SLOT_BITS +: SLOT_BITS],
+                        fin_ready_i[p*32 +: 32]} << (npush * QW));
         npush = npush + 1'b1;
       end
-    end
+    for (l = 0; l < NBB; l = l + 1)
+      if (tail[l]) wrot = (wrot << ((1 << l) * QW)) | (wrot >> ((NB - (1 << l)) * QW));
   end
+
+  // The banks, and the entry after the head after this edge (the window's refill when the head
+  // leaves): read from its bank, or this cycle's push to it.
+  localparam [31:0] NB1 = NB - 1;
+  localparam [SLOT_BITS-1:0] BMASK = NB1[SLOT_BITS-1:0];
+  wire [SLOT_BITS-1:0] nx = head_q + ONE;
+  wire [NB*QW-1:0]     rdat;     // bank b's entry at nx's address
+  genvar gb;
+  generate
+    for (gb = 0; gb < NB; gb = gb + 1) begin : g_bank
+      localparam [SLOT_BITS:0] B = gb;
+      wire [SLOT_BITS-1:0] k = (B[SLOT_BITS-1:0] - tail) & BMASK;   // its place among the pushes
+      wire                 we = ({1'b0, k} < npush);
+      if (DB > 0) begin : g_mem
+        wire [SLOT_BITS-1:0] e = tail + k;                          // the entry it writes
+        wire                 unused_e = ^e;                         // its bank: gb
+        reg  [QW-1:0] mem [0:(1<<DB)-1];
+        always @(posedge clk_i)
+          if (we) mem[e[SLOT_BITS-1:NBB]] <= wrot[gb*QW +: QW];
+        assign rdat[gb*QW +: QW] = mem[nx[SLOT_BITS-1:NBB]];
+      end else begin : g_reg   // one entry per bank
+        reg  [QW-1:0] r_q;
+        always @(posedge clk_i)
+          if (we) r_q <= wrot[gb*QW +: QW];
+        assign rdat[gb*QW +: QW] = r_q;
+      end
+    end
+  endgenerate
+  // Element h mod NB of v.
+  function automatic [QW-1:0] at_bank(input [NB*QW-1:0] v, input [SLOT_BITS-1:0] h);
+    integer i;
+    begin
+      at_bank = {QW{1'b0}};
+      for (i = 0; i < NB; i = i + 1)
+        at_bank = at_bank | ({QW{(h & BMASK) == i[SLOT_BITS-1:0]}} & v[i*QW +: QW]);
+    end
+  endfunction
+  wire [SLOT_BITS-1:0] nk = nx - tail;
+  wire [QW-1:0] nx_entry = ({1'b0, nk} < npush) ? at_bank(wrot, nx) : at_bank(rdat, nx);
+  wire [QW-1:0] hd_entry = at_bank(wrot, head_q);   // the push to the head of an empty queue
 
   // Rays inside hit.v.
   reg [7:0] inside_q;
@@ -210,12 +265,11 @@ module hit_unit #(
       inside_q   <= inside_q + {7'd0, take} - {7'd0, o_valid};
       busy_q     <= cnt_busy_o;
       take_q     <= take;
-      for (p = 0; p < PIPES; p = p + 1)
-        if (fin_valid_i[p]) begin
-          q_slot[at[p*SLOT_BITS +: SLOT_BITS]]  <= fin_slot_i[p*SLOT_BITS +: SLOT_BITS];
-          q_ready[at[p*SLOT_BITS +: SLOT_BITS]] <= fin_ready_i[p*32 +: 32];
-        end
     end
   end
+  // The head entry after this edge (no reset: read only while cnt_q > 0).
+  always @(posedge clk_i)
+    if (take) {w_slot_q, w_ready_q} <= nx_entry;
+    else if (!head_valid_o) {w_slot_q, w_ready_q} <= hd_entry;
 
 endmodule
