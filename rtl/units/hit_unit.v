@@ -24,8 +24,8 @@
 // rotated by the tail: bank b takes one fixed element). The head is a register (w_*_q), refilled
 // at every edge with the entry after the head (read from its bank at an address from registers;
 // this cycle's push when one lands there) when the head leaves, so the ready test and the slot
-// read start from registers. (The queue in registers written from every pipe cost about 100 k
-// NAND2 eq. at the RTU's 128 entries and 5 pipes.)
+// read start from registers. (The queue in registers written from every pipe cost about 156 k
+// NAND2 eq. at the RTU's 128 entries and 5 pipes: docs/architecture.md, "The twelfth levers".)
 // lint: also SLOT_BITS=7 PIPES=4 STAGES=2
 // lint: also SLOT_BITS=1 PIPES=1 STAGES=1
 // lint: also SLOT_BITS=7 PIPES=4 STAGES=2 SPAWNS=1

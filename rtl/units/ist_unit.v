@@ -429,7 +429,7 @@ module ist_unit #(
   // ---- the queue's registers: each entry written from one of this cycle's push sources ---------
   // Pipe p's run rotated: element i of g_rot[p] is the triangle index of word (i - base_p) mod J
   // (J: WORDS rounded up to a power of two, at most the queue: a run is no longer than the
-  // queue's room), the entry's off (i - base_p) mod J. The misses compacted (element k the k-th
+  // queue's room); the entry taking it stores off = that word's place. The misses compacted (element k the k-th
   // of the registered misses in unit order) and rotated alike by the tail: element i of mrot is
   // miss (i - tail) mod MJ. So every entry takes one source per pipe and one for the misses, each
   // a fixed wire.
