@@ -8,7 +8,8 @@
 # Every configuration: FP24 rtz, STAGES 2, the cycle model's default caches (node 32 KB since
 # 2026-12-07, list 8 KB, triangle 32 KB; their ports follow the pipes and ist units: 1 per trv pipe
 # on node and list, 1 per ist unit on the triangle cache), a 32-entry ist queue, 2^7 ray slots (the study's 96 rays), stack depth 64 (the
-# study's 16 changes only the stack SRAM, which the study counts in bits), PIPES and IST as named.
+# study's 16 changes only the stack SRAM, which the study counts in bits), the hit unit for spawn none
+# alone (rtu.v's default SPAWNS 1: the study's frames run the default --spawn), PIPES and IST as named.
 # Same measurement as make area (scripts/area_lib.sh: NAND2 weights, memories kept as $mem SRAM
 # macros); cached in out/area-cache by the sources' hash. RAYCORE_AREA_TIMEOUT (s, default 7200
 # here) bounds one run.
@@ -61,8 +62,9 @@ done
   echo "\"rtu whole\": every module once per parameter set, \`stat -top rtu\` summing the instances; yosys"
   echo "\`synth -noshare\`, NanGate45 NAND2 weights, memories kept as SRAM macros and counted in bits),"
   echo "FP24 rtz, STAGES 2, the default caches (ports: 1 per trv pipe on node and list, 1 per ist unit"
-  echo "on the triangle cache), 2^7 ray slots, stack depth 64 (rtu.v's defaults but PIPES trv pipes and IST"
-  echo "ist units; 5 x 4 is \`make area-rtu\`'s \"rtu whole\" run)."
+  echo "on the triangle cache), 2^7 ray slots, stack depth 64, the hit unit for the defaults' spawn none"
+  echo "(SPAWNS 1, as the study's frames run) (rtu.v's defaults but PIPES trv pipes and IST ist units;"
+  echo "5 x 4 is \`make area-rtu\`'s \"rtu whole\" run)."
   echo "\`make throughput\` fits its RTU logic model (a + b x pipes + c x ist units, least squares) to"
   echo "these rows and stops if it misses any of them by more than 10% (docs/results.md)."
   echo

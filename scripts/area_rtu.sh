@@ -37,7 +37,7 @@ UNITS=(
   "vtu|vtu|1|fmt|-set STAGES 2 -set TAG_BITS 8"
   "ist|ist|4|fmt|-set STAGES 2 -set TAG_BITS 1 -set FREE 1"
   "trv_unit|trv_unit|1|fmt|-set SLOT_BITS 7 -set DEPTH 64 -set PIPES 5 -set IST 4 -set WORDS 16"
-  "hit|hit|1|fmt|-set STAGES 2 -set TAG_BITS 9 -set FREE 1"
+  "hit|hit|1|fmt|-set STAGES 2 -set TAG_BITS 9 -set FREE 1 -set SPAWNS 1"
   "rgu|rgu|1|fmt|-set STAGES 2"
   "ascache node|ascache|1|-|-set SETS 128 -set PORTS 5 $CACHE_P"
   "ascache list|ascache|1|-|-set SETS 32 -set PORTS 5 $CACHE_P"
@@ -81,11 +81,11 @@ run_unit() {
 }
 
 # The whole RTU and its fill path (rtu.v's defaults: the cycle model's; vtu_unit at the RTU's).
-# "spawn none": the hit unit built for the default --spawn alone (hit.v's SPAWNS 1; rtu.v's default
-# SPAWNS 127 builds all seven strategies, as `--rtl rtu` runs it).
+# rtu.v's default SPAWNS 1 builds the hit unit for the defaults' --spawn none alone; "all seven
+# spawns" builds every strategy (SPAWNS 127, as `--rtl rtu`'s Verilated model is built).
 WHOLE=(
   "rtu whole|rtu|1|fmt|"
-  "rtu whole, spawn none|rtu|1|fmt|-set SPAWNS 1"
+  "rtu whole, all seven spawns|rtu|1|fmt|-set SPAWNS 127"
   "vtu_unit|vtu_unit|1|fmt|-set STAGES 2 -set MSHRS 8"
 )
 WHOLE_TIMEOUT=${RAYCORE_AREA_WHOLE_TIMEOUT:-7200}
@@ -131,7 +131,7 @@ section() {
   echo "- Parameters: vtu TAG_BITS 8 (cache port 2 + MSHR 3 + record in the line 3 bits); ist as in"
   echo "  ist_unit (TAG_BITS 1: the side data travel beside it in one fp_delay memory; FREE 1: its"
   echo "  carries in fp_delay memories, ist_unit never holding a result back), hit as in hit_unit"
-  echo "  (TAG_BITS 9 = slot 7 + 2, FREE 1, all seven spawn strategies); trv_unit 2^7 = 128 slots (the model's 96 ray"
+  echo "  (TAG_BITS 9 = slot 7 + 2, FREE 1, SPAWNS 1: the defaults' spawn none alone, as rtu.v's default); trv_unit 2^7 = 128 slots (the model's 96 ray"
   echo "  slots rounded up: the RTL has 2^SLOT_BITS), 64 stack entries, 5 pipes, IST 4 results per cycle"
   echo "  (ist_units), 16 list words per read; caches 4 ways, 64 B lines, 8 MSHRs, HIT_LATENCY 0"
   echo "  (the frame's caches answer in the access's cycle: asynchronous data-array read ports), PORTS"
@@ -220,16 +220,17 @@ whole_section() {
   echo "three caches, 24 lines, the record queue and vtu.v). Only vtu.v exists for the VTU's sake: without"
   echo "a VTU the fill path keeps its line buffers (a line is installed whole) and loses vtu.v and the"
   echo "record queue; so vtu.v's share is the VTU's cost and vtu_unit's an upper bound of it."
-  echo "**rtu whole, spawn none**: the same with \`SPAWNS 1\`, the hit unit built for the default \`--spawn"
-  echo "none\` alone (hit.v leaves out the other strategies' operators and carries; rtu.v's default,"
-  echo "\`SPAWNS 127\`, builds all seven, as \`--rtl rtu\` runs it)."
+  echo "**rtu whole** has rtu.v's default \`SPAWNS 1\`: the hit unit built for the defaults' \`--spawn none\`"
+  echo "alone (hit.v leaves out the other strategies' operators and carries). **rtu whole, all seven"
+  echo "spawns**: the same with \`SPAWNS 127\`, every spawn strategy built, as \`--rtl rtu\`'s one Verilated"
+  echo "model is (so that it runs every \`--spawn\`)."
   echo
   for mode in "${MODES[@]}"; do
     echo "#### FP24 $mode"
     echo
     echo "| design | cells | FFs | NAND2 eq. | depth | SRAM bits | SRAM NAND2 eq. | yosys s |"
     echo "|---|---:|---:|---:|---:|---:|---:|---:|"
-    for v in "rtu whole" "rtu whole, spawn none" vtu_unit vtu; do
+    for v in "rtu whole" "rtu whole, all seven spawns" vtu_unit vtu; do
       k="$v|$mode"
       if [ "${R[$k|status]:-}" != ok ]; then
         echo "| $v | did not finish in $((WHOLE_TIMEOUT / 60)) min | | | | | | ${R[$k|secs]:-} |"
@@ -240,7 +241,7 @@ whole_section() {
           'BEGIN { printf "| %s | %d | %d | %d | %s | %d | %.0f | %d |\n", n, c, f, g, (d > 0 ? d : "-"), s, sp * b, t }'
     done
     echo
-    for v in "rtu whole" "rtu whole, spawn none"; do
+    for v in "rtu whole" "rtu whole, all seven spawns"; do
       k="$v|$mode"
       [ -n "${R[$k|parts]:-}" ] || continue
       echo "$v by instance (each instance's subtree in the same synthesis; glue: rtu.v's own"

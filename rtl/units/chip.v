@@ -47,6 +47,7 @@ module chip #(
   parameter integer L2_SETS    = 0,   // 0: no L2
   parameter integer L2_WAYS    = 8,
   parameter integer L2_BEAT    = 32,
+  parameter integer SPAWNS     = 1,   // rtu.v's: the spawn strategies built (1: none, the defaults)
   // Derived (not to be overridden).
   parameter integer W_  = 1 + EXP_BITS + MAN_BITS,
   parameter integer MB_ = (MSHRS > 1) ? $clog2(MSHRS) : 1,
@@ -212,7 +213,7 @@ module chip #(
             .TILE_BITS(TILE_BITS), .RTU_BITS(RTU_BITS), .NODE_SETS(NODE_SETS),
             .LIST_SETS(LIST_SETS), .TRI_SETS(TRI_SETS), .WAYS(WAYS), .NODE_LB(NODE_LB),
             .LIST_LB(LIST_LB), .TRI_LB(TRI_LB), .MSHRS(MSHRS), .LINE_W(LINE_W),
-            .BEAT_BYTES(BEAT_BYTES), .L2_BEAT(L2_BEAT), .LEN_BITS(LEN_BITS)) u_rtu (
+            .BEAT_BYTES(BEAT_BYTES), .L2_BEAT(L2_BEAT), .LEN_BITS(LEN_BITS), .SPAWNS(SPAWNS)) u_rtu (
         .clk_i(clk_i), .rst_ni(rst_ni), .start_i(start_i), .cam_i(cam_i), .width_i(width_i),
         .height_i(height_i), .rtu_i(R), .rtus_i(rtus_i), .slots_i(slots_i), .tmin_i(tmin_i),
         .trv_lat_i(trv_lat_i), .node_hl_i(node_hl_i), .list_hl_i(list_hl_i), .pipes_i(pipes_i),

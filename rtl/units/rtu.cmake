@@ -5,7 +5,9 @@
 # with BEAT_REG = 1 (the host drives the next cycle's beats, see rtu.v), at rtu.v's parameter defaults = the cycle model's defaults (systemc/config.h SimConfig): STAGES 2,
 # 128 slots, 64 stack entries, 5 trv pipes, 4 ist units, 16 list words per read, an ist queue of up
 # to 32, 8 x 8 tiles, caches of 32 / 8 / 32 KB with 4 ways, 64-byte lines and 8 MSHRs, the L2's
-# beats of 32 bytes (membus_l2's at the model's default L2).
+# beats of 32 bytes (membus_l2's at the model's default L2); the hit unit built for all seven spawn
+# strategies (SPAWNS 127, where rtu.v's default 1 is the defaults' --spawn none alone), so that the
+# one model runs every --spawn.
 # rtl_rtu_variants.h: RAYCORE_RTL_RTU_VARIANT(prefix, fmt, mode, width, stages, slot_bits, pipes,
 # ist, words, qbits, hlbits, tile, node_kb, list_kb, tri_kb, ways, line, mshrs, l2_beat), one line per model
 # (the values are rtu.v's defaults, which the binding checks the configuration against).
@@ -29,7 +31,7 @@ if(TARGET raycore_rtl_frame)
       SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/lint/waivers.vlt ${_rtu_sources}
       TOP_MODULE rtu
       PREFIX ${prefix}
-      VERILATOR_ARGS ${RAYCORE_RTL_VERILATOR_ARGS} ${g} -GBEAT_REG=1)
+      VERILATOR_ARGS ${RAYCORE_RTL_VERILATOR_ARGS} ${g} -GBEAT_REG=1 -GSPAWNS=127)
     string(APPEND _rtu_models "#include \"${prefix}.h\"\n")
     string(APPEND _rtu_lines
       "RAYCORE_RTL_RTU_VARIANT(${prefix}, FP24, ${mode}, 24, 2, 7, 5, 4, 16, 5, 4, 8, 32, 8, 32, 4, "

@@ -32,8 +32,10 @@
 // in flight), 64 stack entries, 5 trv pipes, 4 ist units, 16 list words per read, an ist queue of
 // up to 32 entries (the model's ist_queue: the queue never holds more than its capacity, misses on
 // their way back included), caches of 32 / 8 / 32 KB (4 ways, 64-byte lines, 8 MSHRs each). SPAWNS (the
-// hit unit's spawn strategies, hit.v) 127: every --spawn, as `--rtl rtu` is built; `make area-rtu`
-// also synthesises SPAWNS 1 (spawn none alone, the defaults).
+// hit unit's spawn strategies, hit.v) 1: the defaults' --spawn none alone, as every other parameter
+// is the defaults' (the chip is built for the strategy it runs; chip.v and make chip take SPAWNS
+// from the frame's --spawn). `--rtl rtu`'s one Verilated model is built with SPAWNS 127, all seven,
+// so that it runs every --spawn (rtl/units/rtu.cmake); `make area-rtu` synthesises both.
 // lint: also SLOT_BITS=4 DEPTH=8 PIPES=2 IST=2 WORDS=4 QBITS=3 NODE_SETS=4 LIST_SETS=2 TRI_SETS=4 WAYS=2 MSHRS=2 NODE_LB=32 LIST_LB=16 TRI_LB=32
 // lint: also SLOT_BITS=4 DEPTH=8 PIPES=2 IST=2 WORDS=4 QBITS=3 NODE_SETS=4 LIST_SETS=2 TRI_SETS=4 WAYS=2 MSHRS=2 NODE_LB=32 LIST_LB=16 TRI_LB=32 BEAT_REG=1
 module rtu #(
@@ -65,7 +67,7 @@ module rtu #(
   parameter integer L2_BEAT    = 32,  // the L2's beats
   parameter integer LEN_BITS   = 12,
   parameter integer BEAT_REG   = 0,   // 1: beat_*_i and l2_*_i are the next cycle's, registered here
-  parameter integer SPAWNS     = 127, // the hit unit's spawn strategies (bit s: hls::Spawn s; 127: all)
+  parameter integer SPAWNS     = 1,   // the hit unit's spawn strategies (bit s: hls::Spawn s; 127: all)
   // Derived (not to be overridden).
   parameter integer W_     = 1 + EXP_BITS + MAN_BITS,
   parameter integer CB_    = (W_ <= 24) ? 3 : 4,

@@ -9,7 +9,8 @@
 #      about 30 cycles/s): passes only if its cycles are the model's and its rays the frame's.
 # Usage: run_chip.sh <raycore binary> <work dir> [simulate options; default corridor 20x12, VTU off]
 # The frame must fit chip.v's build: one RTU, the model's defaults otherwise, FP24 rtz (--l2-kb,
-# --l2-ways and --l2-latency are taken from the options; the L2's lines and beats are the model's).
+# --l2-ways, --l2-latency and --spawn are taken from the options: chip.v is built with the L2 and the
+# spawn strategy the frame uses; the L2's lines and beats are the model's).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/../.." && pwd)
 raycore=$1 work=$2
@@ -19,7 +20,7 @@ mkdir -p "$work"
 frame=("$@" --rtus 1 --no-reference)
 # The memory's and the L2's timing for tb_chip.v, from the options (`--opt value` or `--opt=value`;
 # raycore's --rtl rtu run below refuses what no built model runs, before they are used).
-lat=100 l2kb=256 l2ways=8 l2lat=20
+lat=100 l2kb=256 l2ways=8 l2lat=20 spawn=none
 for ((i = 1; i <= $#; i++)); do
   j=$((i + 1))
   opt=${!i} val=${!j:-}
@@ -29,6 +30,7 @@ for ((i = 1; i <= $#; i++)); do
     --l2-kb) l2kb=$val ;;
     --l2-ways) l2ways=$val ;;
     --l2-latency) l2lat=$val ;;
+    --spawn) spawn=$val ;;
   esac
 done
 
@@ -39,6 +41,13 @@ model=$(cycles_of "$work/model.log")
 rtu=$(cycles_of "$work/rtu.log")
 grep -q '^golden *match' "$work/rtu.log" || { echo "run_chip: --rtl rtu frame is not golden" >&2; exit 1; }
 img=$(wc -l < "$work/frame.img")
+# chip.v is built for the frame's spawn strategy (rtu.v's SPAWNS, bit s = hls::Spawn s) besides none;
+# --rtl rtu above has refused a name it does not know.
+spawns=1 s=0
+for name in none skip-origin ulp-offset error-bound skip-offset skip-slab skip-back; do
+  [ "$name" = "$spawn" ] && spawns=$((1 | (1 << s)))
+  s=$((s + 1))
+done
 l2sets=$((l2kb * 1024 / (l2ways * 64)))  # accepted by --rtl rtu: the default or the 1 KB L2, or none
 
 # chip.v's sources, as rtl/units/rtu.cmake lists them (written at configure time beside raycore's build).
@@ -46,7 +55,7 @@ list=$(dirname "$raycore")/../rtl/chip_sources.txt
 [ -f "$list" ] || { echo "run_chip: $list not found (configure with RAYCORE_RTL=ON)" >&2; exit 1; }
 mapfile -t srcs < "$list"
 defs=(-DDUMP="\"$work/frame\"" -DIMG="$img" -DLAT="$lat" -DL2_SETS="$l2sets" -DL2_WAYS="$l2ways"
-      -DL2_LAT="$l2lat")
+      -DL2_LAT="$l2lat" -DSPAWNS="$spawns")
 start=$(date +%s)
 if [ "${SIM:-verilator}" = icarus ]; then
   iverilog -g2005 -Wno-timescale "${defs[@]}" -o "$work/tb_chip.vvp" -s tb_chip "${srcs[@]}" \

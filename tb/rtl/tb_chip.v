@@ -6,7 +6,7 @@
 // (systemc/rtu_rtl.cpp); tb/rtl/run_chip.sh runs it and compares. Defines: DUMP (the prefix, a
 // string), IMG (the image's bytes), LAT (--mem-latency), L2_SETS (0: no L2, chip.v's membus_if),
 // L2_WAYS, L2_LAT (--l2-latency; the L2's line is the caches', 64 bytes, its beats 32 bytes: the
-// model's). Prints every ray leaving the hit unit to
+// model's), SPAWNS (chip.v's: the spawn strategies built, from --spawn). Prints every ray leaving the hit unit to
 // <prefix>.chip.px (pixel, kind, best record) and "RESULT cycles=<last retire + 1> retired=<n>".
 // Verilog-2005 with delays: iverilog -g2005, or verilator --binary --timing.
 `timescale 1ns/1ps
@@ -37,7 +37,7 @@ module tb_chip;
   wire           done, err;
   wire [5:0]     outstanding;
   wire [63:0]    cnt;
-  chip #(.RTUS(1), .L2_SETS(`L2_SETS), .L2_WAYS(`L2_WAYS)) dut (
+  chip #(.RTUS(1), .L2_SETS(`L2_SETS), .L2_WAYS(`L2_WAYS), .SPAWNS(`SPAWNS)) dut (
     .clk_i(clk), .rst_ni(rst_n), .start_i(start), .cam_i(cam), .width_i(width), .height_i(height),
     .rtus_i(rtus), .slots_i(slots), .tmin_i(tmin), .trv_lat_i(trv_lat), .node_hl_i(node_hl),
     .list_hl_i(list_hl), .pipes_i(pipes), .fuse_i(fuse), .any_hit_i(any_hit), .empty_i(empty),
