@@ -53,6 +53,7 @@ void run_render(const sim::RunOptions& o) {
                                           : std::filesystem::path(rep).parent_path());
   sim::write_png(f, png);
   sim::write_json(j, rep);
+  if (!o.error_pixels.empty()) sim::write_error_pixels(fe, have_ref, o.error_pixels);
   if (o.quiet) return;
   std::printf("scene     %s: %zu triangles, image %zu bytes (%llu nodes, depth %d), built in %.2f s\n",
               p.scene.name.c_str(), p.scene.tris.size(), p.image.bytes.size(),
@@ -67,6 +68,7 @@ void run_render(const sim::RunOptions& o) {
   else
     std::printf("errors    (no reference: %s)\n", o.reference ? "no scene triangles" : "--no-reference");
   std::printf("wrote     %s\n          %s\n", png.c_str(), rep.c_str());
+  if (!o.error_pixels.empty()) std::printf("          %s\n", o.error_pixels.c_str());
 }
 
 void register_render(CLI::App& app) {

@@ -62,6 +62,7 @@ void run_simulate(const sim::RunOptions& o, const sc::SimOptions& so) {
   make_parent(rep);
   sim::write_png(r.frame, png);
   sim::write_json(j, rep);
+  if (!o.error_pixels.empty() && ndiff == 0) sim::write_error_pixels(fe, have_ref, o.error_pixels);
   if (!o.quiet) {
     const auto& hw = j["hardware"];
     std::printf("scene     %s: %zu triangles, image %zu bytes\n", p.scene.name.c_str(),
@@ -99,6 +100,7 @@ void run_simulate(const sim::RunOptions& o, const sc::SimOptions& so) {
                                              : ("MISMATCH: " + std::to_string(ndiff) + " pixels").c_str());
     if (have_ref) sim::print_errors(fe, cfg.spawn.any_hit);
     std::printf("wrote     %s\n          %s\n", png.c_str(), rep.c_str());
+    if (!o.error_pixels.empty() && ndiff == 0) std::printf("          %s\n", o.error_pixels.c_str());
   }
   if (ndiff != 0)
     throw std::runtime_error("cycle model differs from the golden tracer in " + std::to_string(ndiff) +

@@ -259,13 +259,29 @@ StageBudget stage_budget(const Frame& f, const scenes::Scene& scene, const hls::
     });
     return edges.at(edge_key(tri, opposite));
   };
-  auto kind_of = [&](const PixelResult& hw, const PixelResult& p2, const reference::Ray& ray) {
-    if (hw.tri == p2.tri) return TraversalKind::same;
+  auto kind_of = [&](const PixelResult& hw, const PixelResult& p2, const reference::Ray& ray, ErrorPixel& ep) {
     reference::TriHit ha_hit, hb_hit;
     const bool ha = p2.tri >= 0 && plane_hit(stored, ray, p2.tri, &ha_hit);
     const bool hb = hw.tri >= 0 && plane_hit(stored, ray, hw.tri, &hb_hit);
     int edge = 0;
-    if (ha && edge_distance(p2.tri, ha_hit, &edge) <= tolerance(ray, ha_hit.t)) {  // A missed near an edge
+    const double da = ha ? edge_distance(p2.tri, ha_hit, &edge) : std::nan("");
+    if (ha) ep.edge_a = da, ep.tol = tolerance(ray, ha_hit.t);
+    if (hb) {
+      ep.t_b_exact = hb_hit.t;
+      ep.edge_b = edge_distance(hw.tri, hb_hit);
+      if (!ha) ep.tol = tolerance(ray, hb_hit.t);
+    }
+    if (hw.tri == p2.tri) return TraversalKind::same;
+    if (p2.tri >= 0) {  // the hardware's own test of A for this ray
+      const IstVerdict va = rays.test(ep.x, ep.y, p2.tri);
+      if (va.hit) {
+        ep.t_a_hw = va.t;
+        // It hits A too: B came first by the hardware's t (the rounding of t ordered them), or A's
+        // leaf was never tested (the traversal).
+        return hw.tri >= 0 && va.t >= hw.t ? TraversalKind::order : TraversalKind::deep;
+      }
+    }
+    if (ha && da <= tolerance(ray, ha_hit.t)) {  // A missed near an edge
       // A seam only where a neighbour continues the surface across the edge as the ray sees it:
       // the ray meets its plane just outside it (by at most tol) or on its edge, the mirror of A's
       // just inside. A neighbour on A's side of the edge (a fold seen nearly edge-on: the ray meets
@@ -284,21 +300,21 @@ StageBudget stage_budget(const Frame& f, const scenes::Scene& scene, const hls::
       return seam && !hit_other ? TraversalKind::crack : TraversalKind::silhouette;
     }
     if (hb) {
-      const double d = edge_distance(hw.tri, hb_hit);
-      if (d < 0 && d >= -tolerance(ray, hb_hit.t)) return TraversalKind::silhouette;  // B just outside
-      if (ha && d >= 0 && hb_hit.t >= ha_hit.t &&
-          hb_hit.t - ha_hit.t <= kEdgeUlps * std::ldexp(1.0, std::ilogb(hb_hit.t) - man_bits))
-        return TraversalKind::order;
+      const double d = ep.edge_b;
+      if (d <= 0 && d >= -tolerance(ray, hb_hit.t)) return TraversalKind::silhouette;  // B just outside, or on its edge
     }
     return TraversalKind::deep;
   };
-  auto charge = [&](size_t i, bool& vtu, TraversalKind& kind) -> Stage {
+  // Charges pixel i and fills its record (ep: x, y and the hardware's hit set by the caller).
+  auto charge = [&](size_t i, bool& vtu, ErrorPixel& ep) -> Stage {
     const PixelResult& hw = f.px[i];
     if (departs(ref_stored.px[i], i)) return Stage::storage;  // P1
     const int x = int(i % size_t(f.width)), y = int(i / size_t(f.width));
     const PixelRays r = rays.pixel(x, y, hw);
     const reference::Ray primary{r.org, r.dir};
     const PixelResult p2 = exact_pixel(stored, primary, r.tmin, r.tmax);  // P2
+    ep.tri_a = p2.tri;
+    if (p2.tri >= 0) ep.t_a = p2.t;
     if (departs(p2, i)) return Stage::ray_generation;
     PixelResult p3;  // P3: the hardware's hit, the exact shadow from its exact point
     if (hw.tri >= 0) {
@@ -319,7 +335,7 @@ StageBudget stage_budget(const Frame& f, const scenes::Scene& scene, const hls::
     }
     if (departs(p3, i)) {
       vtu = datapath && departs(exact_pixel(*datapath, primary, r.tmin, r.tmax), i);
-      kind = kind_of(hw, p2, primary);
+      ep.kind = kind_of(hw, p2, primary, ep);
       return Stage::traversal_primary;
     }
     // P4: the hardware's shadow ray traced exactly.
@@ -340,32 +356,39 @@ StageBudget stage_budget(const Frame& f, const scenes::Scene& scene, const hls::
     vtu = datapath && departs(shadow_traced(*datapath), i);
     return Stage::traversal_shadow;  // P5: the hardware frame, an error
   };
-  std::vector<Stage> st(err.size());
-  std::vector<uint8_t> by_vtu(err.size(), 0);
-  std::vector<TraversalKind> kinds(err.size(), TraversalKind::same);
+  std::vector<ErrorPixel>& eps = b.error_pixels;
+  eps.assign(err.size(), ErrorPixel{});
   constexpr int kChunk = 64;
   const int chunks = int((err.size() + kChunk - 1) / kChunk);
   if (chunks > 0)
     reference::parallel_rows(chunks, cfg.threads, [&](int c) {
       for (size_t j = size_t(c) * kChunk; j < std::min(err.size(), size_t(c + 1) * kChunk); ++j) {
+        const size_t i = err[j];
+        ErrorPixel& ep = eps[j];
+        ep.x = int(i % size_t(f.width));
+        ep.y = int(i / size_t(f.width));
+        ep.primary = reference::is_primary_error(reference::classify_pixel(f.px[i], ref.px[i]));
+        ep.tri_b = f.px[i].tri;
+        if (f.px[i].tri >= 0) ep.t_b = f.px[i].t;
         bool vtu = false;
-        st[j] = charge(err[j], vtu, kinds[j]);
-        by_vtu[j] = vtu;
+        ep.stage = charge(i, vtu, ep);
+        ep.vtu = vtu;
       }
     });
   for (size_t j = 0; j < err.size(); ++j) {
     const size_t i = err[j];
-    b.pixel[i] = st[j];
-    const bool primary = reference::is_primary_error(reference::classify_pixel(f.px[i], ref.px[i]));
+    const Stage stage = eps[j].stage;
+    b.pixel[i] = stage;
+    const bool primary = eps[j].primary;
     (primary ? b.primary_errors : b.shadow_errors)++;
     StageCount* c = nullptr;
-    switch (st[j]) {
+    switch (stage) {
       case Stage::storage: c = &b.storage; break;
       case Stage::ray_generation: c = &b.ray_generation; break;
       case Stage::traversal_primary:
         c = &b.traversal_intersection;
         if (!primary) ++b.traversal_shadow_by_primary_ray;
-        ++b.traversal_kind[size_t(kinds[j])];
+        ++b.traversal_kind[size_t(eps[j].kind)];
         break;
       case Stage::spawn: c = &b.spawn; break;
       case Stage::traversal_shadow:
@@ -375,7 +398,7 @@ StageBudget stage_budget(const Frame& f, const scenes::Scene& scene, const hls::
       case Stage::none: throw std::logic_error("stage_budget: an error pixel without a stage");
     }
     (primary ? c->primary : c->shadow)++;
-    if (by_vtu[j]) (primary ? b.traversal_vtu_primary : b.traversal_vtu_shadow)++;
+    if (eps[j].vtu) (primary ? b.traversal_vtu_primary : b.traversal_vtu_shadow)++;
   }
   b.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return b;
@@ -443,6 +466,38 @@ nlohmann::json stages_json(const StageBudget& b) {
   j["error_pixels"] = b.primary_errors + b.shadow_errors;
   j["wall_seconds"] = b.seconds;
   return j;
+}
+
+void write_error_pixels(const StageBudget& b, const std::string& path) {
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> out(std::fopen(path.c_str(), "w"), &std::fclose);
+  if (!out) throw std::runtime_error("--error-pixels: cannot write " + path);
+  static const char* const stages[] = {"none", "storage", "ray_generation", "traversal_intersection", "spawn",
+                                       "traversal_intersection"};
+  static const char* const kinds[] = {"crack", "silhouette", "order", "deep", "same"};
+  auto num = [](double v) {
+    if (std::isnan(v)) return std::string();
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.17g", v);
+    return std::string(buf);
+  };
+  std::fprintf(out.get(), "x,y,error,stage,ray,kind,vtu,tri_a,t_a,t_a_hw,tri_b,t_b,t_b_exact,edge_a,edge_b,tol\n");
+  for (const ErrorPixel& p : b.error_pixels) {
+    const bool trv = p.stage == Stage::traversal_primary || p.stage == Stage::traversal_shadow;
+    const char* ray = p.stage == Stage::traversal_primary ? "primary" : p.stage == Stage::traversal_shadow ? "shadow" : "";
+    std::fprintf(out.get(), "%d,%d,%s,%s,%s,%s,%s,%d,%s,%s,%d,%s,%s,%s,%s,%s\n", p.x, p.y,
+                 p.primary ? "primary" : "shadow", stages[size_t(p.stage)], ray,
+                 p.stage == Stage::traversal_primary ? kinds[size_t(p.kind)] : "", trv ? (p.vtu ? "1" : "0") : "",
+                 p.tri_a, num(p.t_a).c_str(), num(p.t_a_hw).c_str(), p.tri_b, num(p.t_b).c_str(), num(p.t_b_exact).c_str(),
+                 num(p.edge_a).c_str(), num(p.edge_b).c_str(), num(p.tol).c_str());
+  }
+  if (std::fflush(out.get()) != 0 || std::ferror(out.get()))
+    throw std::runtime_error("--error-pixels: cannot write " + path);
+}
+
+void write_error_pixels(const FrameErrors& e, bool have_reference, const std::string& path) {
+  if (!have_reference) throw std::runtime_error("--error-pixels: no error budget (the scene has no triangles)");
+  if (!e.has_stages) throw std::runtime_error("--error-pixels: no error budget (" + e.stages_note + ")");
+  write_error_pixels(e.stages, path);
 }
 
 void add_errors_json(nlohmann::json& j, const FrameErrors& e, bool any_hit) {

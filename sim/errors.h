@@ -15,6 +15,7 @@
 // The primary rays are scenes::primary_direction's in both (the reference's own rays).
 #pragma once
 
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -95,7 +96,9 @@ enum class Stage : uint8_t { none = 0, storage, ray_generation, traversal_primar
 // or none) and the hardware's (B, or none), with the exact ray's hit points on them (long double):
 // tol = kEdgeUlps ulps of the format at the largest coordinate of the hit point and the ray's
 // origin in the hardware's frame (relative to the camera with the VTU on): the size of the
-// rounding of the point o + t d the ist decides.
+// rounding of the point o + t d the ist decides. First the hardware's own test of A for the same
+// ray (HardwareRays::test): where it hits A, the error is order (at a t no smaller than B's) or deep
+// (A's leaf not tested); where it misses A, the edge cases below decide.
 //   crack       A's exact hit lies within tol of an edge that A shares with another triangle N of
 //               the scene (the same two vertices) that continues the surface across the edge as the
 //               ray sees it (its exact plane point on N lies outside N by at most tol, or on its
@@ -105,19 +108,45 @@ enum class Stage : uint8_t { none = 0, storage, ray_generation, traversal_primar
 //   silhouette  A's exact hit lies within tol of an edge that no other triangle shares, or whose
 //               neighbours do not continue the surface for this ray (a fold: the ray meets the
 //               neighbour inside too, or far outside), or B's exact plane point lies outside B by
-//               at most tol: an outline decided at the format's precision (a watertight test does
+//               at most tol or on its edge: an outline decided at the format's precision (a watertight test does
 //               not change it; exact or wider arithmetic near edges would);
-//   order       the exact ray hits B too, inside, behind A by at most kEdgeUlps ulps of t: the
-//               hardware's t (or its comparison) put the farther one first (the lever: t
-//               precision);
-//   deep        the rest: A missed, or B hit, farther than tol from an edge, or B behind A by
-//               more: the test's rounding amplified by the triangle's shape (a sliver's edge
-//               constants scale with 1 / its width), the VTU's rounding of the geometry (with it
-//               on), or the traversal's interval;
+//   order       the hardware's test hits A as well, at a t no smaller than its t for B: the
+//               rounding of t (to the format: a t ulp as wide as the gap between the two surfaces,
+//               or the t of a plane rounded by several ulps) put B first (the lever: t precision);
+//               before 2026-12-07 this was judged from the exact points (B inside, behind A by at
+//               most kEdgeUlps ulps of t) after the edge cases, which took the pairs sharing an
+//               edge for silhouettes or cracks;
+//   deep        the rest: the hardware's test hits A before B but A's leaf was not tested (the
+//               traversal's interval), or A missed / B hit farther than tol from an edge: the
+//               test's rounding amplified by the triangle's shape (a sliver's edge constants scale
+//               with 1 / its width) or the VTU's rounding of the geometry (with it on);
 //   same        the hardware's triangle is A (the error is in t or what follows from it).
 enum class TraversalKind : uint8_t { crack = 0, silhouette, order, deep, same };
 inline constexpr int kTraversalKinds = 5;
 inline constexpr double kEdgeUlps = 16;
+
+// One error pixel of the budget (StageBudget::error_pixels; `raycore render|simulate --error-pixels
+// FILE` writes them as CSV): where, its kind in the hardware frame, the stage charged, and what the
+// primary ray's hits were. A: the exact trace of the hardware's primary ray on the stored scene (P2;
+// not traced for a pixel charged to storage), B: the hardware's hit. For Stage::traversal_primary
+// also the TraversalKind, t_a_hw (the hardware's own test of A for the ray: its t where it hits A)
+// and the exact ray's points on A's and B's stored planes: t_b_exact (where
+// the exact ray meets B's plane), edge_a / edge_b (the signed distance of those points to the
+// nearest edge of A / B, world units, negative: outside) and tol (kEdgeUlps ulps at the hit point).
+// NaN where not measured.
+struct ErrorPixel {
+  int x = 0, y = 0;
+  bool primary = false;  // a primary error (else a shadow error)
+  Stage stage = Stage::none;
+  TraversalKind kind = TraversalKind::same;  // Stage::traversal_primary only
+  bool vtu = false;                          // traversal: the VTU's geometry departs too
+  int32_t tri_a = -1, tri_b = -1;
+  double t_a = std::numeric_limits<double>::quiet_NaN(), t_b = std::numeric_limits<double>::quiet_NaN();
+  double t_a_hw = std::numeric_limits<double>::quiet_NaN();  // the hardware's test of A: its t if it hits
+  double t_b_exact = std::numeric_limits<double>::quiet_NaN();
+  double edge_a = std::numeric_limits<double>::quiet_NaN(), edge_b = std::numeric_limits<double>::quiet_NaN();
+  double tol = std::numeric_limits<double>::quiet_NaN();
+};
 
 struct StageCount {
   uint64_t primary = 0, shadow = 0;
@@ -137,6 +166,7 @@ struct StageBudget {
   uint64_t traversal_kind[kTraversalKinds] = {};
   uint64_t primary_errors = 0, shadow_errors = 0;  // = the totals' (errors.primary_errors, shadow_errors)
   std::vector<Stage> pixel;                        // per pixel (row-major): the stage charged, none if no error
+  std::vector<ErrorPixel> error_pixels;            // every error pixel, row-major
   double seconds = 0;                              // wall time (measure_errors: with the datapath scene's BVH)
 };
 
@@ -172,6 +202,13 @@ FrameErrors measure_errors(const Frame& f, const scenes::Scene& scene, const hls
 // "vtu_shadow", "primary_errors", "shadow_errors", "error_pixels", "order" (the stage names in
 // pipeline order), "wall_seconds"}; {"error": why} when the frame is not the golden tracer's.
 void add_errors_json(nlohmann::json& j, const FrameErrors& e, bool any_hit);
+// The budget's error pixels as CSV (a header line, one line per pixel: x, y, error (primary or
+// shadow), stage, kind, vtu, tri_a, t_a, tri_b, t_b, t_b_exact, edge_a, edge_b, tol; empty fields
+// where not measured). Throws std::runtime_error if the file cannot be written.
+void write_error_pixels(const StageBudget& b, const std::string& path);
+// The same for a measured frame; throws std::runtime_error saying why when it has no budget (no
+// reference: no scene triangles; a cycle-model frame that is not the golden tracer's).
+void write_error_pixels(const FrameErrors& e, bool have_reference, const std::string& path);
 nlohmann::json stages_json(const StageBudget& b);
 
 // The report's two `errors` lines on stdout: total (against the scene) and arithmetic (against the

@@ -110,6 +110,9 @@ void add_run_options(CLI::App& c, RunOptions& o) {
   c.add_option("--png", o.png, "PNG path (default <out-dir>/<scene>-<config>.png)");
   c.add_option("--report", o.report, "JSON report path (default <out-dir>/<scene>-<config>.json)");
   c.add_flag("!--no-reference", o.reference, "skip the double-precision reference and error metrics");
+  c.add_option("--error-pixels", o.error_pixels,
+               "write every error pixel of the budget by stage as CSV: where, the stage charged, the "
+               "exact and the hardware's primary hits (sim/errors.h ErrorPixel)");
   c.add_flag("-q,--quiet", o.quiet, "print nothing but errors");
 }
 
@@ -127,6 +130,8 @@ TraceConfig trace_config(const RunOptions& o) {
   c.spawn.any_hit = o.shadow_hit == "any";
   c.spawn.spawn_all = o.shadow_spawn == "all";
   c.anchored = o.store == "anchored";
+  if (!o.error_pixels.empty() && !o.reference)
+    throw cli::UserError("--error-pixels needs the reference's error budget: drop --no-reference");
   if (c.anchored && (!o.image_in.empty() || !o.dump_image.empty()))
     throw cli::UserError("--store anchored builds its image from the scene: it cannot be combined with "
                          "--image or --dump-image (a dumped image does not record its anchor)");

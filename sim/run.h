@@ -41,6 +41,7 @@ struct RunOptions {
   std::string dump_image;  // --dump-image
   std::string out_dir = "out";
   std::string png, report;  // default: <out_dir>/<scene>-<config>.png/.json
+  std::string error_pixels;  // --error-pixels: the budget's error pixels as CSV (sim/errors.h)
   bool reference = true;
   bool quiet = false;
 };

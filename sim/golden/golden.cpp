@@ -229,6 +229,7 @@ Frame trace_t(const hls::Image& image_in, const scenes::Camera& cam, const scene
 struct HardwareRays::Impl {
   virtual ~Impl() = default;
   virtual PixelRays pixel(int x, int y, const PixelResult& p) const = 0;
+  virtual IstVerdict test(int x, int y, int32_t tri) const = 0;
 };
 
 namespace {
@@ -282,6 +283,18 @@ class RaysT final : public HardwareRays::Impl {
     return out;
   }
 
+  IstVerdict test(int x, int y, int32_t tri) const override {
+    if (tri < 0 || size_t(tri) >= tris_.size())
+      throw std::runtime_error("hardware rays: triangle " + std::to_string(tri) + " has no record");
+    const hls::Ray pr = hls::rgu_primary<A>(cam_, uint32_t(x), uint32_t(y), tmin_);
+    const hls::IstOut o = hls::ist_test<A>(tris_[size_t(tri)], pr.o, pr.d, pr.tmin, pr.tmax, margins_);
+    IstVerdict v;
+    v.hit = o.exit == hls::IstExit::hit;
+    v.distance = o.exit != hls::IstExit::distance;
+    if (v.distance) v.t = A::to_double(o.t);
+    return v;
+  }
+
  private:
   void world_ray(const hls::Ray& r, hls::Vec3& org, hls::Vec3& dir, double& tmin, double& tmax) const {
     for (int i = 0; i < 3; ++i) {
@@ -316,6 +329,7 @@ HardwareRays::HardwareRays(const hls::Image& image, const scenes::Camera& cam, c
 HardwareRays::~HardwareRays() { delete impl_; }
 
 PixelRays HardwareRays::pixel(int x, int y, const PixelResult& p) const { return impl_->pixel(x, y, p); }
+IstVerdict HardwareRays::test(int x, int y, int32_t tri) const { return impl_->test(x, y, tri); }
 
 std::string to_string(hls::Spawn s) {
   switch (s) {

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <string>
 
 #include "hls/fp.h"
@@ -55,6 +56,13 @@ struct PixelRays {
   int32_t shadow_skip = -1;   // the triangle (scene index) the shadow ray skips, -1 none
 };
 
+// The ist's test of one triangle for a pixel's primary ray (HardwareRays::test): whether it hits,
+// whether the ray's interval holds the plane's t (phase 1 passed), and that t (NaN if not).
+struct IstVerdict {
+  bool hit = false, distance = false;
+  double t = std::numeric_limits<double>::quiet_NaN();
+};
+
 // Replays the rgu and the hit unit of a frame that trace_golden made from the same arguments: per
 // pixel, the primary ray, and from the frame's hit (triangle, t bits) the ist's n.d and the hit
 // unit's shadow ray, through the same hls/ functions (FrameSetup, rgu_primary, ist_wald,
@@ -70,6 +78,9 @@ class HardwareRays {
   // be the golden tracer's (the ist gives another t for that triangle, or the hit unit another
   // spawn decision).
   PixelRays pixel(int x, int y, const PixelResult& p) const;
+  // The ist's test of triangle tri (scene index) for pixel (x, y)'s primary ray, in the hardware's
+  // arithmetic (the record the datapath sees, VTU-translated with the VTU on).
+  IstVerdict test(int x, int y, int32_t tri) const;
 
   struct Impl;
 
