@@ -44,6 +44,22 @@ inline IstOut ist_distance(uint32_t k, const uint32_t* c, const uint32_t o[3], c
   return {A::lt(tmin, t) && A::lt(t, tmax) ? IstExit::hit : IstExit::distance, t, den};
 }
 
+// Phase 1 of the watertight test: the same plane and interval test with num = n_d - o_k - n_u o_u -
+// n_v o_v and den = d_k + n_u d_u + n_v d_v each one sop (the exact products summed, rounded once;
+// -0 an absent term) and t = div(num, den) rounded once (raycore's div: num x its table reciprocal,
+// as Wald's): about 1.5 ulps of t at most, where Wald's ten roundings reach tens of ulps as num
+// cancels (a ray from far away: docs/results.md, "What is left in the zero configuration").
+template <class A>
+inline IstOut ist_distance_sop(uint32_t k, const uint32_t* c, const uint32_t o[3], const uint32_t d[3],
+                               uint32_t tmin, uint32_t tmax) {
+  const int u = axis_u(k), v = axis_v(k);
+  constexpr uint32_t absent = A::Fmt::sign_mask;
+  const uint32_t den = A::sop(d[k], absent, c[kNU], d[u], c[kNV], d[v]);
+  const uint32_t num = A::sop(c[kND], A::neg(o[k]), A::neg(c[kNU]), o[u], A::neg(c[kNV]), o[v]);
+  const uint32_t t = A::div(num, den);
+  return {A::lt(tmin, t) && A::lt(t, tmax) ? IstExit::hit : IstExit::distance, t, den};
+}
+
 // A hit needs tmin < t < tmax; beta >= -eps, gamma >= -eps, beta + gamma <= one_eps (hls/margins.h:
 // a coordinate x fails iff sign(x) && |eps| < |x|, the sum iff one_eps < beta + gamma; with
 // margins_none(), eps = 0 and one_eps = 1: beta >= 0, gamma >= 0, beta + gamma <= 1).
@@ -83,7 +99,8 @@ inline IstOut ist_wald(uint32_t k, const uint32_t c[9], const uint32_t o[3], con
 // axis of the largest |d| (ties to the lower axis), kx = kz + 1, ky = kz + 2 (mod 3); the sheared
 // coordinates are scaled by d_kz instead of divided by it (no per-ray reciprocal; the edge
 // functions scale by d_kz^2 > 0, so their signs are the paper's):
-//   phase 1 (exit distance)  ist_distance, as ist_wald's (den = add3(d_k, n_u d_u, n_v d_v), t = num rcp(den))
+//   phase 1 (exit distance)  ist_distance_sop: num and den each one sop, t = div(num, den) (until
+//                            2026-12-07 Wald's ist_distance: den = add3(d_k, n_u d_u, n_v d_v), t = num rcp(den))
 //   in the shear format G (ShearFormat: FP32's 8/23 for FP24; the inputs widened exactly):
 //   the ray's origin   ox = sop(-0, -0, d_kz, o_kx, -d_kx, o_kz)   oy likewise with ky
 //   a vertex P         px = sop(-ox, -0, d_kz, P_kx, -d_kx, P_kz)  = d_kz (P - o)_kx - d_kx (P - o)_kz,
@@ -97,8 +114,8 @@ inline IstOut ist_wald(uint32_t k, const uint32_t c[9], const uint32_t o[3], con
 // negation. A ray through the shared edge is inside one of the two triangles or on the edge of
 // both (E = 0, inside for both); no ray passes between them, nor through a shared vertex. The sop
 // rounds an edge function once from exact products, so its sign is the exact sign for the sheared
-// points. Per test: Wald's phase 1 (4 muls, 1 add, 2 subs, 1 add3, 1 reciprocal, 1 mul), 2 + 6 + 3
-// sops (22 exact products) and 1 add3 in the shear format G (below).
+// points. Per test: phase 1's 2 sops and a division in the format, 2 + 6 + 3 sops (22 exact
+// products) and 1 add3 in the shear format G (below).
 
 // The watertight test's shear format: the format with 23 mantissa bits and 8 exponent bits (FP32's)
 // when the image's format is narrower (FP24), else the format itself. Every FP24 number is exactly
@@ -115,7 +132,7 @@ template <class A>
 inline IstOut ist_watertight(uint32_t k, const uint32_t c[12], const uint32_t o[3], const uint32_t d[3],
                              uint32_t tmin, uint32_t tmax) {
   using F = typename A::Fmt;
-  const IstOut p1 = ist_distance<A>(k, c, o, d, tmin, tmax);  // on the record's plane
+  const IstOut p1 = ist_distance_sop<A>(k, c, o, d, tmin, tmax);  // on the record's plane
   if (p1.exit != IstExit::hit) return p1;
   const uint32_t t = p1.t, den = p1.den;
   // Phase 2: the edge functions on the sheared vertices, in the shear format G (FP24's inputs

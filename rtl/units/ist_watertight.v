@@ -21,14 +21,13 @@
 // Levels (the operators of a level side by side with the same number of pipeline registers, S1 ..
 // S5 below: the level's share of the 10 x STAGES by its logic; a per-level fp_pipe of the same
 // depth carries the values needed later and the tag):
-//    1  n_u*d_u, n_v*d_v, n_u*o_u, n_v*o_v, s1 = n_d - o_k; ox = sop(-0, -0, dz, o_kx, -dx, o_kz),
-//       oy (ky)
-//    2  den = add3(d_k, n_u*d_u, n_v*d_v), s2 = n_u*o_u + n_v*o_v; px_j = sop(-ox, -0, dz, P_kx,
-//       -dx, P_kz), py_j (ky, -oy) for the vertices j = A, B, C
-//    3  num = s1 - s2, r = 1 / den (fp_div; RAYCORE: fp_rcp, the table reciprocal); U = E(B, C),
+//    1  den = sop(d_k, -0, n_u, d_u, n_v, d_v), num = sop(n_d, -o_k, -n_u, o_u, -n_v, o_v) (in the
+//       format: hls::ist_distance_sop); ox = sop(-0, -0, dz, o_kx, -dx, o_kz), oy (ky)
+//    2  px_j = sop(-ox, -0, dz, P_kx, -dx, P_kz), py_j (ky, -oy) for the vertices j = A, B, C
+//    3  t = num / den (fp_div; RAYCORE: r = 1 / den by fp_rcp, the table reciprocal); U = E(B, C),
 //       V = E(C, A), W = E(A, B), E(P, Q) = sop(-0, -0, qx, py, -qy, px)
-//    4  t = num * r; out = some of U, V, W < 0 and some > 0 (signs and zero tests); det = add3(U,
-//       V, W)
+//    4  RAYCORE: t = num * r; out = some of U, V, W < 0 and some > 0 (signs and zero tests); det =
+//       add3(U, V, W)
 //    5  lt(tmin, t), lt(t, tmax) (fp_cmp); det = 0; the exit code is decoded at the output.
 // Latency = 10 * STAGES cycles, as ist.v's (STAGES = 0: combinational), one test per cycle.
 //
@@ -73,8 +72,6 @@ module ist_watertight #(
   localparam integer E = EXP_BITS;
   localparam integer M = MAN_BITS;
   localparam integer W = 1 + E + M;
-  localparam integer BIAS = (1 << (E - 1)) - 1;
-  localparam [W-1:0] ONE = {1'b0, BIAS[E-1:0], {M{1'b0}}};  // 1.0
   localparam [W-1:0] NEG = {1'b1, {(W-1){1'b0}}};           // -0: an absent term; x ^ NEG = -x
   // The shear format (hls::ShearFormat) and its -0.
   localparam integer SE = MAN_BITS < 23 ? 8 : EXP_BITS;
@@ -149,64 +146,51 @@ module ist_watertight #(
 
   genvar gj;
 
-  // ---- level 1: the plane's products and n_d - o_k, the ray's sheared origin ----------------------
-  wire [4*W-1:0] l1_prod;  // {nvo, nuo, nvd, nud}
-  wire [W-1:0]   l1_s1;
+  // ---- level 1: the plane's den and num (one sop each), the ray's sheared origin ------------------
+  wire [W-1:0]   l1_den, l1_num;
   wire [SW-1:0]  l1_ox, l1_oy;
-  wire [6:0]     l1_unused_v, l1_unused_r;
-  localparam integer C1_W = TAG_BITS + 15 * W;
+  wire [3:0]     l1_unused_v, l1_unused_r;
+  localparam integer C1_W = TAG_BITS + 14 * W;
   wire [TAG_BITS-1:0] c1_tag;
-  wire [W-1:0] c1_tmin, c1_tmax, c1_dk, c1_dz, c1_ndx, c1_ndy;
+  wire [W-1:0] c1_tmin, c1_tmax, c1_dz, c1_ndx, c1_ndy;
   wire [9*W-1:0] c1_vs;
   fp_delay #(.WIDTH(C1_W), .STAGES(S1), .FREE(FREE)) u_carry1 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(r[1]),
-    .in_data_i({in_tag_i, in_tmin_i, in_tmax_i, d_k, dz, ndx, ndy, vs}),
+    .in_data_i({in_tag_i, in_tmin_i, in_tmax_i, dz, ndx, ndy, vs}),
     .out_valid_o(v[1]), .out_ready_i(r[2]),
-    .out_data_o({c1_tag, c1_tmin, c1_tmax, c1_dk, c1_dz, c1_ndx, c1_ndy, c1_vs}));
-  wire [4*W-1:0] l1_pa = {in_nv_i, in_nu_i, in_nv_i, in_nu_i};
-  wire [4*W-1:0] l1_pb = {o_v, o_u, d_v, d_u};
-  generate
-    for (gj = 0; gj < 4; gj = gj + 1) begin : g_l1_mul
-      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1)) u_mul (
-        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[gj]),
-        .in_a_i(l1_pa[gj*W +: W]), .in_b_i(l1_pb[gj*W +: W]), .out_valid_o(l1_unused_v[gj]),
-        .out_ready_i(r[2]), .out_res_o(l1_prod[gj*W +: W]));
-    end
-  endgenerate
-  fp_op2_nt #(.OP("sub"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1)) u_l1_s1 (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[4]),
-    .in_a_i(in_nd_i), .in_b_i(o_k), .out_valid_o(l1_unused_v[4]), .out_ready_i(r[2]), .out_res_o(l1_s1));
+    .out_data_o({c1_tag, c1_tmin, c1_tmax, c1_dz, c1_ndx, c1_ndy, c1_vs}));
+  fp_sop_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1)) u_l1_den (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[0]),
+    .in_a_i(d_k), .in_b_i(NEG), .in_x1_i(in_nu_i), .in_y1_i(d_u), .in_x2_i(in_nv_i), .in_y2_i(d_v),
+    .out_valid_o(l1_unused_v[0]), .out_ready_i(r[2]), .out_res_o(l1_den));
+  fp_sop_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1)) u_l1_num (
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[1]),
+    .in_a_i(in_nd_i), .in_b_i(o_k ^ NEG), .in_x1_i(in_nu_i ^ NEG), .in_y1_i(o_u), .in_x2_i(in_nv_i ^ NEG),
+    .in_y2_i(o_v), .out_valid_o(l1_unused_v[1]), .out_ready_i(r[2]), .out_res_o(l1_num));
   fp_sop_nt #(.EXP_BITS(SE), .MAN_BITS(SM), .RNE(RNE), .RAYCORE(0), .STAGES(S1)) u_l1_ox (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[5]),
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[2]),
     .in_a_i(SNEG), .in_b_i(SNEG), .in_x1_i(widen(dz)), .in_y1_i(widen(o_kx)), .in_x2_i(widen(ndx)),
     .in_y2_i(widen(o_kz)),
-    .out_valid_o(l1_unused_v[5]), .out_ready_i(r[2]), .out_res_o(l1_ox));
+    .out_valid_o(l1_unused_v[2]), .out_ready_i(r[2]), .out_res_o(l1_ox));
   fp_sop_nt #(.EXP_BITS(SE), .MAN_BITS(SM), .RNE(RNE), .RAYCORE(0), .STAGES(S1)) u_l1_oy (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[6]),
+    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[3]),
     .in_a_i(SNEG), .in_b_i(SNEG), .in_x1_i(widen(dz)), .in_y1_i(widen(o_ky)), .in_x2_i(widen(ndy)),
     .in_y2_i(widen(o_kz)),
-    .out_valid_o(l1_unused_v[6]), .out_ready_i(r[2]), .out_res_o(l1_oy));
+    .out_valid_o(l1_unused_v[3]), .out_ready_i(r[2]), .out_res_o(l1_oy));
 
-  // ---- level 2: den, n_u o_u + n_v o_v, the vertices' sheared x and y ------------------------------
-  wire [W-1:0]   l2_den, l2_s2;
+  // ---- level 2: the vertices' sheared x and y -----------------------------------------------------
   wire [3*SW-1:0] l2_px, l2_py;  // {C, B, A}
   wire [7:0]     l2_unused_v, l2_unused_r;
-  localparam integer C2_W = TAG_BITS + 3 * W;
+  localparam integer C2_W = TAG_BITS + 4 * W;
   wire [TAG_BITS-1:0] c2_tag;
-  wire [W-1:0] c2_tmin, c2_tmax, c2_s1;
+  wire [W-1:0] c2_tmin, c2_tmax, c2_den, c2_num;
   fp_delay #(.WIDTH(C2_W), .STAGES(S2), .FREE(FREE)) u_carry2 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(r[2]),
-    .in_data_i({c1_tag, c1_tmin, c1_tmax, l1_s1}),
+    .in_data_i({c1_tag, c1_tmin, c1_tmax, l1_den, l1_num}),
     .out_valid_o(v[2]), .out_ready_i(r[3]),
-    .out_data_o({c2_tag, c2_tmin, c2_tmax, c2_s1}));
-  fp_add3_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S2)) u_l2_den (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[0]),
-    .in_a_i(c1_dk), .in_b_i(l1_prod[0 +: W]), .in_c_i(l1_prod[W +: W]), .out_valid_o(l2_unused_v[0]),
-    .out_ready_i(r[3]), .out_res_o(l2_den));
-  fp_op2_nt #(.OP("add"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S2)) u_l2_s2 (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[1]),
-    .in_a_i(l1_prod[2*W +: W]), .in_b_i(l1_prod[3*W +: W]), .out_valid_o(l2_unused_v[1]),
-    .out_ready_i(r[3]), .out_res_o(l2_s2));
+    .out_data_o({c2_tag, c2_tmin, c2_tmax, c2_den, c2_num}));
+  assign l2_unused_v[1:0] = 2'b00;
+  assign l2_unused_r[1:0] = 2'b00;
   generate
     for (gj = 0; gj < 3; gj = gj + 1) begin : g_l2_shear
       fp_sop_nt #(.EXP_BITS(SE), .MAN_BITS(SM), .RNE(RNE), .RAYCORE(0), .STAGES(S2)) u_px (
@@ -222,34 +206,33 @@ module ist_watertight #(
     end
   endgenerate
 
-  // ---- level 3: num, 1 / den, the edge functions --------------------------------------------------
+  // ---- level 3: t = num / den (raycore: 1 / den), the edge functions -------------------------------
   // Edge lane j = 0 U = E(B, C), 1 V = E(C, A), 2 W = E(A, B); E(P, Q) = qx py - qy px.
-  wire [W-1:0]   l3_num, l3_rcp;
+  wire [W-1:0]   l3_q;  // rtz, rne: t; raycore: the table reciprocal of den
   wire [3*SW-1:0] l3_e;  // {W, V, U}
   wire [4:0]     l3_unused_v, l3_unused_r;
-  localparam integer C3_W = TAG_BITS + 3 * W;
+  localparam integer C3_W = TAG_BITS + 4 * W;
   wire [TAG_BITS-1:0] c3_tag;
-  wire [W-1:0] c3_tmin, c3_tmax, c3_den;
+  wire [W-1:0] c3_tmin, c3_tmax, c3_den, c3_num;
   fp_delay #(.WIDTH(C3_W), .STAGES(S3), .FREE(FREE)) u_carry3 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(r[3]),
-    .in_data_i({c2_tag, c2_tmin, c2_tmax, l2_den}),
+    .in_data_i({c2_tag, c2_tmin, c2_tmax, c2_den, c2_num}),
     .out_valid_o(v[3]), .out_ready_i(r[4]),
-    .out_data_o({c3_tag, c3_tmin, c3_tmax, c3_den}));
-  fp_op2_nt #(.OP("sub"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S3)) u_l3_num (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[0]),
-    .in_a_i(c2_s1), .in_b_i(l2_s2), .out_valid_o(l3_unused_v[0]), .out_ready_i(r[4]), .out_res_o(l3_num));
+    .out_data_o({c3_tag, c3_tmin, c3_tmax, c3_den, c3_num}));
+  assign l3_unused_v[0] = 1'b0;
+  assign l3_unused_r[0] = 1'b0;
   generate
-    if (RAYCORE != 0) begin : g_rcp_table  // raycore: the table reciprocal (hls::rcp<F, raycore>)
+    if (RAYCORE != 0) begin : g_rcp_table  // raycore: the table reciprocal (hls::div<F, raycore>)
       wire unused_tag;
       fp_rcp #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(S3)) u_l3_rcp (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[1]),
-        .in_a_i(l2_den), .in_tag_i(1'b0), .out_valid_o(l3_unused_v[1]),
-        .out_ready_i(r[4]), .out_res_o(l3_rcp), .out_tag_o(unused_tag));
-    end else begin : g_rcp_div  // rtz, rne: 1 / den, rounded once
-      fp_op2_nt #(.OP("div"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(S3)) u_l3_rcp (
+        .in_a_i(c2_den), .in_tag_i(1'b0), .out_valid_o(l3_unused_v[1]),
+        .out_ready_i(r[4]), .out_res_o(l3_q), .out_tag_o(unused_tag));
+    end else begin : g_div  // rtz, rne: num / den, rounded once
+      fp_op2_nt #(.OP("div"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(S3)) u_l3_div (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[1]),
-        .in_a_i(ONE), .in_b_i(l2_den), .out_valid_o(l3_unused_v[1]),
-        .out_ready_i(r[4]), .out_res_o(l3_rcp));
+        .in_a_i(c2_num), .in_b_i(c2_den), .out_valid_o(l3_unused_v[1]),
+        .out_ready_i(r[4]), .out_res_o(l3_q));
     end
     for (gj = 0; gj < 3; gj = gj + 1) begin : g_l3_edge
       localparam integer P = (gj + 1) % 3, Q = (gj + 2) % 3;
@@ -274,18 +257,29 @@ module ist_watertight #(
   wire [W-1:0] l4_t;
   wire [SW-1:0] l4_det;
   wire [1:0]   l4_unused_v, l4_unused_r;
-  localparam integer C4_W = TAG_BITS + 3 * W + 1;
+  localparam integer C4_W = TAG_BITS + 4 * W + 1;
   wire [TAG_BITS-1:0] c4_tag;
-  wire [W-1:0] c4_tmin, c4_tmax, c4_den;
+  wire [W-1:0] c4_tmin, c4_tmax, c4_den, c4_q;
   wire         c4_out;
   fp_delay #(.WIDTH(C4_W), .STAGES(S4), .FREE(FREE)) u_carry4 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(r[4]),
-    .in_data_i({c3_tag, c3_tmin, c3_tmax, c3_den, l3_out}),
+    .in_data_i({c3_tag, c3_tmin, c3_tmax, c3_den, l3_q, l3_out}),
     .out_valid_o(v[4]), .out_ready_i(r[5]),
-    .out_data_o({c4_tag, c4_tmin, c4_tmax, c4_den, c4_out}));
-  fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S4)) u_l4_t (
-    .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(l4_unused_r[0]),
-    .in_a_i(l3_num), .in_b_i(l3_rcp), .out_valid_o(l4_unused_v[0]), .out_ready_i(r[5]), .out_res_o(l4_t));
+    .out_data_o({c4_tag, c4_tmin, c4_tmax, c4_den, c4_q, c4_out}));
+  wire [W-1:0] unused_q;  // the carried quotient (raycore: its t is the multiply's), or num (rtz, rne)
+  generate
+    if (RAYCORE != 0) begin : g_t_mul  // raycore: t = num x the table reciprocal (hls::div<F, raycore>)
+      fp_op2_nt #(.OP("mul"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S4)) u_l4_t (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(l4_unused_r[0]),
+        .in_a_i(c3_num), .in_b_i(l3_q), .out_valid_o(l4_unused_v[0]), .out_ready_i(r[5]), .out_res_o(l4_t));
+      assign unused_q = c4_q;
+    end else begin : g_t_carried  // rtz, rne: t from level 3, carried
+      assign l4_t = c4_q;
+      assign l4_unused_v[0] = 1'b0;
+      assign l4_unused_r[0] = 1'b0;
+      assign unused_q = c3_num;
+    end
+  endgenerate
   fp_add3_nt #(.EXP_BITS(SE), .MAN_BITS(SM), .RNE(RNE), .RAYCORE(0), .STAGES(S4)) u_l4_det (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[3]), .in_ready_o(l4_unused_r[1]),
     .in_a_i(l3_e[0 +: SW]), .in_b_i(l3_e[SW +: SW]), .in_c_i(l3_e[2*SW +: SW]),
@@ -325,6 +319,6 @@ module ist_watertight #(
   wire unused_hs;
   assign unused_hs = ^{l1_unused_v, l1_unused_r, l2_unused_v, l2_unused_r, l3_unused_v, l3_unused_r,
                        l4_unused_v, l4_unused_r, l5_unused_v, l5_unused_r, l5_unused_eq, l5_unused_mm,
-                       unused_det_rest};
+                       unused_det_rest, unused_q};
 
 endmodule

@@ -164,7 +164,8 @@ void no_vertex_leak(uint64_t seed) {
 TEST(Watertight, NoVertexLeakFp24Rtz) { no_vertex_leak<FP24, Rounding::rtz>(11); }
 TEST(Watertight, NoVertexLeakFp24Rne) { no_vertex_leak<FP24, Rounding::rne>(12); }
 
-// Inside hits with t near the exact one, outside misses, den = Wald's den.
+// Inside hits with t near the exact one, outside misses, den and t = phase 1's of two sops
+// (ist_distance_sop): den = d_k + n_u d_u + n_v d_v rounded once, within an ulp of the exact sum.
 template <class F, Rounding R>
 void agrees_with_double(uint64_t seed) {
   using A = Arith<F, R>;
@@ -187,8 +188,18 @@ void agrees_with_double(uint64_t seed) {
     const Vec3 o = p - dir * dist;
     const Ray r = make_ray<A>(o, dir);
     const IstOut x = ist_test<A>(w, r.o, r.d, r.tmin, r.tmax);
-    // den: Wald's phase 1 on the record's plane (its first three constants).
-    EXPECT_EQ(x.den, ist_wald<A>(w.k, w.c, r.o, r.d, r.tmin, r.tmax).den);
+    // den and t: phase 1 of two sops on the record's plane (its first three constants); den is the
+    // exact sum of the exact products rounded once.
+    const IstOut p1 = ist_distance_sop<A>(w.k, w.c, r.o, r.d, r.tmin, r.tmax);
+    EXPECT_EQ(x.den, p1.den);
+    EXPECT_EQ(x.t, p1.t);
+    const int ku = axis_u(w.k), kv = axis_v(w.k);
+    auto ld = [](uint32_t v) { return static_cast<long double>(A::to_double(v)); };
+    const long double exact_den = ld(r.d[w.k]) + ld(w.c[kNU]) * ld(r.d[ku]) + ld(w.c[kNV]) * ld(r.d[kv]);
+    const double den = A::to_double(x.den);
+    if (den != 0) {
+      EXPECT_LE(std::fabs(double(ld(x.den) - exact_den)), std::ldexp(1.0, std::ilogb(den) - F::man_bits)) << i;
+    }
     if (in) {
       ++inside;
       ASSERT_EQ(x.exit, IstExit::hit) << i;
