@@ -180,7 +180,7 @@ module ist_watertight #(
 
   // ---- level 2: the vertices' sheared x and y -----------------------------------------------------
   wire [3*SW-1:0] l2_px, l2_py;  // {C, B, A}
-  wire [7:0]     l2_unused_v, l2_unused_r;
+  wire [5:0]     l2_unused_v, l2_unused_r;
   localparam integer C2_W = TAG_BITS + 4 * W;
   wire [TAG_BITS-1:0] c2_tag;
   wire [W-1:0] c2_tmin, c2_tmax, c2_den, c2_num;
@@ -189,20 +189,18 @@ module ist_watertight #(
     .in_data_i({c1_tag, c1_tmin, c1_tmax, l1_den, l1_num}),
     .out_valid_o(v[2]), .out_ready_i(r[3]),
     .out_data_o({c2_tag, c2_tmin, c2_tmax, c2_den, c2_num}));
-  assign l2_unused_v[1:0] = 2'b00;
-  assign l2_unused_r[1:0] = 2'b00;
   generate
     for (gj = 0; gj < 3; gj = gj + 1) begin : g_l2_shear
       fp_sop_nt #(.EXP_BITS(SE), .MAN_BITS(SM), .RNE(RNE), .RAYCORE(0), .STAGES(S2)) u_px (
-        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[2+2*gj]),
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[2*gj]),
         .in_a_i(l1_ox ^ SNEG), .in_b_i(SNEG), .in_x1_i(widen(c1_dz)), .in_y1_i(widen(c1_vs[(3*gj)*W +: W])),
         .in_x2_i(widen(c1_ndx)), .in_y2_i(widen(c1_vs[(3*gj+2)*W +: W])),
-        .out_valid_o(l2_unused_v[2+2*gj]), .out_ready_i(r[3]), .out_res_o(l2_px[gj*SW +: SW]));
+        .out_valid_o(l2_unused_v[2*gj]), .out_ready_i(r[3]), .out_res_o(l2_px[gj*SW +: SW]));
       fp_sop_nt #(.EXP_BITS(SE), .MAN_BITS(SM), .RNE(RNE), .RAYCORE(0), .STAGES(S2)) u_py (
-        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[3+2*gj]),
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[1+2*gj]),
         .in_a_i(l1_oy ^ SNEG), .in_b_i(SNEG), .in_x1_i(widen(c1_dz)), .in_y1_i(widen(c1_vs[(3*gj+1)*W +: W])),
         .in_x2_i(widen(c1_ndy)), .in_y2_i(widen(c1_vs[(3*gj+2)*W +: W])),
-        .out_valid_o(l2_unused_v[3+2*gj]), .out_ready_i(r[3]), .out_res_o(l2_py[gj*SW +: SW]));
+        .out_valid_o(l2_unused_v[1+2*gj]), .out_ready_i(r[3]), .out_res_o(l2_py[gj*SW +: SW]));
     end
   endgenerate
 
@@ -210,7 +208,7 @@ module ist_watertight #(
   // Edge lane j = 0 U = E(B, C), 1 V = E(C, A), 2 W = E(A, B); E(P, Q) = qx py - qy px.
   wire [W-1:0]   l3_q;  // rtz, rne: t; raycore: the table reciprocal of den
   wire [3*SW-1:0] l3_e;  // {W, V, U}
-  wire [4:0]     l3_unused_v, l3_unused_r;
+  wire [3:0]     l3_unused_v, l3_unused_r;
   localparam integer C3_W = TAG_BITS + 4 * W;
   wire [TAG_BITS-1:0] c3_tag;
   wire [W-1:0] c3_tmin, c3_tmax, c3_den, c3_num;
@@ -219,28 +217,26 @@ module ist_watertight #(
     .in_data_i({c2_tag, c2_tmin, c2_tmax, c2_den, c2_num}),
     .out_valid_o(v[3]), .out_ready_i(r[4]),
     .out_data_o({c3_tag, c3_tmin, c3_tmax, c3_den, c3_num}));
-  assign l3_unused_v[0] = 1'b0;
-  assign l3_unused_r[0] = 1'b0;
   generate
     if (RAYCORE != 0) begin : g_rcp_table  // raycore: the table reciprocal (hls::div<F, raycore>)
       wire unused_tag;
       fp_rcp #(.EXP_BITS(E), .MAN_BITS(M), .STAGES(S3)) u_l3_rcp (
-        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[1]),
-        .in_a_i(c2_den), .in_tag_i(1'b0), .out_valid_o(l3_unused_v[1]),
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[0]),
+        .in_a_i(c2_den), .in_tag_i(1'b0), .out_valid_o(l3_unused_v[0]),
         .out_ready_i(r[4]), .out_res_o(l3_q), .out_tag_o(unused_tag));
     end else begin : g_div  // rtz, rne: num / den, rounded once
       fp_op2_nt #(.OP("div"), .EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .STAGES(S3)) u_l3_div (
-        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[1]),
-        .in_a_i(c2_num), .in_b_i(c2_den), .out_valid_o(l3_unused_v[1]),
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[0]),
+        .in_a_i(c2_num), .in_b_i(c2_den), .out_valid_o(l3_unused_v[0]),
         .out_ready_i(r[4]), .out_res_o(l3_q));
     end
     for (gj = 0; gj < 3; gj = gj + 1) begin : g_l3_edge
       localparam integer P = (gj + 1) % 3, Q = (gj + 2) % 3;
       fp_sop_nt #(.EXP_BITS(SE), .MAN_BITS(SM), .RNE(RNE), .RAYCORE(0), .STAGES(S3)) u_edge (
-        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[2+gj]),
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(l3_unused_r[1+gj]),
         .in_a_i(SNEG), .in_b_i(SNEG), .in_x1_i(l2_px[Q*SW +: SW]), .in_y1_i(l2_py[P*SW +: SW]),
         .in_x2_i(l2_py[Q*SW +: SW] ^ SNEG), .in_y2_i(l2_px[P*SW +: SW]),
-        .out_valid_o(l3_unused_v[2+gj]), .out_ready_i(r[4]), .out_res_o(l3_e[gj*SW +: SW]));
+        .out_valid_o(l3_unused_v[1+gj]), .out_ready_i(r[4]), .out_res_o(l3_e[gj*SW +: SW]));
     end
   endgenerate
 

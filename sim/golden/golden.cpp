@@ -290,8 +290,7 @@ class RaysT final : public HardwareRays::Impl {
     const hls::IstOut o = hls::ist_test<A>(tris_[size_t(tri)], pr.o, pr.d, pr.tmin, pr.tmax, margins_);
     IstVerdict v;
     v.hit = o.exit == hls::IstExit::hit;
-    v.distance = o.exit != hls::IstExit::distance;
-    if (v.distance) v.t = A::to_double(o.t);
+    if (o.exit != hls::IstExit::distance) v.t = A::to_double(o.t);
     return v;
   }
 

@@ -57,9 +57,9 @@ struct PixelRays {
 };
 
 // The ist's test of one triangle for a pixel's primary ray (HardwareRays::test): whether it hits,
-// whether the ray's interval holds the plane's t (phase 1 passed), and that t (NaN if not).
+// and the plane's t where the ray's interval holds it (phase 1 passed; NaN if not).
 struct IstVerdict {
-  bool hit = false, distance = false;
+  bool hit = false;
   double t = std::numeric_limits<double>::quiet_NaN();
 };
 
