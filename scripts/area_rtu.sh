@@ -127,7 +127,7 @@ section() {
   echo "- **The table sums separately synthesised units**; the RTU synthesised whole (rtl/units/rtu.v,"
   echo "  with the glue between the units: slot_ram, vtu_unit, the trv's slot read ports, the cache"
   echo "  responses' alignment) follows below the tables. Not counted anywhere: the L2 shared by the"
-  echo "  RTUs (256 KB by default, no RTL) and the chip's membus_if (its row: once per chip)."
+  echo "  RTUs (512 KB by default: membus_l2.v, not synthesised here) and the chip's membus_if (its row: once per chip)."
   echo "- Parameters: vtu TAG_BITS 8 (cache port 2 + MSHR 3 + record in the line 3 bits); ist as in"
   echo "  ist_unit (TAG_BITS 1: the side data travel beside it in one fp_delay memory; FREE 1: its"
   echo "  carries in fp_delay memories, ist_unit never holding a result back), hit as in hit_unit"

@@ -145,7 +145,7 @@ section_frames() {
 # --sc RTL (--rtl) must give the transaction model's cycle count (frames section) and golden_match;
 # reports each run's simulated cycles/s and rays/s. Needs `frames` first (its VTU-on report).
 section_cosim() {
-  header "cosim: sponza-paper 800x480 with vtu+ist+hit+rgu as pin-level twins and as Verilated RTL, then every unit in RTL (--rtl all), then with the bus and its L2 too (--rtl all,membus), then every RTU one Verilated rtu.v with the bus (--rtl rtu), all at the defaults (the 256 KB L2)"
+  header "cosim: sponza-paper 800x480 with vtu+ist+hit+rgu as pin-level twins and as Verilated RTL, then every unit in RTL (--rtl all), then with the bus and its L2 too (--rtl all,membus), then every RTU one Verilated rtu.v with the bus (--rtl rtu), all at the defaults (the 512 KB L2)"
   local rc_bin="$BUILD/bin/raycore"
   local scenes=${SHARED_SCENES:-$(cd "$(dirname "$0")/.." && pwd)/../shared/scenes}
   local sponza="$scenes/sponza-paper.glb"

@@ -146,10 +146,10 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
         "Verilated RTL in the frame (vtu at its pins; trv, ist, hit, rgu: the whole units "
         "rtl/units/{trv,ist,hit,rgu}_unit.v, stepped from C++; ascache: the node, list "
         "and triangle caches, rtl/units/ascache.v stepped from C++; membus: the chip's bus interface "
-        "rtl/units/membus_if.v, or with the L2 rtl/units/membus_l2.v: the default 256 KB or --l2-kb 1 --l2-ways 2); "
+        "rtl/units/membus_if.v, or with the L2 rtl/units/membus_l2.v: the default 512 KB or --l2-kb 1 --l2-ways 2); "
         "or rtu alone: every RTU one Verilated "
         "rtl/units/rtu.v (all its units and the glue between them) with the bus: membus_l2.v (the "
-        "default 256 KB L2, or --l2-kb 1 --l2-ways 2), or membus_if.v with --l2-kb 0");
+        "default 512 KB L2, or --l2-kb 1 --l2-ways 2), or membus_if.v with --l2-kb 0");
   views("--pins", UnitView::twin,
         "units (vtu,ist,hit,rgu, or all) simulated by their pin-level SystemC twin (same ports as the RTL; trv "
         "has none)");

@@ -69,7 +69,7 @@ struct SimConfig {
   uint32_t mem_bandwidth = 16;    // bytes per cycle on the shared data bus
   uint32_t mem_queue_depth = 32;  // requests accepted and not yet returned
   uint64_t seed = 0;              // 0: fixed latency; else latency uniform in [L, 2L] per request
-  L2Config l2{256 * 1024};        // shared L2 in front of the memory (size 0: none)
+  L2Config l2{512 * 1024};        // shared L2 in front of the memory (size 0: none)
   // The bus interface: the model (systemc/membus.h) or the RTL Verilated (systemc/membus_rtl.h):
   // rtl/units/membus_if.v without an L2, rtl/units/membus_l2.v with it.
   UnitView membus_view = UnitView::model;

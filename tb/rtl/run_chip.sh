@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # tb/rtl/run_chip.sh - a whole frame on chip.v (make chip): the chip top with its bus (membus_l2.v
-# with the frame's L2, the model's default 256 KB unless --l2-kb says otherwise; membus_if.v with
+# with the frame's L2, the model's default 512 KB unless --l2-kb says otherwise; membus_if.v with
 # --l2-kb 0) and one RTU, closed-loop with tb_chip.v's memory, against the transaction model.
 #   1. `raycore simulate <frame> --rtl rtu` with RAYCORE_CHIP_DUMP: the frame's registers, the
 #      image and the frame's rays (pixel, kind, best record: bit-exact with the golden tracer);
@@ -20,7 +20,7 @@ mkdir -p "$work"
 frame=("$@" --rtus 1 --no-reference)
 # The memory's and the L2's timing for tb_chip.v, from the options (`--opt value` or `--opt=value`;
 # raycore's --rtl rtu run below refuses what no built model runs, before they are used).
-lat=100 l2kb=256 l2ways=8 l2lat=20 spawn=none
+lat=100 l2kb=512 l2ways=8 l2lat=20 spawn=none
 for ((i = 1; i <= $#; i++)); do
   j=$((i + 1))
   opt=${!i} val=${!j:-}

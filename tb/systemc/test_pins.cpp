@@ -818,7 +818,7 @@ TEST(MembusRtlFrame, RandomLatencySmallCachesSixteenRtus) {
   cfg.list_cache = {512, 2, 32, 2, 2};
   expect_membus_rtl(corridor(), margins_config(Rounding::rne, true), cfg, "16 RTUs, random latency");
 }
-// The model's default L2 (256 KB, 8 ways, 32 bytes per cycle) in RTL, 6 RTUs: hits and merges.
+// The model's default L2 (512 KB, 8 ways, 32 bytes per cycle) in RTL, 6 RTUs: hits and merges.
 TEST(MembusRtlFrame, DefaultL2SixRtus) {
   const Summary m = expect_membus_rtl(corridor(), config(FormatId::fp24, Rounding::rtz, true, 48, 30),
                                       {}, "6 RTUs, the default L2", true);
@@ -872,9 +872,9 @@ TEST(MembusRtlFrame, RefusesWhatItCannotRun) {
   const auto tc = config(FormatId::fp24, Rounding::rtz, false, 8, 8);
   sc::SimConfig cfg;
   cfg.membus_view = UnitView::rtl;
-  cfg.l2.size_bytes = 128 * 1024;  // membus_l2 is built for 256 KB and 1 KB
+  cfg.l2.size_bytes = 128 * 1024;  // membus_l2 is built for 512 KB and 1 KB
   const Summary l2 = expect_refused(tiny_scene(), tc, cfg, "--l2-kb 128");
-  EXPECT_NE(std::string(l2.error).find("an L2 of 256 KB (8 ways, 64-byte lines, 32 bytes per cycle)"),
+  EXPECT_NE(std::string(l2.error).find("an L2 of 512 KB (8 ways, 64-byte lines, 32 bytes per cycle)"),
             std::string::npos) << l2.error;
   cfg.l2.size_bytes = 0;
   cfg.mem_bandwidth = 8;
@@ -908,7 +908,7 @@ TEST(AllRtlFrame, SponzaPaperSmallFrameWithBus) {
 // ---- the whole RTU in RTL (--rtl rtu) ----------------------------------------------------------
 // Every RTU one Verilated rtl/units/rtu.v (its units and the glue between them: slot_ram,
 // vtu_unit, the caches' wiring) with the Verilated bus (membus_l2 with the configuration's L2, the
-// model's default 256 KB unless set; membus_if with --l2-kb 0): the transaction model's cycles,
+// model's default 512 KB unless set; membus_if with --l2-kb 0): the transaction model's cycles,
 // bus bytes, L2 counters, frame, ray counts and work counters.
 void expect_rtu_rtl(const scenes::Scene& s, const sim::TraceConfig& tc, sc::SimConfig cfg,
                     const std::string& what) {
