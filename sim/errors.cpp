@@ -276,9 +276,11 @@ StageBudget stage_budget(const Frame& f, const scenes::Scene& scene, const hls::
       const IstVerdict va = rays.test(ep.x, ep.y, p2.tri);
       if (va.hit) {
         ep.t_a_hw = va.t;
-        // It hits A too: B came first by the hardware's t (the rounding of t ordered them), or A's
-        // leaf was never tested (the traversal).
-        return hw.tri >= 0 && va.t >= hw.t ? TraversalKind::order : TraversalKind::deep;
+        // It hits A too: A's leaf was never tested (the traversal), or B came first by the
+        // hardware's t. That is an order of two hits where the exact ray meets B as well (inside
+        // or on its edges); where it passes outside B, B's outline was decided wrong: a silhouette.
+        if (hw.tri < 0 || va.t < hw.t) return TraversalKind::deep;
+        return hb && ep.edge_b >= 0 ? TraversalKind::order : TraversalKind::silhouette;
       }
     }
     if (ha && da <= tolerance(ray, ha_hit.t)) {  // A missed near an edge

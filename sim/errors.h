@@ -97,8 +97,9 @@ enum class Stage : uint8_t { none = 0, storage, ray_generation, traversal_primar
 // tol = kEdgeUlps ulps of the format at the largest coordinate of the hit point and the ray's
 // origin in the hardware's frame (relative to the camera with the VTU on): the size of the
 // rounding of the point o + t d the ist decides. First the hardware's own test of A for the same
-// ray (HardwareRays::test): where it hits A, the error is order (at a t no smaller than B's) or deep
-// (A's leaf not tested); where it misses A, the edge cases below decide.
+// ray (HardwareRays::test): where it hits A, the error is order (at a t no smaller than B's, the
+// exact ray meeting B too), silhouette (the same, but the exact ray passes outside B) or deep (A's
+// leaf not tested); where it misses A, the edge cases below decide.
 //   crack       A's exact hit lies within tol of an edge that A shares with another triangle N of
 //               the scene (the same two vertices) that continues the surface across the edge as the
 //               ray sees it (its exact plane point on N lies outside N by at most tol, or on its
@@ -108,9 +109,12 @@ enum class Stage : uint8_t { none = 0, storage, ray_generation, traversal_primar
 //   silhouette  A's exact hit lies within tol of an edge that no other triangle shares, or whose
 //               neighbours do not continue the surface for this ray (a fold: the ray meets the
 //               neighbour inside too, or far outside), or B's exact plane point lies outside B by
-//               at most tol or on its edge: an outline decided at the format's precision (a watertight test does
-//               not change it; exact or wider arithmetic near edges would);
-//   order       the hardware's test hits A as well, at a t no smaller than its t for B: the
+//               at most tol or on its edge, or the hardware's test hits A at a t no smaller than
+//               its t for B while the exact ray passes outside B (at any distance; since
+//               2026-12-07, an order before): an outline decided at the format's precision (a
+//               watertight test does not change it; exact or wider arithmetic near edges would);
+//   order       the hardware's test hits A as well, at a t no smaller than its t for B, and the
+//               exact ray meets B (inside or on its edges): the
 //               rounding of t (to the format: a t ulp as wide as the gap between the two surfaces,
 //               or the t of a plane rounded by several ulps) put B first (the lever: t precision);
 //               before 2026-12-07 this was judged from the exact points (B inside, behind A by at
