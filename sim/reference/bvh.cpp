@@ -27,7 +27,7 @@ constexpr double kPruneSlack = 1.0 + 0x1p-30;
 
 }  // namespace
 
-ShearedRay::ShearedRay(const Ray& r) : org(r.org) {
+ShearedRay::ShearedRay(const Ray& r) : org(r.org), dir(r.dir) {
   // Largest direction component -> z; keep the winding by swapping x and y when it is negative.
   const double ax = std::fabs(r.dir.x), ay = std::fabs(r.dir.y), az = std::fabs(r.dir.z);
   kz = (ax > ay) ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
@@ -52,7 +52,28 @@ bool intersect_triangle(const ShearedRay& ray, const Tri& tri, double t_min, dou
   const double u = edge_function(cx, by, cy, bx);
   const double v = edge_function(ax, cy, ay, cx);
   const double w = edge_function(bx, ay, by, ax);
-  if ((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0)) return false;
+  // Those are exact for the projected vertices, which are rounded: a - org once, the shear's
+  // quotient, product and difference (|error| <= 6 eps (|a_kx| + |sx a_kz|), eps = 2^-53). Where an
+  // edge function is within what that rounding can move it, the exact ray decides its sign.
+  constexpr double eps = 0x1p-53;
+  const double ex[3] = {6 * eps * (std::fabs(a[ray.kx]) + std::fabs(ray.sx * a[ray.kz])),
+                        6 * eps * (std::fabs(b[ray.kx]) + std::fabs(ray.sx * b[ray.kz])),
+                        6 * eps * (std::fabs(c[ray.kx]) + std::fabs(ray.sx * c[ray.kz]))};
+  const double ey[3] = {6 * eps * (std::fabs(a[ray.ky]) + std::fabs(ray.sy * a[ray.kz])),
+                        6 * eps * (std::fabs(b[ray.ky]) + std::fabs(ray.sy * b[ray.kz])),
+                        6 * eps * (std::fabs(c[ray.ky]) + std::fabs(ray.sy * c[ray.kz]))};
+  const double px[3] = {ax, bx, cx}, py[3] = {ay, by, cy};
+  // Sign of the edge function of vertices p, q (value e = x_q y_p - y_q x_p): proven by e's bound,
+  // else the exact ray's.
+  auto sign = [&](double e, int p, int q) {
+    const double moved = std::fabs(px[q]) * ey[p] + std::fabs(py[p]) * ex[q] + std::fabs(py[q]) * ex[p] +
+                         std::fabs(px[p]) * ey[q] + ex[q] * ey[p] + ey[q] * ex[p];
+    const double bound = 2 * (moved + 3 * eps * (std::fabs(px[q] * py[p]) + std::fabs(py[q] * px[p])));
+    if (std::fabs(e) > bound) return e > 0 ? 1 : -1;
+    return sheared_edge_sign(ray.org, ray.dir, ray.kx, ray.ky, ray.kz, tri[size_t(p)], tri[size_t(q)]);
+  };
+  const int su = sign(u, 1, 2), sv = sign(v, 2, 0), sw = sign(w, 0, 1);
+  if ((su < 0 || sv < 0 || sw < 0) && (su > 0 || sv > 0 || sw > 0)) return false;
   const double det = u + v + w;
   if (det == 0) return false;  // ray parallel to the plane, or the point on a degenerate edge
 

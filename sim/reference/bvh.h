@@ -8,8 +8,12 @@
 //   EXACTLY (edge_function: a filtered evaluation with Kahan's fused-multiply-add difference of
 //   products as the fallback; this replaces and strengthens the paper's "recompute in higher
 //   precision when an edge function is 0"). A ray through a shared edge or vertex of a closed mesh
-//   therefore hits at least one of the triangles around it. Triangles with exactly collinear
-//   vertices (zero area) are never hit.
+//   therefore hits at least one of the triangles around it. Where an edge function lies within the
+//   error bound of the projected vertices' own rounding (the ray passes that close to the edge),
+//   its sign is the exact ray's (sheared_edge_sign, MPFR; since 2026-12-07): a ray exactly on an
+//   edge is on it (inside), whatever the double shear says; a shared edge's two triangles take the
+//   same path (the bound is symmetric), so the test stays watertight. Triangles with exactly
+//   collinear vertices (zero area) are never hit.
 // - BVH: binned SAH (32 bins, leaves of at most 4 references) over references: a large triangle
 //   is split into several references with smaller boxes (early split clipping, conservative
 //   boxes: see add_references), so a triangle may sit in several leaves. Traversal is conservative (Ize 2013, "Robust BVH ray traversal", JCGT 2(2)): the
@@ -44,7 +48,7 @@ struct TriHit {
 
 // The ray, sheared and permuted once for the watertight test.
 struct ShearedRay {
-  Vec3 org;
+  Vec3 org, dir;
   int kx = 0, ky = 1, kz = 2;
   double sx = 0, sy = 0, sz = 1;
   explicit ShearedRay(const Ray& r);

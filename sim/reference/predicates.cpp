@@ -109,6 +109,33 @@ int orient2d(double ax, double ay, double bx, double by, double cx, double cy) {
 
 }  // namespace
 
+int sheared_edge_sign(const hls::Vec3& o, const hls::Vec3& d, int kx, int ky, int kz, const hls::Vec3& p,
+                      const hls::Vec3& q) {
+  // X_v = d_kz (v - o)_kx - d_kx (v - o)_kz: products of two differences of inputs (d_k is one),
+  // the edge function a sum of products of two of those: degree 4.
+  const mpfr_prec_t prec = exact_precision({o.x, o.y, o.z, d.x, d.y, d.z, p.x, p.y, p.z, q.x, q.y, q.z}, 4);
+  Mp x[2] = {Mp(prec), Mp(prec)}, y[2] = {Mp(prec), Mp(prec)};
+  Mp a(prec), b(prec);
+  const hls::Vec3* v[2] = {&p, &q};
+  for (int i = 0; i < 2; ++i) {
+    for (int axis = 0; axis < 2; ++axis) {
+      const int k = axis == 0 ? kx : ky;
+      Mp& out = axis == 0 ? x[i] : y[i];
+      check_exact(mpfr_set_d(a.get(), (*v[i])[k], MPFR_RNDN));  // d_kz (v - o)_k
+      check_exact(mpfr_sub_d(a.get(), a.get(), o[k], MPFR_RNDN));
+      check_exact(mpfr_mul_d(a.get(), a.get(), d[kz], MPFR_RNDN));
+      check_exact(mpfr_set_d(b.get(), (*v[i])[kz], MPFR_RNDN));  // d_k (v - o)_kz
+      check_exact(mpfr_sub_d(b.get(), b.get(), o[kz], MPFR_RNDN));
+      check_exact(mpfr_mul_d(b.get(), b.get(), d[k], MPFR_RNDN));
+      check_exact(mpfr_sub(out.get(), a.get(), b.get(), MPFR_RNDN));
+    }
+  }
+  check_exact(mpfr_mul(a.get(), x[1].get(), y[0].get(), MPFR_RNDN));  // X_q Y_p - Y_q X_p
+  check_exact(mpfr_mul(b.get(), y[1].get(), x[0].get(), MPFR_RNDN));
+  check_exact(mpfr_sub(a.get(), a.get(), b.get(), MPFR_RNDN));
+  return mpfr_sgn(a.get()) > 0 ? 1 : (mpfr_sgn(a.get()) < 0 ? -1 : 0);
+}
+
 double diff_of_products(double a, double b, double c, double d) {
   const double cd = c * d;
   const double err = std::fma(-c, d, cd);  // cd - c*d, exact

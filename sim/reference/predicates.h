@@ -27,6 +27,14 @@ double edge_function(double a, double b, double c, double d);
 // error bound), with an exact MPFR fallback.
 int orient3d(const hls::Vec3& a, const hls::Vec3& b, const hls::Vec3& c, const hls::Vec3& p);
 
+// Sign (-1, 0, +1) of the watertight test's edge function of vertices p, q for the exact ray o + t d,
+// sheared with the axes kx, ky, kz (bvh.cpp's ShearedRay): X_q Y_p - Y_q X_p with X_v = d_kz (v -
+// o)_kx - d_kx (v - o)_kz and Y_v likewise with ky (the sheared coordinates scaled by d_kz, whose
+// square keeps the sign), evaluated exactly (MPFR): what the double sheared coordinates' rounding
+// decides when the ray passes within it of the edge.
+int sheared_edge_sign(const hls::Vec3& o, const hls::Vec3& d, int kx, int ky, int kz, const hls::Vec3& p,
+                      const hls::Vec3& q);
+
 // True when the three vertices are exactly collinear (or coincident): the triangle has zero area.
 bool is_degenerate(const hls::Vec3& a, const hls::Vec3& b, const hls::Vec3& c);
 

@@ -44,6 +44,31 @@ TEST(ReferenceTracer, SingleTriangleExactHit) {
   EXPECT_EQ(ref.closest({{0.5, 0.5 + 0x1p-52, 1}, {0, 0, -1}}).tri, -1);
 }
 
+// A ray exactly on an edge whose projected vertices the double shear rounds: origin-far-camera's
+// pixel (193, 167) in FP24 (its ray's components are FP24 values), which meets the plane y = 0 at x
+// = -100 exactly (z = -1925/59), on the triangle's edge x = -100. The test is closed, so it hits;
+// before 2026-12-07 the double sheared coordinates put it outside. Just beside the edge (the
+// origin moved by an ulp) the exact side decides either way.
+TEST(ReferenceTracer, RayExactlyOnAnEdgeFarFromTheOriginHits) {
+  const Vec3 o{30000, 24000, 40000}, d{-0.541961669921875, -0.43212890625, -0.72080230712890625};
+  const Reference ref(make_scene({{Vec3{-100, 0, -40}, Vec3{-100, 0, -30}, Vec3{-90, 0, -30}}},
+                                 look_at(o, {-100, 0, -32}), {0, 100, 0}));
+  const TriHit h = ref.closest({o, d});
+  EXPECT_EQ(h.tri, 0);
+  EXPECT_NEAR(h.t, 24000 / 0.43212890625, 1e-9);
+  // x = -100 - dx 2^-41 t': the ray 2^-41 x 55539 beside the edge, outside (x < -100) or inside.
+  EXPECT_EQ(ref.closest({{std::nextafter(30000.0, 0.0), 24000, 40000}, d}).tri, -1);
+  EXPECT_EQ(ref.closest({{std::nextafter(30000.0, 1e9), 24000, 40000}, d}).tri, 0);
+  // The predicate itself: the edge (-100, 0, -40) -> (-100, 0, -30), sheared as ShearedRay does.
+  const ShearedRay sr(Ray{o, d});
+  const Vec3 p{-100, 0, -40}, q{-100, 0, -30};
+  EXPECT_EQ(sheared_edge_sign(o, d, sr.kx, sr.ky, sr.kz, p, q), 0);
+  EXPECT_EQ(sheared_edge_sign(o, d, sr.kx, sr.ky, sr.kz, q, p), 0);
+  const Vec3 o2{std::nextafter(30000.0, 0.0), 24000, 40000};
+  EXPECT_EQ(sheared_edge_sign(o2, d, sr.kx, sr.ky, sr.kz, p, q), -sheared_edge_sign(o2, d, sr.kx, sr.ky, sr.kz, q, p));
+  EXPECT_NE(sheared_edge_sign(o2, d, sr.kx, sr.ky, sr.kz, p, q), 0);
+}
+
 TEST(ReferenceTracer, SingleQuadExactHitsAndTies) {
   // Two triangles in z = 5, diagonal (0,0)-(2,2): tri 0 below it, tri 1 above it.
   const Reference ref(make_scene(quad(2, 5.0, 0, 2, 0, 2), look_at({1, 1, 0}, {1, 1, 5}), {1, 1, -5}));
