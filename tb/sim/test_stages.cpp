@@ -199,25 +199,44 @@ TEST(ErrorStages, ErrorPixelsAreTheBudget) {
 // 10^4 from the scene (an FP24 t ulp of 0.5 there): every primary-ray traversal error is an order of
 // two hits, the hardware's own test hitting the exact ray's triangle A as well, at a t no smaller
 // than its t for the triangle it kept (the records say so pixel by pixel).
-TEST(ErrorStages, FarCameraLeavesOrdersOfTwoHits) {
+// A golden frame in issue 27 part 2's zero configuration (FP24, VTU off, skip-back, anchored,
+// --ist watertight --trv-widen 2) and its error budget.
+struct ZeroRun {
   sim::RunOptions o;
-  o.scene = "origin-far-camera";
-  o.rounding = "rtz";
-  o.vtu = "off";
-  o.spawn = "skip-back";
-  o.store = "anchored";
-  o.shadow_hit = "closest";
-  o.ist = "watertight";
-  o.trv_widen = 2;
-  o.width = 200;
-  o.height = 120;
-  o.threads = 2;
-  sim::TraceConfig cfg = sim::trace_config(o);
-  const sim::Prepared p = sim::prepare(o, cfg);
-  const sim::Frame f = sim::trace_golden(p.image, p.scene.camera, p.scene.light, cfg);
-  const sim::FrameErrors e = sim::measure_errors(f, p.scene, p.image, cfg);
-  expect_adds_up(e, "origin-far-camera watertight");
-  const sim::StageBudget& b = e.stages;
+  sim::TraceConfig cfg;
+  sim::Prepared p;
+  sim::Frame f;
+  sim::FrameErrors e;
+  static sim::RunOptions options(const std::string& scene, const char* rounding, int width, int height) {
+    sim::RunOptions o;
+    o.scene = scene;
+    o.rounding = rounding;
+    o.vtu = "off";
+    o.spawn = "skip-back";
+    o.store = "anchored";
+    o.shadow_hit = "closest";
+    o.ist = "watertight";
+    o.trv_widen = 2;
+    o.width = width;
+    o.height = height;
+    o.threads = 2;
+    return o;
+  }
+  ZeroRun(const std::string& scene, const char* rounding, int width, int height)
+      : o(options(scene, rounding, width, height)),
+        cfg(sim::trace_config(o)),
+        p(sim::prepare(o, cfg)),
+        f(sim::trace_golden(p.image, p.scene.camera, p.scene.light, cfg)),
+        e(sim::measure_errors(f, p.scene, p.image, cfg)) {
+    expect_adds_up(e, scene + " watertight " + rounding);
+  }
+};
+
+TEST(ErrorStages, FarCameraLeavesOrdersOfTwoHits) {
+  const ZeroRun z("origin-far-camera", "rtz", 200, 120);
+  const sim::TraceConfig& cfg = z.cfg;
+  const sim::Prepared& p = z.p;
+  const sim::StageBudget& b = z.e.stages;
   EXPECT_GE(b.traversal_kind[size_t(sim::TraversalKind::order)], 1u) << budget_line(b);
   EXPECT_EQ(b.traversal_kind[size_t(sim::TraversalKind::crack)], 0u) << budget_line(b);
   EXPECT_EQ(b.traversal_kind[size_t(sim::TraversalKind::silhouette)], 0u) << budget_line(b);
@@ -251,22 +270,8 @@ TEST(ErrorStages, SilhouetteWhereTheExactRayPassesOutsideB) {
   if (!std::ifstream(path).good()) {
     GTEST_SKIP() << path << " not found (../shared/scenes)";
   }
-  sim::RunOptions o;
-  o.scene = path;
-  o.rounding = "rne";
-  o.vtu = "off";
-  o.spawn = "skip-back";
-  o.store = "anchored";
-  o.shadow_hit = "closest";
-  o.ist = "watertight";
-  o.trv_widen = 2;
-  o.threads = 2;
-  sim::TraceConfig cfg = sim::trace_config(o);
-  const sim::Prepared p = sim::prepare(o, cfg);
-  const sim::Frame f = sim::trace_golden(p.image, p.scene.camera, p.scene.light, cfg);
-  const sim::FrameErrors e = sim::measure_errors(f, p.scene, p.image, cfg);
-  expect_adds_up(e, "sponza-paper watertight rne");
-  const sim::StageBudget& b = e.stages;
+  const ZeroRun z(path, "rne", 800, 480);
+  const sim::StageBudget& b = z.e.stages;
   bool found = false;
   for (const sim::ErrorPixel& ep : b.error_pixels) {
     if (ep.stage != Stage::traversal_primary) continue;
