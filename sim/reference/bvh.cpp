@@ -52,24 +52,20 @@ bool intersect_triangle(const ShearedRay& ray, const Tri& tri, double t_min, dou
   const double u = edge_function(cx, by, cy, bx);
   const double v = edge_function(ax, cy, ay, cx);
   const double w = edge_function(bx, ay, by, ax);
-  // Those are exact for the projected vertices, which are rounded: a - org once, the shear's
-  // quotient, product and difference (|error| <= 6 eps (|a_kx| + |sx a_kz|), eps = 2^-53). Where an
-  // edge function is within what that rounding can move it, the exact ray decides its sign.
+  // Those are exact for the projected vertices, which are rounded (a - org once, the shear's
+  // quotient, product and difference): a projected x moves by at most 6 eps Sx, Sx = |a_kx| +
+  // |sx a_kz| (eps = 2^-53; y likewise), so an edge function x_q y_p - y_q x_p by at most 12 eps
+  // (Sx_q Sy_p + Sx_p Sy_q) beside its own rounding (3 eps of the same): 32 eps of it bounds both.
+  // Within that bound of zero, the exact ray decides its sign.
   constexpr double eps = 0x1p-53;
-  const double ex[3] = {6 * eps * (std::fabs(a[ray.kx]) + std::fabs(ray.sx * a[ray.kz])),
-                        6 * eps * (std::fabs(b[ray.kx]) + std::fabs(ray.sx * b[ray.kz])),
-                        6 * eps * (std::fabs(c[ray.kx]) + std::fabs(ray.sx * c[ray.kz]))};
-  const double ey[3] = {6 * eps * (std::fabs(a[ray.ky]) + std::fabs(ray.sy * a[ray.kz])),
-                        6 * eps * (std::fabs(b[ray.ky]) + std::fabs(ray.sy * b[ray.kz])),
-                        6 * eps * (std::fabs(c[ray.ky]) + std::fabs(ray.sy * c[ray.kz]))};
-  const double px[3] = {ax, bx, cx}, py[3] = {ay, by, cy};
-  // Sign of the edge function of vertices p, q (value e = x_q y_p - y_q x_p): proven by e's bound,
-  // else the exact ray's.
+  const double sx[3] = {std::fabs(a[ray.kx]) + std::fabs(ray.sx * a[ray.kz]),
+                        std::fabs(b[ray.kx]) + std::fabs(ray.sx * b[ray.kz]),
+                        std::fabs(c[ray.kx]) + std::fabs(ray.sx * c[ray.kz])};
+  const double sy[3] = {std::fabs(a[ray.ky]) + std::fabs(ray.sy * a[ray.kz]),
+                        std::fabs(b[ray.ky]) + std::fabs(ray.sy * b[ray.kz]),
+                        std::fabs(c[ray.ky]) + std::fabs(ray.sy * c[ray.kz])};
   auto sign = [&](double e, int p, int q) {
-    const double moved = std::fabs(px[q]) * ey[p] + std::fabs(py[p]) * ex[q] + std::fabs(py[q]) * ex[p] +
-                         std::fabs(px[p]) * ey[q] + ex[q] * ey[p] + ey[q] * ex[p];
-    const double bound = 2 * (moved + 3 * eps * (std::fabs(px[q] * py[p]) + std::fabs(py[q] * px[p])));
-    if (std::fabs(e) > bound) return e > 0 ? 1 : -1;
+    if (std::fabs(e) > 32 * eps * (sx[q] * sy[p] + sx[p] * sy[q])) return e > 0 ? 1 : -1;
     return sheared_edge_sign(ray.org, ray.dir, ray.kx, ray.ky, ray.kz, tri[size_t(p)], tri[size_t(q)]);
   };
   const int su = sign(u, 1, 2), sv = sign(v, 2, 0), sw = sign(w, 0, 1);
