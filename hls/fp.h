@@ -595,6 +595,16 @@ constexpr uint32_t widen(uint32_t x) {
          ((x & F::man_mask) << (G::man_bits - F::man_bits));
 }
 
+// A number of format G as one of format F with the policy R: exact when F holds it, else rounded
+// once, flushed or saturated as every operation (the watertight test's t from the shear format
+// to the closest-hit key, hls/ist.h: the same mantissa, so only the exponent's range can act).
+template <class G, class F, Rounding R>
+constexpr uint32_t narrow(uint32_t x) {
+  if (is_zero<G>(x)) return signed_zero<F>(sign_of<G>(x));
+  const auto u = detail::unpack<G>(x);
+  return round_pack<F, R>(u.sign, u.exp - G::man_bits, uint64_t(u.sig), false);
+}
+
 // To binary64: exact for every format here (E <= 11, M <= 31).
 template <class F>
 constexpr uint64_t to_double_bits(uint32_t a) {

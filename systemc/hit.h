@@ -49,6 +49,7 @@ pins::HitConfig hit_config(const FrameCtx& fc) {
 template <class A>
 bool write_pixel(FrameCtx& fc, uint32_t pixel, bool shadow, const Best& b,
                  const hls::ShadowSetup& ss, double& cos_light) {
+  using F = typename A::Fmt;
   hls::PixelResult& p = fc.frame->px[pixel];
   if (shadow) {
     p.lit = p.front && !b.found;  // --shadow-spawn all: a ray behind the light is not lit
@@ -63,8 +64,8 @@ bool write_pixel(FrameCtx& fc, uint32_t pixel, bool shadow, const Best& b,
     return false;
   }
   p.tri = int32_t(b.id);
-  p.t_bits = b.t;
-  p.t = A::to_double(b.t);
+  p.t_bits = hls::key_t<F>(b.t);  // the record's t is the key: its top bits
+  p.t = A::to_double(p.t_bits);
   p.hit = {A::to_double(ss.h[0]) + fc.offset[0], A::to_double(ss.h[1]) + fc.offset[1],
            A::to_double(ss.h[2]) + fc.offset[2]};
   p.front = ss.front;
@@ -84,6 +85,8 @@ bool write_pixel(FrameCtx& fc, uint32_t pixel, bool shadow, const Best& b,
 
 template <class A>
 class Hit : public SlotUnit {
+  using F = typename A::Fmt;
+
  public:
   Hit(sc_core::sc_module_name name, FrameCtx& fc, RtuChannels& ch, RtuStats& st, uint32_t latency)
       : SlotUnit(name, fc, ch, st, latency) {
@@ -150,7 +153,7 @@ class Hit : public SlotUnit {
     Done d;
     d.slot = s;
     if (!r.shadow && b.found)  // the unit's result for a primary hit (others: not read)
-      d.ss = hls::hit_shadow<A>(r.ray, b.t, ht, fc_.light, fc_.tmin, fc_.spawn);
+      d.ss = hls::hit_shadow<A>(r.ray, hls::key_t<F>(b.t), ht, fc_.light, fc_.tmin, fc_.spawn);
     pipe_.push(d, now + lat_);
     return true;
   }
@@ -232,7 +235,7 @@ class Hit : public SlotUnit {
       in.o[i] = r.ray.o[i];
       in.d[i] = r.ray.d[i];
     }
-    in.t = r.best.t;
+    in.t = hls::key_t<F>(r.best.t);
     in.k = ht.k;
     in.nu = ht.n_u;
     in.nv = ht.n_v;

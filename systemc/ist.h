@@ -76,7 +76,7 @@ class Ist : public sc_core::sc_module {
       o.pos = e.pos;
       if (!e.skip && x.exit == uint32_t(hls::IstExit::hit)) {
         o.hit = true;
-        o.t = x.t;
+        o.t = hls::t_key<F>(x.t);  // ist.v's F t as the key
         o.den = x.den;
         o.id = e.id;
         o.k = e.k;
@@ -133,7 +133,7 @@ class Ist : public sc_core::sc_module {
     Slot& r = ch_.slots[o.slot];
     if (o.hit) {
       Best& b = r.leaf;
-      if (!b.found || A::lt(o.t, b.t) || (A::eq(o.t, b.t) && o.pos < b.pos))
+      if (!b.found || hls::key_lt<F>(o.t, b.t) || (hls::eq<hls::KeyFormat<F>>(o.t, b.t) && o.pos < b.pos))
         b = Best{true, o.t, o.den, o.pos, o.id, o.k, o.nu, o.nv, o.nd};
     }
     if (++r.results == r.list_count) {
@@ -173,10 +173,10 @@ class Ist : public sc_core::sc_module {
     o.pos = q.pos;
     if (w.id != r.skip_id) {
       ++st_.tri_tests;
-      const hls::IstOut x = hls::ist_test<A>(w, r.ray.o, r.ray.d, r.ray.tmin, r.tmax, fc_.margins);
+      const hls::IstOut x = hls::ist_test_key<A>(w, r.ray.o, r.ray.d, r.ray.tmin, r.tmax, fc_.margins);
       if (x.exit == hls::IstExit::hit) {
         o.hit = true;
-        o.t = x.t;
+        o.t = x.tk;
         o.den = x.den;
         o.id = w.id;
         o.k = w.k;
@@ -205,7 +205,7 @@ class Ist : public sc_core::sc_module {
       in.d[i] = r.ray.d[i];
     }
     in.tmin = r.ray.tmin;
-    in.tmax = r.tmax;
+    in.tmax = hls::key_t<F>(r.tmax);  // ist.v (Wald's) compares in F: a Wald frame's keys are F values
     in.tag = next_tag_;
     Side& e = side_[next_tag_ % side_.size()];
     e = Side{q.slot, w.id == r.skip_id, q.pos, w.id, w.k, w.c[hls::kNU], w.c[hls::kNV], w.c[hls::kND]};

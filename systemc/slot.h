@@ -24,7 +24,7 @@ enum class SlotState : uint8_t { start, node, list, wait_ist, leaf_done, pop, do
 
 struct Best {
   bool found = false;
-  uint32_t t = 0, den = 0, pos = 0;
+  uint32_t t = 0, den = 0, pos = 0;  // t: the closest-hit key (hls::KeyFormat; its top bits the F t)
   uint32_t id = 0, k = 0, nu = 0, nv = 0, nd = 0;  // of the winning record
 };
 

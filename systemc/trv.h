@@ -25,6 +25,7 @@ namespace raycore::sc {
 
 template <class A>
 class Trv : public SlotUnit {
+  using F = typename A::Fmt;
  public:
   Trv(sc_core::sc_module_name name, FrameCtx& fc, RtuChannels& ch, RtuStats& st, uint32_t latency,
       uint32_t pipes, bool fuse)
@@ -101,7 +102,7 @@ class Trv : public SlotUnit {
         r.best = Best{};
         r.sp = 0;
         r.mbox_n = r.mbox_head = 0;
-        r.tmax = r.ray.tmax;
+        r.tmax = hls::t_key<F>(r.ray.tmax);  // a key (hls::KeyFormat), as the best record's t
         ++st_.trv_busy;
         if (fc_.empty_tree || !hls::trv_clip_box<A>(fc_.box_lo, fc_.box_hi, r.ray, r.tnear, r.tfar,
                                                              fc_.margins.widen_ulps))
@@ -351,7 +352,7 @@ class Trv : public SlotUnit {
 
   bool leaf_end(Out& o, Slot& r, uint32_t extra, bool fuse) {
     // A hit in this cell ends the walk; an any-hit shadow ray ends at its first leaf with a hit.
-    if (r.best.found && ((r.shadow && fc_.spawn.any_hit) || !A::lt(r.tfar, r.best.t)))
+    if (r.best.found && ((r.shadow && fc_.spawn.any_hit) || !hls::key_lt<F>(hls::t_key<F>(r.tfar), r.best.t)))
       return finish(o, r);
     return pop(o, r, extra, fuse);
   }
@@ -361,7 +362,7 @@ class Trv : public SlotUnit {
     if (r.sp == 0) return finish(o, r);
     const Slot::Entry e = r.stack[size_t(--r.sp)];
     ++st_.pops;
-    if (r.best.found && A::lt(r.best.t, e.tnear)) {
+    if (r.best.found && hls::key_lt<F>(r.best.t, hls::t_key<F>(e.tnear))) {
       r.state = SlotState::pop;
     } else {
       r.node = e.node;

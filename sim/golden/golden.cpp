@@ -50,6 +50,7 @@ class Tracer {
     uint32_t t = 0;
     uint32_t tri = 0;  // index into the triangle array
     uint32_t den = 0;
+    uint32_t tk = 0;   // t as the closest-hit key (hls::KeyFormat): what the compares see
   };
 
   // Closest hit in (r.tmin, r.tmax), skipping triangle id skip_id; with any_hit, the closest hit
@@ -63,7 +64,7 @@ class Tracer {
     };
     std::array<Entry, kStackDepth> stack;
     int sp = 0;
-    uint32_t tmax = r.tmax;
+    uint32_t tmax = hls::t_key<F>(r.tmax);  // a key: the ray's tmax, then the best hit's
     uint32_t node = 0;
     for (;;) {
       const NodeD& nd = nodes_[node];
@@ -90,17 +91,17 @@ class Tracer {
         const auto& tri = tris_[ti];
         if (tri.id == skip_id) continue;
         ++st.tri_tests;
-        const hls::IstOut o = hls::ist_test<A>(tri, r.o, r.d, r.tmin, tmax, m_);
+        const hls::IstOut o = hls::ist_test_key<A>(tri, r.o, r.d, r.tmin, tmax, m_);
         if (o.exit == hls::IstExit::hit) {
-          best = {true, o.t, ti, o.den};
-          tmax = o.t;
+          best = {true, o.t, ti, o.den, o.tk};
+          tmax = o.tk;
         }
       }
-      if (best.found && (any_hit || !A::lt(tfar, best.t))) break;  // the hit lies in this cell
+      if (best.found && (any_hit || !hls::key_lt<F>(hls::t_key<F>(tfar), best.tk))) break;  // the hit lies in this cell
       for (;;) {
         if (sp == 0) return best;
         const Entry e = stack[size_t(--sp)];
-        if (best.found && A::lt(best.t, e.tnear)) continue;  // beyond the hit: skip
+        if (best.found && hls::key_lt<F>(best.tk, hls::t_key<F>(e.tnear))) continue;  // beyond the hit: skip
         node = e.node;
         tnear = e.tnear;
         tfar = e.tfar;
@@ -290,7 +291,7 @@ class RaysT final : public HardwareRays::Impl {
     const hls::IstOut o = hls::ist_test<A>(tris_[size_t(tri)], pr.o, pr.d, pr.tmin, pr.tmax, margins_);
     IstVerdict v;
     v.hit = o.exit == hls::IstExit::hit;
-    if (o.exit != hls::IstExit::distance) v.t = A::to_double(o.t);
+    if (o.exit != hls::IstExit::distance) v.t = hls::to_double<hls::KeyFormat<F>>(o.tk);  // as compared
     return v;
   }
 

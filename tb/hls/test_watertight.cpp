@@ -17,6 +17,8 @@
 #include <cmath>
 #include <algorithm>
 #include <cstdint>
+#include <cstdio>
+#include <string>
 #include <vector>
 
 #include "hls/fp.h"
@@ -164,13 +166,17 @@ void no_vertex_leak(uint64_t seed) {
 TEST(Watertight, NoVertexLeakFp24Rtz) { no_vertex_leak<FP24, Rounding::rtz>(11); }
 TEST(Watertight, NoVertexLeakFp24Rne) { no_vertex_leak<FP24, Rounding::rne>(12); }
 
-// Inside hits with t near the exact one, outside misses, den and t = phase 1's of two sops
-// (ist_distance_sop): den = d_k + n_u d_u + n_v d_v rounded once, within an ulp of the exact sum.
+// Inside hits with t near the exact one, outside misses; den = d_k + n_u d_u + n_v d_v rounded
+// once (one sop), within an ulp of the exact sum; t is the key's top bits, and the key (t from the
+// sheared vertices in the shear format G) lies within a few ulps of G of the exact t of the ray the
+// format holds against the stored vertices.
 template <class F, Rounding R>
 void agrees_with_double(uint64_t seed) {
   using A = Arith<F, R>;
+  using K = KeyFormat<F>;
   Rng rng(seed);
   int inside = 0, outside = 0;
+  double worst = 0;  // the key's error in units of the bound below
   for (int i = 0; i < 20000; ++i) {
     const Tri tri = test::random_tri(rng, Vec3{uni(rng, -50, 50), uni(rng, -50, 50), uni(rng, -50, 50)}, 4);
     const WaldTri<F> w = make_wald<F, R>(tri, 0, IstKind::watertight);
@@ -188,13 +194,29 @@ void agrees_with_double(uint64_t seed) {
     const Vec3 o = p - dir * dist;
     const Ray r = make_ray<A>(o, dir);
     const IstOut x = ist_test<A>(w, r.o, r.d, r.tmin, r.tmax);
-    // den and t: phase 1 of two sops on the record's plane (its first three constants); den is the
-    // exact sum of the exact products rounded once.
-    const IstOut p1 = ist_distance_sop<A>(w.k, w.c, r.o, r.d, r.tmin, r.tmax);
-    EXPECT_EQ(x.den, p1.den);
-    EXPECT_EQ(x.t, p1.t);
-    const int ku = axis_u(w.k), kv = axis_v(w.k);
+    EXPECT_EQ(x.t, key_t<F>(x.tk));
+    // The exact t of the held ray on the stored vertices' plane (long double: 64-bit products of
+    // the format's values, a few roundings of 2^-64).
     auto ld = [](uint32_t v) { return static_cast<long double>(A::to_double(v)); };
+    long double vx[3][3], ro[3], rd[3];
+    for (int j = 0; j < 3; ++j)
+      for (int a = 0; a < 3; ++a) vx[j][a] = ld(w.c[3 + 3 * j + a]);
+    for (int a = 0; a < 3; ++a) {
+      ro[a] = ld(r.o[a]);
+      rd[a] = ld(r.d[a]);
+    }
+    long double e1[3], e2[3], nn[3];
+    for (int a = 0; a < 3; ++a) {
+      e1[a] = vx[1][a] - vx[0][a];
+      e2[a] = vx[2][a] - vx[0][a];
+    }
+    for (int a = 0; a < 3; ++a) nn[a] = e1[(a + 1) % 3] * e2[(a + 2) % 3] - e1[(a + 2) % 3] * e2[(a + 1) % 3];
+    long double num = 0, dn = 0;
+    for (int a = 0; a < 3; ++a) {
+      num += nn[a] * (vx[0][a] - ro[a]);
+      dn += nn[a] * rd[a];
+    }
+    const int ku = axis_u(w.k), kv = axis_v(w.k);
     const long double exact_den = ld(r.d[w.k]) + ld(w.c[kNU]) * ld(r.d[ku]) + ld(w.c[kNV]) * ld(r.d[kv]);
     const double den = A::to_double(x.den);
     if (den != 0) {
@@ -203,6 +225,15 @@ void agrees_with_double(uint64_t seed) {
     if (in) {
       ++inside;
       ASSERT_EQ(x.exit, IstExit::hit) << i;
+      // The key against the exact t: the shear's roundings of 2^-23 of the sheared magnitudes
+      // (the coordinates and the distance), over |d . n| >= 0.2 (bound: 2^(3 - 23) of them; an F-wide t errs 2^7 times more).
+      const long double te = num / dn;
+      const double mag0 = std::max({std::fabs(o.x), std::fabs(o.y), std::fabs(o.z), std::fabs(p.x),
+                                    std::fabs(p.y), std::fabs(p.z)});
+      const double bound = (mag0 + dist) * std::ldexp(1.0, 3 - K::man_bits);
+      const double err = std::fabs(double(static_cast<long double>(to_double<K>(x.tk)) - te));
+      worst = std::max(worst, err / bound);
+      EXPECT_LE(err, bound) << i;
       // o and d rounded: t errs by a few ulps of the coordinates over |d| = 1.
       const double mag = std::max({std::fabs(o.x), std::fabs(o.y), std::fabs(o.z), std::fabs(p.x), std::fabs(p.y),
                                    std::fabs(p.z)});
@@ -214,6 +245,8 @@ void agrees_with_double(uint64_t seed) {
   }
   EXPECT_GT(inside, 1000);
   EXPECT_GT(outside, 1000);
+  ::testing::Test::RecordProperty("worst_key_error_over_bound", std::to_string(worst));
+  std::printf("worst key error / bound: %.4f\n", worst);
 }
 TEST(Watertight, AgreesWithDoubleFp24Rtz) { agrees_with_double<FP24, Rounding::rtz>(21); }
 TEST(Watertight, AgreesWithDoubleFp24Rne) { agrees_with_double<FP24, Rounding::rne>(22); }
