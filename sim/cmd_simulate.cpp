@@ -21,7 +21,7 @@ using sim::make_parent;
 
 void run_simulate(const sim::RunOptions& o, const sc::SimOptions& so) {
   sim::TraceConfig cfg = sim::trace_config(o);
-  sc::SimConfig scfg = sc::finish_sim_options(so);
+  sc::SimConfig scfg = sc::resolved_ist_latency(sc::finish_sim_options(so), cfg.ist);
   scfg.progress = !o.quiet;
   sim::Prepared p = sim::prepare(o, cfg);
   const std::string tag = p.scene.name + "-" + sim::config_tag(cfg) + "-cycle";

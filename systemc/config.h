@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "hls/wald.h"
+
 namespace raycore::sc {
 
 // Registers per STAGES of each pipelined datapath (rtl/units/*.v): at pin level and in RTL a unit's
@@ -13,6 +15,13 @@ namespace raycore::sc {
 // shares its registers out by the logic of its sublevels (scripts/gen_hit.py: weights totalling
 // 47 registers for 95 FO4, plus the hit unit's registered slot read: 48, so 24 per STAGES).
 inline constexpr uint32_t kVtuLevels = 2, kIstLevels = 10, kHitLevels = 24, kRguLevels = 15;
+// ist_watertight.v's: the shear, the edge functions, det, Woop's T and its division, the key
+// compares (rtl/units/ist_watertight.v: 28 registers at STAGES 2).
+inline constexpr uint32_t kIstWatertightLevels = 14;
+// The ist pipeline of a record kind: its levels (ist.v's or ist_watertight.v's).
+inline constexpr uint32_t ist_levels(hls::IstKind k) {
+  return k == hls::IstKind::watertight ? kIstWatertightLevels : kIstLevels;
+}
 // The least trv_latency + node cache hit latency that rtl/units/trv_unit.v runs: it writes an
 // inner node's split back at the end of the fifth cycle after the pass (the node read a cycle
 // after the pass, the outcome and the split's first level in the next, its second level, its
@@ -105,7 +114,8 @@ struct SimConfig {
                                  //   a miss misses again, a hit is not closer than the best)
   uint32_t ist_units = 4;        // intersection pipelines per RTU (tests issued per cycle),
                                  //   sharing the triangle cache's ports
-  uint32_t ist_latency = 20;     // rtl/units/ist.v (and ist_watertight.v): 10 levels x STAGES 2
+  uint32_t ist_latency = 0;      // 0: the record kind's pipeline at STAGES 2 (resolved_ist_latency:
+                                 //   ist.v's 10 levels, 20 cycles; ist_watertight.v's 14, 28)
   UnitView ist_view = UnitView::model;
   // trv: the transaction model (systemc/trv.h) or rtl/units/trv_unit.v Verilated (no pin-level
   // twin: the transaction model is its twin; systemc/trv_rtl.h).
@@ -159,5 +169,11 @@ struct RtuStats {
   uint64_t vtu_paired = 0, vtu_fill_waits = 0;
   CacheStats node, list, tri;
 };
+
+// cfg with ist_latency 0 resolved to the record kind's pipeline at STAGES 2 (ist_levels x 2).
+inline SimConfig resolved_ist_latency(SimConfig cfg, hls::IstKind kind) {
+  if (cfg.ist_latency == 0) cfg.ist_latency = 2 * ist_levels(kind);
+  return cfg;
+}
 
 }  // namespace raycore::sc

@@ -66,7 +66,7 @@ class HitRtlT final : public HitRtl {
         set_bits(m_.rd_i, i * W, W, r.ray.o[i]);
         set_bits(m_.rd_i, (3 + i) * W, W, r.ray.d[i]);
       }
-      vl::set_best(m_.rd_i, 6 * W, W, r.best);
+      vl::set_best(m_.rd_i, 6 * W, W, r.best, 0, W <= 24 ? 7 : 0);  // hit_unit.v's t: the key's top bits
       set_bits(m_.rd_i, 6 * W + BW, 1, r.shadow);
       m_.eval();
       probe_.in = true;

@@ -23,8 +23,12 @@ using vl::set_bits;
 template <class M, unsigned W, unsigned SLOT_BITS, unsigned IST, unsigned PIPES, unsigned WORDS,
           unsigned QBITS, unsigned RPL, unsigned HLBITS, unsigned WT>
 class IstRtlT final : public IstRtl {
-  static constexpr unsigned BW = 67 + 5 * W;  // a result record
-  static constexpr unsigned RW = 32 + 8 * W;  // a ray read
+  // The closest-hit key's extension bits (hls::KeyFormat: 7 for FP24, 0 for FP32); ist_unit.v's
+  // (TX_): the watertight test's t carries them, Wald's is F's (the key's top bits).
+  static constexpr unsigned KX = W <= 24 ? 7 : 0;
+  static constexpr unsigned TX = WT ? KX : 0, DROP = KX - TX, KW = W + TX;
+  static constexpr unsigned BW = 67 + 4 * W + KW;  // a result record
+  static constexpr unsigned RW = 32 + 7 * W + KW;  // a ray read
   static constexpr hls::IstKind KIND = WT ? hls::IstKind::watertight : hls::IstKind::wald;
   static constexpr unsigned RB =  // a triangle record's bytes
       unsigned(W <= 24 ? hls::tri_record_bytes<hls::FP24>(KIND) : hls::tri_record_bytes<hls::FP32>(KIND));
@@ -80,10 +84,11 @@ class IstRtlT final : public IstRtl {
     for (unsigned u = 0; u < IST; ++u) {
       if (!get_bits(m_.acc_valid_o, u, 1)) break;  // the units that take an entry: a prefix
       const Slot& r = ch_.slots[get_bits(m_.ray_slot_o, u * SLOT_BITS, SLOT_BITS)];
-      const uint32_t f[8] = {r.ray.o[0], r.ray.o[1], r.ray.o[2], r.ray.d[0],
-                             r.ray.d[1], r.ray.d[2], r.ray.tmin, r.tmax};
-      for (unsigned i = 0; i < 8; ++i) set_bits(m_.ray_i, u * RW + i * W, W, f[i]);
-      set_bits(m_.ray_i, u * RW + 8 * W, 32, r.skip_id);
+      const uint32_t f[7] = {r.ray.o[0], r.ray.o[1], r.ray.o[2], r.ray.d[0],
+                             r.ray.d[1], r.ray.d[2], r.ray.tmin};
+      for (unsigned i = 0; i < 7; ++i) set_bits(m_.ray_i, u * RW + i * W, W, f[i]);
+      set_bits(m_.ray_i, u * RW + 7 * W, KW, r.tmax >> DROP);  // the key (Wald's: its F top bits)
+      set_bits(m_.ray_i, u * RW + 7 * W + KW, 32, r.skip_id);
     }
     bool any = false;
     for (unsigned u = 0; u < IST; ++u) {
@@ -99,7 +104,7 @@ class IstRtlT final : public IstRtl {
     m_.eval();
     for (unsigned u = 0; u < IST; ++u) {
       if (!get_bits(m_.res_valid_o, u, 1)) continue;
-      const Best x = vl::get_best(m_.res_rec_o, u * BW, W);  // its top bit 1: a result
+      const Best x = vl::get_best(m_.res_rec_o, u * BW, W, TX, DROP);  // its top bit 1: a result
       const IstRes o{uint16_t(get_bits(m_.res_slot_o, u * SLOT_BITS, SLOT_BITS)),
                      get_bits(m_.res_hit_o, u, 1) != 0, x.pos, x.t, x.den, x.id, x.k, x.nu, x.nv,
                      x.nd};

@@ -10,11 +10,14 @@
 
 namespace raycore::sc::vl {
 
-// A hit record {found, t, den, pos, id, k, nu, nv, nd}, nd lowest, 67 + 5W bits from bit lo:
-// trv_unit's res_rec_i (found = 1 for every result) and best_o, ist_unit's res_rec_o, the best
-// record in hit_unit's rd_i.
+// A hit record {found, t, den, pos, id, k, nu, nv, nd}, nd lowest, 67 + 4W + (W + tx) bits from bit
+// lo: trv_unit's res_rec_i (found = 1 for every result) and best_o, ist_unit's res_rec_o, the best
+// record in hit_unit's rd_i. The record's t is the closest-hit key (hls::KeyFormat) with tx
+// extension bits below F's t: the model's key (Best::t) shifted right by `drop` bits (the key's
+// extension bits less tx; a unit with tx 0 holds the key's top bits, F's t: exact for a Wald
+// frame's keys, the hit unit's t for any).
 template <class T>
-void set_best(T& port, unsigned lo, unsigned w, const Best& b) {
+void set_best(T& port, unsigned lo, unsigned w, const Best& b, unsigned tx = 0, unsigned drop = 0) {
   set_bits(port, lo, w, b.nd);
   set_bits(port, lo + w, w, b.nv);
   set_bits(port, lo + 2 * w, w, b.nu);
@@ -22,11 +25,11 @@ void set_best(T& port, unsigned lo, unsigned w, const Best& b) {
   set_bits(port, lo + 3 * w + 2, 32, b.id);
   set_bits(port, lo + 3 * w + 34, 32, b.pos);
   set_bits(port, lo + 3 * w + 66, w, b.den);
-  set_bits(port, lo + 4 * w + 66, w, b.t);
-  set_bits(port, lo + 5 * w + 66, 1, b.found);
+  set_bits(port, lo + 4 * w + 66, w + tx, b.t >> drop);
+  set_bits(port, lo + 5 * w + tx + 66, 1, b.found);
 }
 template <class T>
-Best get_best(const T& port, unsigned lo, unsigned w) {
+Best get_best(const T& port, unsigned lo, unsigned w, unsigned tx = 0, unsigned drop = 0) {
   Best b;
   b.nd = get_bits(port, lo, w);
   b.nv = get_bits(port, lo + w, w);
@@ -35,8 +38,8 @@ Best get_best(const T& port, unsigned lo, unsigned w) {
   b.id = get_bits(port, lo + 3 * w + 2, 32);
   b.pos = get_bits(port, lo + 3 * w + 34, 32);
   b.den = get_bits(port, lo + 3 * w + 66, w);
-  b.t = get_bits(port, lo + 4 * w + 66, w);
-  b.found = get_bits(port, lo + 5 * w + 66, 1) != 0;
+  b.t = get_bits(port, lo + 4 * w + 66, w + tx) << drop;
+  b.found = get_bits(port, lo + 5 * w + tx + 66, 1) != 0;
   return b;
 }
 

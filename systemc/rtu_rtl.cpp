@@ -396,7 +396,7 @@ class RtuRtlRunner {
     if (o.valid) {
       o.pixel = get_bits(m.px_pixel_o, 0, 32);  // y * width + x (rgu.v)
       o.shadow = m.px_shadow_o != 0;
-      o.best = vl::get_best(m.px_best_o, 0, W);
+      o.best = vl::get_best(m.px_best_o, 0, W, 0, W <= 24 ? 7 : 0);  // rtu.v's t (Wald's: F's) as the key
       o.best_bits = m.px_best_o;
       for (unsigned i = 0; i < 3; ++i) o.ss.h[i] = get_bits(m.px_h_o, i * W, W);
       o.ss.front = m.px_front_o;

@@ -22,7 +22,10 @@ using vl::set_bits;
 
 template <class M, unsigned W, unsigned SLOT_BITS, unsigned PIPES, unsigned IST, unsigned WORDS>
 class TrvRtlT final : public TrvRtl {
-  static constexpr unsigned BW = 67 + 5 * W;
+  // The closest-hit key's extension bits (hls::KeyFormat), as trv_unit.cmake builds every model
+  // (TX: 7 for FP24, 0 for FP32): the slots' tmax and the records' t are the model's keys.
+  static constexpr unsigned TX = W <= 24 ? 7 : 0, KW = W + TX;
+  static constexpr unsigned BW = 67 + 4 * W + KW;
 
  public:
   TrvRtlT(const char* name, FrameCtx& fc, RtuChannels& ch, const SimConfig& cfg)
@@ -74,7 +77,7 @@ class TrvRtlT final : public TrvRtl {
       set_bits(m_.res_slot_i, u * SLOT_BITS, SLOT_BITS, o.slot);
       set_bits(m_.res_hit_i, u, 1, o.hit);
       // The record with its top bit 1 (a result), as ist_unit.v puts it out.
-      vl::set_best(m_.res_rec_i, u * BW, W, Best{true, o.t, o.den, o.pos, o.id, o.k, o.nu, o.nv, o.nd});
+      vl::set_best(m_.res_rec_i, u * BW, W, Best{true, o.t, o.den, o.pos, o.id, o.k, o.nu, o.nv, o.nd}, TX);
     }
     const bool had_results = !results_.empty();
     results_.clear();
@@ -130,7 +133,7 @@ class TrvRtlT final : public TrvRtl {
       const uint32_t n = get_bits(m_.ist_n_o, p * 6, 6);
       if (n == 0) continue;
       const uint16_t s = uint16_t(get_bits(m_.ist_slot_o, p * SLOT_BITS, SLOT_BITS));
-      ch_.slots[s].tmax = get_bits(m_.ist_tmax_o, p * W, W);  // the leaf-entry tmax it tests with
+      ch_.slots[s].tmax = get_bits(m_.ist_tmax_o, p * KW, KW);  // the leaf-entry tmax (a key) it tests with
       const uint32_t pos = get_bits(m_.ist_pos_o, p * 32, 32);
       const Cycle ready = at(now, get_bits(m_.ist_ready_o, p * 32, 32));
       for (uint32_t i = 0; i < n; ++i)
@@ -143,7 +146,7 @@ class TrvRtlT final : public TrvRtl {
       any = true;
       const uint16_t s = uint16_t(get_bits(m_.fin_slot_o, p * SLOT_BITS, SLOT_BITS));
       Slot& r = ch_.slots[s];
-      r.best = vl::get_best(m_.best_o, p * BW, W);
+      r.best = vl::get_best(m_.best_o, p * BW, W, TX);
       r.state = SlotState::done;
       ch_.hit_q.push(s, at(now, m_.fin_ready_o));
     }

@@ -40,8 +40,9 @@
 // docs/area.md. Each ist.v carries its test's side data (slot, skip,
 // list position, the record's id, k and plane) as its tag. Parameters: SLOT_BITS, IST, PIPES and
 // WORDS (the hand-off: trv_unit's), RPL (triangle records per cache line, a power of two),
-// WATERTIGHT (0: Wald's records and ist.v; 1: watertight records, the plane and the vertices, and
-// ist_watertight.v: --ist watertight; the same latency, 10 x STAGES, the margin registers unused).
+// WATERTIGHT (0: Wald's records and ist.v, latency 10 x STAGES; 1: watertight records, the plane
+// and the vertices, and ist_watertight.v: --ist watertight, latency 14 x STAGES, the margin
+// registers unused, tmax and the results' t as keys of 7 more mantissa bits for FP24: TX_).
 // lint: also SLOT_BITS=7 IST=4 PIPES=4 WORDS=16 QBITS=6 RPL=2 HLBITS=4 STAGES=2
 // lint: also EXP_BITS=8 MAN_BITS=23 RNE=1 SLOT_BITS=7 IST=4 PIPES=4 WORDS=16 QBITS=6 RPL=1 HLBITS=4 STAGES=2
 // lint: also IST=1 PIPES=1 WORDS=1 RPL=1 HLBITS=1 STAGES=0 ENTRY_REG=0
@@ -67,6 +68,10 @@ module ist_unit #(
   parameter integer WATERTIGHT = 0,
   // Derived (not to be overridden): the record layout of hls/wald.h and the widths.
   parameter integer W_        = 1 + EXP_BITS + MAN_BITS,
+  // The closest-hit key's extension bits below t (hls::KeyFormat): ist_watertight.v's t carries
+  // the shear format's mantissa (7 more bits for FP24); Wald's t is F's (TX 0, the key = t).
+  parameter integer TX_       = (WATERTIGHT != 0 && MAN_BITS < 23) ? 23 - MAN_BITS : 0,
+  parameter integer KW_       = W_ + TX_,
   parameter integer CB_       = (W_ <= 24) ? 3 : 4,               // bytes per constant
   parameter integer NC_       = (WATERTIGHT != 0) ? 12 : 9,       // constants per record
   parameter integer IDOFF_    = ((NC_ * CB_ + 1 + 3) / 4) * 4,    // the id's byte offset
@@ -89,20 +94,21 @@ module ist_unit #(
   input  wire [PIPES*32-1:0]             hin_ready_i,
   input  wire [PIPES*32*WORDS-1:0]       hin_words_i,
   output wire [15:0]                     room_o,
-  // The ray of unit u's entry: {skip_id[31:0], tmax, tmin, d z y x, o z y x} (o x lowest).
+  // The ray of unit u's entry: {skip_id[31:0], tmax, tmin, d z y x, o z y x} (o x lowest; tmax a
+  // key of KW_ bits).
   output wire [IST*SLOT_BITS-1:0]        ray_slot_o,
-  input  wire [IST*(32+8*W_)-1:0]        ray_i,
+  input  wire [IST*(32+7*W_+KW_)-1:0]    ray_i,
   // Triangle-cache accesses, one per unit (line index), same-cycle responses (the whole line).
   output wire [IST-1:0]                  acc_valid_o,
   output wire [IST*32-1:0]               acc_line_o,
   input  wire [IST-1:0]                  rsp_hit_i,
   input  wire [IST*LINE_W_-1:0]          rsp_data_i,
-  // Results leaving (trv_unit's res_*): {1, t, den, pos, id, k, nu, nv, nd}, zero but pos and
-  // the top bit when not a hit.
+  // Results leaving (trv_unit's res_*): {1, t, den, pos, id, k, nu, nv, nd} (t the key, KW_ bits),
+  // zero but pos and the top bit when not a hit.
   output wire [IST-1:0]                  res_valid_o,
   output wire [IST*SLOT_BITS-1:0]        res_slot_o,
   output wire [IST-1:0]                  res_hit_o,
-  output wire [IST*(67+5*W_)-1:0]        res_rec_o,
+  output wire [IST*(67+4*W_+KW_)-1:0]    res_rec_o,
   // The queue's head (the cycle model's next event) and tests or results inside.
   output wire                            head_valid_o,
   output wire [31:0]                     head_ready_o,
@@ -115,16 +121,18 @@ module ist_unit #(
 );
 
   localparam integer W   = W_;
-  localparam integer BW  = 67 + 5 * W;
+  localparam integer KW  = KW_;
+  localparam integer LV  = (WATERTIGHT != 0) ? 14 : 10;  // ist_watertight.v's or ist.v's levels
+  localparam integer BW  = 67 + 4 * W + KW;
   localparam integer QN  = 1 << QBITS;
   localparam integer HN  = 1 << HLBITS;
-  localparam integer RW  = 32 + 8 * W;
+  localparam integer RW  = 32 + 7 * W + KW;
   localparam integer TW  = SLOT_BITS + 1 + 32 + 32 + 2 + 3 * W;  // ist.v's tag: the side data
   localparam integer RESW = 1 + SLOT_BITS + BW;                  // a result: {hit, slot, rec}
   localparam integer RPLB = (RPL > 1) ? $clog2(RPL) : 1;
   localparam integer SW  = SLOT_BITS + 1 + 32 + 32;              // {slot, skip, pos, id}
   localparam integer NC  = NC_;
-  localparam integer EW  = 2 + NC * W + 8 * W + SW;              // a test entering the datapath
+  localparam integer EW  = 2 + NC * W + 7 * W + KW + SW;              // a test entering the datapath
 
   // ---- the queue --------------------------------------------------------------------------------
   // Entry e's values after this edge (its registers, or what this cycle's pushes write into them:
@@ -205,11 +213,11 @@ module ist_unit #(
       wire [1:0]    k  = rec[NC*8*CB_ +: 2];
       wire [31:0]   id = rec[8*IDOFF_ +: 32];
       wire [RW-1:0] ray = ray_i[u*RW +: RW];
-      wire          skip = (id == ray[8*W +: 32]);
+      wire          skip = (id == ray[7*W+KW +: 32]);
       // The test entering the datapath: {k, c_{NC-1} .. c_0, the ray, slot, skip, list position,
       // id}; the side data rides as its tag (with k and the plane c0 .. c2, taken from the record
       // here).
-      wire [EW-1:0] ein = {k, cs, ray[0 +: 8*W], w_slot_q[u], skip, upos, id};
+      wire [EW-1:0] ein = {k, cs, ray[0 +: 7*W+KW], w_slot_q[u], skip, upos, id};
       wire          ev;
       wire [EW-1:0] ed;
       if (ENTRY_REG != 0) begin : g_ereg  // registered: ist.v's level 1 starts from a register
@@ -225,22 +233,23 @@ module ist_unit #(
         assign ev = hit[u];
         assign ed = ein;
       end
-      wire [8*W-1:0] eray = ed[SW +: 8*W];  // the ray without its skip id
+      wire [7*W+KW-1:0] eray = ed[SW +: 7*W+KW];  // the ray without its skip id
       // A test counts as it enters ist.v (with ENTRY_REG a cycle after the access: the skip
       // test's compare is off the triangle cache's path).
       assign test[u] = ev && !ed[64];  // ed[0 +: SW] = {slot, skip, pos, id}
-      wire [NC*W-1:0] ec = ed[SW + 8*W +: NC*W];
+      wire [NC*W-1:0] ec = ed[SW + 7*W+KW +: NC*W];
       wire [TW-1:0] itag = {ed[0 +: SW], ed[EW-1 -: 2], ec[0 +: W], ec[W +: W], ec[2*W +: W]};
       // The datapath.
       wire          o_valid, o_ready_unused;
       wire [2:0]    o_exit;
-      wire [W-1:0]  o_t, o_den;
+      wire [W-1:0]  o_den;
+      wire [KW-1:0] o_tk;  // t as the key
       wire [TW-1:0] o_tag;
       // The side data beside the test, not through it: ist.v never stalls here (out_ready 1), so
-      // its latency is exactly 10 x STAGES and one fp_delay memory of that depth holds the tag
+      // its latency is exactly LV x STAGES and one fp_delay memory of that depth holds the tag
       // (ist.v's own carries are fp_delay memories too, FREE = 1).
       wire          s_valid_unused, s_ready_unused, o_tag0_unused;
-      fp_delay #(.WIDTH(TW), .STAGES(10 * STAGES), .FREE(1)) u_side (
+      fp_delay #(.WIDTH(TW), .STAGES(LV * STAGES), .FREE(1)) u_side (
         .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(ev), .in_ready_o(s_ready_unused),
         .in_data_i(itag), .out_valid_o(s_valid_unused), .out_ready_i(1'b1), .out_data_o(o_tag));
       if (WATERTIGHT != 0) begin : g_wt  // the plane, then the vertices A, B, C ({z, y, x} each)
@@ -250,10 +259,11 @@ module ist_unit #(
           .in_k_i(ed[EW-1 -: 2]), .in_nu_i(ec[0 +: W]), .in_nv_i(ec[W +: W]), .in_nd_i(ec[2*W +: W]),
           .in_va_i(ec[3*W +: 3*W]), .in_vb_i(ec[6*W +: 3*W]), .in_vc_i(ec[9*W +: 3*W]),
           .in_o_i(eray[0 +: 3*W]), .in_d_i(eray[3*W +: 3*W]),
-          .in_tmin_i(eray[6*W +: W]), .in_tmax_i(eray[7*W +: W]), .in_tag_i(1'b0),
-          .out_valid_o(o_valid), .out_ready_i(1'b1), .out_exit_o(o_exit), .out_t_o(o_t),
-          .out_den_o(o_den), .out_tag_o(o_tag0_unused));
-        wire unused_eps = ^{eps_i, one_eps_i};  // Wald's margin registers
+          .in_tmin_i(eray[6*W +: W]), .in_tmax_i(eray[7*W +: KW]), .in_tag_i(1'b0),
+          .out_valid_o(o_valid), .out_ready_i(1'b1), .out_exit_o(o_exit), .out_t_o(o_t_unused),
+          .out_tk_o(o_tk), .out_den_o(o_den), .out_tag_o(o_tag0_unused));
+        wire [W-1:0] o_t_unused;  // the key's top bits: the key goes on whole
+        wire unused_eps = ^{eps_i, one_eps_i, o_t_unused};  // Wald's margin registers
       end else begin : g_wald
         ist #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(STAGES),
               .TAG_BITS(1), .FREE(1)) u_ist (
@@ -264,17 +274,23 @@ module ist_unit #(
           .in_c7_i(ec[7*W +: W]), .in_c8_i(ec[8*W +: W]),
           .in_o_x_i(eray[0 +: W]), .in_o_y_i(eray[W +: W]), .in_o_z_i(eray[2*W +: W]),
           .in_d_x_i(eray[3*W +: W]), .in_d_y_i(eray[4*W +: W]), .in_d_z_i(eray[5*W +: W]),
-          .in_tmin_i(eray[6*W +: W]), .in_tmax_i(eray[7*W +: W]), .in_tag_i(1'b0),
-          .out_valid_o(o_valid), .out_ready_i(1'b1), .out_exit_o(o_exit), .out_t_o(o_t),
+          .in_tmin_i(eray[6*W +: W]), .in_tmax_i(eray[7*W+KW-W +: W]), .in_tag_i(1'b0),
+          .out_valid_o(o_valid), .out_ready_i(1'b1), .out_exit_o(o_exit), .out_t_o(o_tk[KW-1 -: W]),
           .out_den_o(o_den), .out_tag_o(o_tag0_unused));
+        // Wald's t as the key: F's value, the extension bits zero (hls::t_key); its tmax is the
+        // key's top bits (a Wald frame's keys are F values).
+        if (KW > W) begin : g_ext
+          assign o_tk[KW-W-1:0] = {(KW-W){1'b0}};
+          wire unused_ext = ^eray[7*W +: KW-W];
+        end
       end
       // The result as the trv takes it: {hit, slot, {1, t, den, pos, id, k, nu, nv, nd}}.
       wire [SLOT_BITS-1:0] t_slot = o_tag[TW-1 -: SLOT_BITS];
       wire          t_skip = o_tag[TW-1-SLOT_BITS];
       wire [31:0]   t_pos  = o_tag[3*W+2+32 +: 32];
       wire          t_hit  = !t_skip && (o_exit == 3'd0);
-      wire [BW-1:0] t_rec  = t_hit ? {1'b1, o_t, o_den, t_pos, o_tag[3*W +: 34], o_tag[0 +: 3*W]}
-                                   : {1'b1, {(2*W){1'b0}}, t_pos, {(34+3*W){1'b0}}};
+      wire [BW-1:0] t_rec  = t_hit ? {1'b1, o_tk, o_den, t_pos, o_tag[3*W +: 34], o_tag[0 +: 3*W]}
+                                   : {1'b1, {(KW+W){1'b0}}, t_pos, {(34+3*W){1'b0}}};
       assign g_out_v[u] = o_valid;
       assign g_out_r[u*RESW +: RESW] = {t_hit, t_slot, t_rec};
     end

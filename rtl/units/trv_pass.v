@@ -45,12 +45,17 @@
 // below the next cycle's is taken then: trv_unit's head window is refilled at the edge.)
 //
 // Ray states (trv_unit's st encoding): 0 start, 1 node, 2 list, 3 wait_ist, 4 leaf_done, 5 pop,
-// 6 done. Best record, packed {found, t, den, pos[31:0], id[31:0], k[1:0], nu, nv, nd}.
+// 6 done. Best record, packed {found, t, den, pos[31:0], id[31:0], k[1:0], nu, nv, nd}, its t and
+// tmax the closest-hit key (hls::KeyFormat: TX extension bits below F's t, KW = W + TX bits; the
+// comparisons with tfar and tnear see those widened, {x, TX zeros}: hls::t_key).
 // mid_o / mid_i: {st, node, tnear, tfar, tmax, sp, first, count, pos, push, fin, lreq, node read,
-// fused, empty leaf's finish, second pop's skip, second pop's entry, ray o d inv}, 177 + 14 W bits.
+// fused, empty leaf's finish, second pop's skip, second pop's entry, ray o d inv}, 177 + 13 W + KW
+// bits.
 module trv_pass #(
   parameter integer EXP_BITS = 7,
-  parameter integer MAN_BITS = 16
+  parameter integer MAN_BITS = 16,
+  parameter integer TX       = 0,   // the key's extension bits (0: the key is F's t)
+  parameter integer KW_      = 1 + EXP_BITS + MAN_BITS + TX  // derived: the key's width
 ) (
   // ---- the pass (cycle c) ----
   input  wire                          go_i,         // this pipe takes a ray this cycle
@@ -65,10 +70,10 @@ module trv_pass #(
   input  wire [31:0]                   node_i,
   input  wire [EXP_BITS+MAN_BITS:0]    tnear_i,
   input  wire [EXP_BITS+MAN_BITS:0]    tfar_i,
-  input  wire [EXP_BITS+MAN_BITS:0]    tmax_i,
+  input  wire [KW_-1:0]                tmax_i,
   input  wire [6:0]                    sp_i,
-  input  wire [67+5*(1+EXP_BITS+MAN_BITS)-1:0] best_i,
-  input  wire [67+5*(1+EXP_BITS+MAN_BITS)-1:0] leaf_i,
+  input  wire [67+4*(1+EXP_BITS+MAN_BITS)+KW_-1:0] best_i,
+  input  wire [67+4*(1+EXP_BITS+MAN_BITS)+KW_-1:0] leaf_i,
   input  wire [31:0]                   first_i,      // leaf list: first index, count, position
   input  wire [31:0]                   count_i,
   input  wire [31:0]                   pos_i,
@@ -79,14 +84,14 @@ module trv_pass #(
   output wire                          acc_a_valid_o,
   output wire [31:0]                   acc_a_byte_o,
   // The record's best and tmax (written when go_i), what the outcome needs, the pass's counters.
-  output reg  [67+5*(1+EXP_BITS+MAN_BITS)-1:0] best_o,
-  output reg  [EXP_BITS+MAN_BITS:0]    tmax_o,
-  output wire [177+14*(1+EXP_BITS+MAN_BITS)-1:0] mid_o,
+  output reg  [67+4*(1+EXP_BITS+MAN_BITS)+KW_-1:0] best_o,
+  output reg  [KW_-1:0]                tmax_o,
+  output wire [177+13*(1+EXP_BITS+MAN_BITS)+KW_-1:0] mid_o,
   output reg                           busy_o,
   output reg                           pops_o,
   output reg                           fused_o,
   // ---- the outcome (cycle c + 1) ----
-  input  wire [177+14*(1+EXP_BITS+MAN_BITS)-1:0] mid_i,
+  input  wire [177+13*(1+EXP_BITS+MAN_BITS)+KW_-1:0] mid_i,
   input  wire                          rsp_a_hit_i,  // the node read's answer (registered)
   input  wire [63:0]                   rsp_a_node_i,
   input  wire [31:0]                   lbl_i,
@@ -103,7 +108,7 @@ module trv_pass #(
   output reg  [31:0]                   first_o,
   output reg  [31:0]                   count_o,
   output reg  [31:0]                   pos_o,
-  output wire [EXP_BITS+MAN_BITS:0]    out_tmax_o,   // tmax after the pass (the ist's hand-off)
+  output wire [KW_-1:0]                out_tmax_o,   // tmax after the pass (the ist's hand-off)
   output reg                           wr_leaf_o,
   // An inner node: the split's inputs (trv.v op 0, in trv_unit from here); its results replace
   // node_o, tnear_o, tfar_o and push the far child at sp_o (sp_o + 1 after).
@@ -130,17 +135,18 @@ module trv_pass #(
 );
 
   localparam integer W  = 1 + EXP_BITS + MAN_BITS;
-  localparam integer BW = 67 + 5 * W;
+  localparam integer KW = KW_;
+  localparam integer BW = 67 + 4 * W + KW;
   localparam integer EW = 32 + 2 * W;
-  localparam integer MW = 177 + 14 * W;
+  localparam integer MW = 177 + 13 * W + KW;
   localparam [2:0] S_START = 3'd0, S_NODE = 3'd1, S_LIST = 3'd2, S_LEAF_DONE = 3'd4,
                    S_POP = 3'd5, S_DONE = 3'd6;
 
   // Fields of the packed records.
   wire         best_found = best_i[BW-1];
-  wire [W-1:0] best_t     = best_i[BW-2 -: W];
+  wire [KW-1:0] best_t    = best_i[BW-2 -: KW];
   wire         leaf_found = leaf_i[BW-1];
-  wire [W-1:0] leaf_t     = leaf_i[BW-2 -: W];
+  wire [KW-1:0] leaf_t    = leaf_i[BW-2 -: KW];
   wire [31:0]  e1_node    = e1_i[EW-1 -: 32];
   wire [W-1:0] e1_tnear   = e1_i[2*W-1 -: W];
   wire [W-1:0] e1_tfar    = e1_i[W-1:0];
@@ -153,28 +159,33 @@ module trv_pass #(
   // The best hit as the pass sees it: a leaf_done pass takes the leaf's result first.
   wire         take_leaf = (st_i == S_LEAF_DONE) && leaf_found;
   wire         bf = take_leaf ? 1'b1 : best_found;
-  wire [W-1:0] bt = take_leaf ? leaf_t : best_t;
+  wire [KW-1:0] bt = take_leaf ? leaf_t : best_t;
+  // An F value as a key (hls::t_key): the extension bits zero.
+  function automatic [KW-1:0] key(input [W-1:0] x);
+    key = {KW{1'b0}};
+    key[KW-1 -: W] = x;
+  endfunction
 
-  // Four comparisons: leaf_end against the ray's interval or the first popped entry's, pop
-  // against the first or the second entry.
+  // Four comparisons, of keys: leaf_end against the ray's interval or the first popped entry's,
+  // pop against the first or the second entry.
   wire c_tfar_lt, c_e1tfar_lt, c_e1_lt, c_e2_lt;
-  wire [W-1:0] u_min0, u_max0, u_min1, u_max1, u_min2, u_max2, u_min3, u_max3;
+  wire [KW-1:0] u_min0, u_max0, u_min1, u_max1, u_min2, u_max2, u_min3, u_max3;
   wire [3:0] u_eq, u_rdy, u_vld;
-  fp_cmp_nt #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .STAGES(0)) u_c0 (
-    .clk_i(1'b0), .rst_ni(1'b1), .in_valid_i(1'b1), .in_ready_o(u_rdy[0]), .in_a_i(tfar_i),
+  fp_cmp_nt #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS+TX), .STAGES(0)) u_c0 (
+    .clk_i(1'b0), .rst_ni(1'b1), .in_valid_i(1'b1), .in_ready_o(u_rdy[0]), .in_a_i(key(tfar_i)),
     .in_b_i(bt), .out_valid_o(u_vld[0]), .out_ready_i(1'b1), .out_lt_o(c_tfar_lt),
     .out_eq_o(u_eq[0]), .out_min_o(u_min0), .out_max_o(u_max0));
-  fp_cmp_nt #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .STAGES(0)) u_c1 (
-    .clk_i(1'b0), .rst_ni(1'b1), .in_valid_i(1'b1), .in_ready_o(u_rdy[1]), .in_a_i(e1_tfar),
+  fp_cmp_nt #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS+TX), .STAGES(0)) u_c1 (
+    .clk_i(1'b0), .rst_ni(1'b1), .in_valid_i(1'b1), .in_ready_o(u_rdy[1]), .in_a_i(key(e1_tfar)),
     .in_b_i(bt), .out_valid_o(u_vld[1]), .out_ready_i(1'b1), .out_lt_o(c_e1tfar_lt),
     .out_eq_o(u_eq[1]), .out_min_o(u_min1), .out_max_o(u_max1));
-  fp_cmp_nt #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .STAGES(0)) u_c2 (
+  fp_cmp_nt #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS+TX), .STAGES(0)) u_c2 (
     .clk_i(1'b0), .rst_ni(1'b1), .in_valid_i(1'b1), .in_ready_o(u_rdy[2]), .in_a_i(bt),
-    .in_b_i(e1_tnear), .out_valid_o(u_vld[2]), .out_ready_i(1'b1), .out_lt_o(c_e1_lt),
+    .in_b_i(key(e1_tnear)), .out_valid_o(u_vld[2]), .out_ready_i(1'b1), .out_lt_o(c_e1_lt),
     .out_eq_o(u_eq[2]), .out_min_o(u_min2), .out_max_o(u_max2));
-  fp_cmp_nt #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .STAGES(0)) u_c3 (
+  fp_cmp_nt #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS+TX), .STAGES(0)) u_c3 (
     .clk_i(1'b0), .rst_ni(1'b1), .in_valid_i(1'b1), .in_ready_o(u_rdy[3]), .in_a_i(bt),
-    .in_b_i(e2_tnear), .out_valid_o(u_vld[3]), .out_ready_i(1'b1), .out_lt_o(c_e2_lt),
+    .in_b_i(key(e2_tnear)), .out_valid_o(u_vld[3]), .out_ready_i(1'b1), .out_lt_o(c_e2_lt),
     .out_eq_o(u_eq[3]), .out_min_o(u_min3), .out_max_o(u_max3));
   wire unused_cmp = ^{u_min0, u_max0, u_min1, u_max1, u_min2, u_max2, u_min3, u_max3, u_eq, u_rdy,
                       u_vld};
@@ -210,7 +221,7 @@ module trv_pass #(
           busy_o = 1'b1;
           best_o = {BW{1'b0}};
           p_sp = 7'd0;
-          tmax_o = r_tmax;
+          tmax_o = key(r_tmax);
           if (empty_i || !clip_i) begin
             p_fin = 1'b1;
           end else begin
@@ -273,11 +284,11 @@ module trv_pass #(
   wire [31:0]  m_node  = mid_i[MW-4 -: 32];
   wire [W-1:0] m_tnear = mid_i[MW-36 -: W];
   wire [W-1:0] m_tfar  = mid_i[MW-36-W -: W];
-  wire [W-1:0] m_tmax  = mid_i[MW-36-2*W -: W];
-  wire [6:0]   m_sp    = mid_i[MW-36-3*W -: 7];
-  wire [31:0]  m_first = mid_i[MW-43-3*W -: 32];
-  wire [31:0]  m_count = mid_i[MW-75-3*W -: 32];
-  wire [31:0]  m_pos   = mid_i[MW-107-3*W -: 32];
+  wire [KW-1:0] m_tmax = mid_i[MW-36-2*W -: KW];
+  wire [6:0]   m_sp    = mid_i[MW-36-2*W-KW -: 7];
+  wire [31:0]  m_first = mid_i[MW-43-2*W-KW -: 32];
+  wire [31:0]  m_count = mid_i[MW-75-2*W-KW -: 32];
+  wire [31:0]  m_pos   = mid_i[MW-107-2*W-KW -: 32];
   wire [6:0]   m_flags = mid_i[EW+9*W +: 7];  // push, fin, lreq, node read, fused, le2_fin, pop2_lt
   wire [EW-1:0] m_e    = mid_i[9*W +: EW];
   wire [9*W-1:0] m_ray = mid_i[0 +: 9*W];

@@ -3,7 +3,8 @@
 # Verilated with --cc into the frame's library (raycore_rtl_frame) for `raycore simulate --rtl trv`
 # (systemc/trv_rtl.cpp steps it from C++); one model per format and rounding (below) at the parameters the
 # cycle model's defaults need: 128 slots (--rays-in-flight <= 128), 64 stack entries, 5 pipes, 4 ist
-# results per cycle (--ist-units <= 4), 16 list words per read (64-byte list lines).
+# results per cycle (--ist-units <= 4), 16 list words per read (64-byte list lines); for FP24 the
+# slots' tmax and the records' t as 31-bit closest-hit keys (TX 7: systemc/trv_rtl.cpp packs them).
 # rtl_trv_unit_variants.h: RAYCORE_RTL_TRVU_VARIANT(prefix, fmt, mode, width, slot_bits, depth,
 # pipes, ist, words), one line per model.
 if(TARGET raycore_rtl_frame)
@@ -24,6 +25,11 @@ if(TARGET raycore_rtl_frame)
     foreach(p ${_trvu_params})
       list(APPEND g -G${p})
     endforeach()
+    # The closest-hit key (hls::KeyFormat) of FP24: 7 bits below t (the watertight test's t; a
+    # Wald frame's keys carry zeros there), so one model serves both record kinds.
+    if(fmt STREQUAL "FP24")
+      list(APPEND g -GTX=7)
+    endif()
     set(prefix "Vtrv_unit_${fmt_lc}_${mode}")
     verilate(raycore_rtl_frame
       SOURCES ${RAYCORE_RTL_FP_SOURCES} ${CMAKE_CURRENT_SOURCE_DIR}/units/trv.v

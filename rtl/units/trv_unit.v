@@ -57,6 +57,7 @@
 // (--mailbox, refused by the binding). pend_o: a read stage, an outcome or the split stage holds work (a binding
 // that skips idle cycles must clock this one).
 // lint: also READS=1 SLOT_BITS=7 DEPTH=64 PIPES=4 IST=2 WORDS=16
+// lint: also TX=7 READS=1 SLOT_BITS=7 DEPTH=64 PIPES=4 IST=2 WORDS=16
 module trv_unit #(
   parameter integer EXP_BITS  = 7,
   parameter integer MAN_BITS  = 16,
@@ -67,7 +68,13 @@ module trv_unit #(
   parameter integer PIPES     = 2,
   parameter integer IST       = 2,
   parameter integer WORDS     = 4,
-  parameter integer READS     = 0
+  parameter integer READS     = 0,
+  // The closest-hit key's extension bits below F's t (hls::KeyFormat): the slots' tmax, the best
+  // and leaf records' t and the ist's results are keys of KW_ = W + TX bits, compared as numbers
+  // with MAN_BITS + TX mantissa bits (tfar and tnear widened, {x, TX zeros}); 0: F's t (Wald's
+  // records alone: rtu.v's), 7 for FP24 with the watertight test's t.
+  parameter integer TX        = 0,
+  parameter integer KW_       = 1 + EXP_BITS + MAN_BITS + TX  // derived: the key's width
 ) (
   input  wire                            clk_i,
   input  wire                            rst_ni,
@@ -93,7 +100,7 @@ module trv_unit #(
   input  wire [IST-1:0]                  res_valid_i,
   input  wire [IST*SLOT_BITS-1:0]        res_slot_i,
   input  wire [IST-1:0]                  res_hit_i,
-  input  wire [IST*(67+5*(1+EXP_BITS+MAN_BITS))-1:0] res_rec_i,  // {1, t, den, pos, id, k, nu, nv, nd}
+  input  wire [IST*(67+4*(1+EXP_BITS+MAN_BITS)+KW_)-1:0] res_rec_i,  // {1, t, den, pos, id, k, nu, nv, nd}
   input  wire [15:0]                     room_i,
   // Node cache, port p = pipe p's pass (the byte of its node; the response: the line's presence
   // and the 64-bit node word at the byte).
@@ -114,22 +121,22 @@ module trv_unit #(
   output wire [PIPES-1:0]                fin_o,
   output wire [PIPES*SLOT_BITS-1:0]      fin_slot_o,
   output wire [31:0]                     fin_ready_o,
-  output wire [PIPES*(67+5*(1+EXP_BITS+MAN_BITS))-1:0] best_o,
+  output wire [PIPES*(67+4*(1+EXP_BITS+MAN_BITS)+KW_)-1:0] best_o,
   // Per list stage: the ist hand-off (ist_n_o entries, 0: none).
   output wire [PIPES*6-1:0]              ist_n_o,
   output wire [PIPES*SLOT_BITS-1:0]      ist_slot_o,
   output wire [PIPES*32-1:0]             ist_pos_o,
   output wire [PIPES*32-1:0]             ist_ready_o,
-  output wire [PIPES*(1+EXP_BITS+MAN_BITS)-1:0] ist_tmax_o,
+  output wire [PIPES*KW_-1:0]           ist_tmax_o,
   output wire [PIPES*32*WORDS-1:0]       ist_words_o,
   // Slot reads (same cycle, READS = 1), o x lowest: unit u's ist entry {tmax, tmin, d zyx, o zyx};
   // the ray entering the hit unit {shadow, best, d zyx, o zyx}; the best record of the ray leaving.
   input  wire [IST*SLOT_BITS-1:0]        rd_ist_slot_i,
-  output wire [IST*8*(1+EXP_BITS+MAN_BITS)-1:0] rd_ist_o,
+  output wire [IST*(7*(1+EXP_BITS+MAN_BITS)+KW_)-1:0] rd_ist_o,
   input  wire [SLOT_BITS-1:0]            rd_hit_slot_i,
-  output wire [1+67+11*(1+EXP_BITS+MAN_BITS)-1:0] rd_hit_o,
+  output wire [1+67+10*(1+EXP_BITS+MAN_BITS)+KW_-1:0] rd_hit_o,
   input  wire [SLOT_BITS-1:0]            rd_px_slot_i,
-  output wire [67+5*(1+EXP_BITS+MAN_BITS)-1:0] rd_px_best_o,
+  output wire [67+4*(1+EXP_BITS+MAN_BITS)+KW_-1:0] rd_px_best_o,
   // The queue's head (the cycle model's next event).
   output wire                            head_valid_o,
   output wire [31:0]                     head_ready_o,
@@ -149,7 +156,9 @@ module trv_unit #(
 );
 
   localparam integer W  = 1 + EXP_BITS + MAN_BITS;
-  localparam integer BW = 67 + 5 * W;
+  localparam integer KW = KW_;
+  localparam integer BW = 67 + 4 * W + KW;
+  localparam integer IW = 7 * W + KW;  // an ist slot read {tmax, tmin, d zyx, o zyx}
   localparam integer EW = 32 + 2 * W;
   localparam integer RW = 11 * W;
   localparam integer NS = 1 << SLOT_BITS;
@@ -163,7 +172,7 @@ module trv_unit #(
   reg [31:0]     node_q    [0:NS-1];
   reg [W-1:0]    tnear_q   [0:NS-1];
   reg [W-1:0]    tfar_q    [0:NS-1];
-  reg [W-1:0]    tmax_q    [0:NS-1];
+  reg [KW-1:0]   tmax_q    [0:NS-1];
   reg            clip_q    [0:NS-1];  // the ray meets the scene box (clipped as it entered)
   reg [6:0]      sp_q      [0:NS-1];
   reg [BW-1:0]   best_q    [0:NS-1];
@@ -207,7 +216,7 @@ module trv_unit #(
         wire [SLOT_BITS-1:0] s = rd_ist_slot_i[r*SLOT_BITS +: SLOT_BITS];
         wire [RW-1:0]        ray = ray_q[s];
         wire                 unused_ray = ^{ray[2*W +: 3*W], ray[0 +: W]};  // inv, tmax
-        assign rd_ist_o[r*8*W +: 8*W] = {tmax_q[s], ray[W +: W], dir_org(ray[5*W +: 6*W])};
+        assign rd_ist_o[r*IW +: IW] = {tmax_q[s], ray[W +: W], dir_org(ray[5*W +: 6*W])};
       end
       wire [RW-1:0] hray = ray_q[rd_hit_slot_i];
       wire          unused_hray = ^hray[0 +: 5*W];  // inv, tmin, tmax
@@ -215,7 +224,7 @@ module trv_unit #(
       assign rd_px_best_o = best_q[rd_px_slot_i];
     end else begin : g_no_reads
       wire unused_rd = ^{rd_ist_slot_i, rd_hit_slot_i, rd_px_slot_i};
-      assign rd_ist_o = {(IST*8*W){1'b0}};
+      assign rd_ist_o = {(IST*IW){1'b0}};
       assign rd_hit_o = {(1+BW+6*W){1'b0}};
       assign rd_px_best_o = {BW{1'b0}};
     end
@@ -264,27 +273,27 @@ module trv_unit #(
                                                        : before[v*(IST+1) +: IST+1];
           assign mchain[(v+1)*8 +: 8] = mchain[v*8 +: 8] + {7'd0, same};
           wire lt, eq, c_rdy, c_vld;
-          wire [W-1:0] c_min, c_max;
-          fp_cmp_nt #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .STAGES(0)) u_cmp (
+          wire [KW-1:0] c_min, c_max;
+          fp_cmp_nt #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS+TX), .STAGES(0)) u_cmp (
             .clk_i(1'b0), .rst_ni(1'b1), .in_valid_i(1'b1), .in_ready_o(c_rdy),
-            .in_a_i(rec[BW-2 -: W]), .in_b_i(o[BW-2 -: W]), .out_valid_o(c_vld),
+            .in_a_i(rec[BW-2 -: KW]), .in_b_i(o[BW-2 -: KW]), .out_valid_o(c_vld),
             .out_ready_i(1'b1), .out_lt_o(lt), .out_eq_o(eq), .out_min_o(c_min), .out_max_o(c_max));
           wire unused = ^{c_min, c_max, c_rdy, c_vld, o[BW-1]};
           // The record's pos field lies below t and den.
-          assign beats[v] = lt || (eq && (rec[BW-2-2*W -: 32] < o[BW-2-2*W -: 32]));
+          assign beats[v] = lt || (eq && (rec[BW-2-KW-W -: 32] < o[BW-2-KW-W -: 32]));
         end else begin : g_none
           assign beats[v] = 1'b0;
         end
       end
       wire lt, eq, l_rdy, l_vld;
-      wire [W-1:0] l_min, l_max;
-      fp_cmp_nt #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .STAGES(0)) u_cmp (
+      wire [KW-1:0] l_min, l_max;
+      fp_cmp_nt #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS+TX), .STAGES(0)) u_cmp (
         .clk_i(1'b0), .rst_ni(1'b1), .in_valid_i(1'b1), .in_ready_o(l_rdy),
-        .in_a_i(rec[BW-2 -: W]), .in_b_i(leaf[BW-2 -: W]), .out_valid_o(l_vld),
+        .in_a_i(rec[BW-2 -: KW]), .in_b_i(leaf[BW-2 -: KW]), .out_valid_o(l_vld),
         .out_ready_i(1'b1), .out_lt_o(lt), .out_eq_o(eq), .out_min_o(l_min), .out_max_o(l_max));
       wire unused = ^{l_min, l_max, l_rdy, l_vld, rec[BW-1]};
       assign beats[IST] = !leaf[BW-1] || lt ||
-                          (eq && (rec[BW-2-2*W -: 32] < leaf[BW-2-2*W -: 32]));
+                          (eq && (rec[BW-2-KW-W -: 32] < leaf[BW-2-KW-W -: 32]));
       wire [IST:0] cur = before[u*(IST+1) +: IST+1];
       wire win = res_hit_i[u] && |(cur & beats);
       wire [IST:0] me = {{(IST-u){1'b0}}, 1'b1, {u{1'b0}}};
@@ -316,7 +325,7 @@ module trv_unit #(
   // address (nacc_*), and all of it moves on (mv_q, ms_q, mid_q) with the answer (the line's
   // presence and the word). The outcome's ready cycles, the same for every pipe: from c = now - 2,
   // the pass's cycle.
-  localparam integer MW = 177 + 14 * W;  // trv_pass's mid_o
+  localparam integer MW = 177 + 13 * W + KW;  // trv_pass's mid_o
   wire [31:0] o_lbl   = now_i - 32'd1;
   wire [31:0] o_again = now_i - 32'd2 + {16'd0, lat_i};
   wire [31:0] o_nxt   = o_again + {16'd0, node_hl_i};
@@ -333,7 +342,7 @@ module trv_unit #(
   wire [PIPES:0]    go_chain /* verilator split_var */;
   assign go_chain[0] = 1'b1;
   wire [PIPES-1:0] g_busy, g_pops, g_fused;
-  wire [PIPES*W-1:0] g_tmax;
+  wire [PIPES*KW-1:0] g_tmax;
   wire [PIPES*BW-1:0] g_best;
   wire [PIPES*MW-1:0] g_mid;
   wire [PIPES-1:0] p_qpush, p_wr_leaf, p_busy, p_node_miss, p_inner, p_leaf, p_split, p_lreq,
@@ -341,7 +350,8 @@ module trv_unit #(
   wire [PIPES*3-1:0] p_st;
   wire [PIPES*7-1:0] p_sp;
   wire [PIPES*32-1:0] p_node, p_first, p_count, p_pos, p_qready, p_lbase;
-  wire [PIPES*W-1:0] p_tnear, p_tfar, p_tmax;
+  wire [PIPES*W-1:0] p_tnear, p_tfar;
+  wire [PIPES*KW-1:0] p_tmax;
   wire [PIPES*32-1:0] p_s_node, p_s_child;
   wire [PIPES*W-1:0] p_s_plane, p_s_tnear, p_s_tfar;
   wire [PIPES*3*W-1:0] p_s_ray;
@@ -362,21 +372,21 @@ module trv_unit #(
       wire unused_sp = ^{sp1[6:DB], sp2[6:DB]};
       wire p_fin_raw, p_qpush_raw, p_lreq_raw, p_split_raw, p_busy_raw, p_miss_raw, p_inner_raw,
            p_leaf_raw, p_pops_raw, p_fused_raw;
-      trv_pass #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS)) u_pass (
+      trv_pass #(.EXP_BITS(EXP_BITS), .MAN_BITS(MAN_BITS), .TX(TX)) u_pass (
         .go_i(go), .fuse_i(fuse_i), .any_hit_i(any_hit_i), .empty_i(empty_i), .st_i(st_q[s]),
         .clip_i(clip_q[s]), .shadow_i(shadow_q[s]), .ray_i(ray_q[s]),
         .node_i(node_q[s]), .tnear_i(tnear_q[s]), .tfar_i(tfar_q[s]), .tmax_i(tmax_q[s]),
         .sp_i(sp), .best_i(best_q[s]), .leaf_i(leaf_q[s]), .first_i(first_q[s]),
         .count_i(count_q[s]), .pos_i(pos_q[s]), .e1_i(e1), .e2_i(e2),
         .acc_a_valid_o(g_acc[p]), .acc_a_byte_o(g_byte[p*32 +: 32]),
-        .best_o(g_best[p*BW +: BW]), .tmax_o(g_tmax[p*W +: W]), .mid_o(g_mid[p*MW +: MW]),
+        .best_o(g_best[p*BW +: BW]), .tmax_o(g_tmax[p*KW +: KW]), .mid_o(g_mid[p*MW +: MW]),
         .busy_o(g_busy[p]), .pops_o(g_pops[p]), .fused_o(g_fused[p]),
         .mid_i(mid_q[p]), .rsp_a_hit_i(mhit_q[p]), .rsp_a_node_i(mword_q[p]), .lbl_i(o_lbl),
         .again_i(o_again), .nxt_i(o_nxt), .lbn_i(o_lbn),
         .st_o(p_st[p*3 +: 3]), .node_o(p_node[p*32 +: 32]), .tnear_o(p_tnear[p*W +: W]),
         .tfar_o(p_tfar[p*W +: W]), .sp_o(p_sp[p*7 +: 7]),
         .first_o(p_first[p*32 +: 32]), .count_o(p_count[p*32 +: 32]), .pos_o(p_pos[p*32 +: 32]),
-        .out_tmax_o(p_tmax[p*W +: W]), .wr_leaf_o(p_wr_leaf[p]),
+        .out_tmax_o(p_tmax[p*KW +: KW]), .wr_leaf_o(p_wr_leaf[p]),
         .split_o(p_split_raw), .split_node_o(p_s_node[p*32 +: 32]),
         .split_child_o(p_s_child[p*32 +: 32]),
         .split_plane_o(p_s_plane[p*W +: W]), .split_tnear_o(p_s_tnear[p*W +: W]),
@@ -423,7 +433,7 @@ module trv_unit #(
   wire [PIPES*6-1:0]   o_want_v;
   reg  [31:0]          lpos_q   [0:PIPES-1];
   reg  [31:0]          lbase_q  [0:PIPES-1];
-  reg  [W-1:0]         ltmax_q  [0:PIPES-1];
+  reg  [KW-1:0]        ltmax_q  [0:PIPES-1];
   reg  [6:0]           lsp_q    [0:PIPES-1];
   // The ist queue's room for this stage: the ist's (at the cycle's start, with its misses on the
   // way back) less the hand-offs of the stage before, which enter it at this cycle's end.
@@ -489,7 +499,7 @@ module trv_unit #(
   reg  [5:0]           en_q     [0:PIPES-1];
   reg  [31:0]          epos_q   [0:PIPES-1];
   reg  [31:0]          eready_q [0:PIPES-1];
-  reg  [W-1:0]         etmax_q  [0:PIPES-1];
+  reg  [KW-1:0]        etmax_q  [0:PIPES-1];
   reg  [32*WORDS-1:0]  ewords_q [0:PIPES-1];
   wire [PIPES-1:0]     e_qpush = ev_q & eqpush_q;
   generate
@@ -498,7 +508,7 @@ module trv_unit #(
       assign ist_slot_o[l*SLOT_BITS +: SLOT_BITS] = es_q[l];
       assign ist_pos_o[l*32 +: 32] = epos_q[l];
       assign ist_ready_o[l*32 +: 32] = eready_q[l];
-      assign ist_tmax_o[l*W +: W] = etmax_q[l];
+      assign ist_tmax_o[l*KW +: KW] = etmax_q[l];
       assign ist_words_o[l*32*WORDS +: 32*WORDS] = ewords_q[l];
     end
   endgenerate
@@ -746,7 +756,7 @@ module trv_unit #(
       ms_q[b] <= rs_q[b];
       mid_q[b] <= rmid_q[b];
       if (go_o[b]) begin
-        tmax_q[slot_o[b*SLOT_BITS +: SLOT_BITS]] <= g_tmax[b*W +: W];
+        tmax_q[slot_o[b*SLOT_BITS +: SLOT_BITS]] <= g_tmax[b*KW +: KW];
         best_q[slot_o[b*SLOT_BITS +: SLOT_BITS]] <= g_best[b*BW +: BW];
         rs_q[b] <= slot_o[b*SLOT_BITS +: SLOT_BITS];
         rbyte_q[b] <= g_byte[b*32 +: 32];
@@ -798,7 +808,7 @@ module trv_unit #(
         lwant_q[b] <= o_want_v[b*6 +: 6];
         lpos_q[b]  <= p_pos[b*32 +: 32];
         lbase_q[b] <= p_lbase[b*32 +: 32];
-        ltmax_q[b] <= p_tmax[b*W +: W];
+        ltmax_q[b] <= p_tmax[b*KW +: KW];
         lsp_q[b]   <= p_sp[b*7 +: 7];
       end
       if (lv_q[b]) begin

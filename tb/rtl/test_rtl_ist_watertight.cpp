@@ -1,16 +1,18 @@
 // tb/rtl/test_rtl_ist_watertight.cpp - co-simulation of rtl/units/ist_watertight.v (the pipelined
-// watertight test) against hls::ist_watertight (hls/ist.h), bit for bit: exit code, t, den and the
-// tag, in order.
+// watertight test) against hls::ist_watertight (hls/ist.h), bit for bit: exit code, t, its key, den
+// and the tag, in order.
 //
 // One test per Verilated variant (format, rounding, STAGES), listed once in rtl/CMakeLists.txt
 // (RAYCORE_RTL_IST_WATERTIGHT_VARIANTS). Each streams, through the valid/ready handshake:
-//   1. fullrate: 4096 tests with no stalls (one test per cycle, latency == 10*STAGES),
+//   1. fullrate: 4096 tests with no stalls (one test per cycle, latency == 14*STAGES),
 //   2. random: RAYCORE_RTL_IST_N / 4 tests (default 125,000) with random input gaps and output
 //      back-pressure.
 // Stimulus: tb/rtl/stimulus.h's, with watertight records (hls::make_wald(.., IstKind::watertight):
 // the plane and the vertices of random, near-degenerate and degenerate triangles, rays aimed at
 // points inside, outside, on edges and vertices, tmin/tmax around the hit) and 10 % random bit
-// patterns; the hit, distance, edge (beta) and det (sum) exits must each reach 1 % of the vectors.
+// patterns; tmax as a key (the stimulus's F tmax widened, half of them with random extension bits
+// below: a best hit's key); the hit, distance, edge (beta) and det (sum) exits must each reach 1 % of
+// the vectors.
 #include <gtest/gtest.h>
 #include <verilated.h>
 
@@ -37,11 +39,11 @@ namespace {
 
 using hls::Rounding;
 
-constexpr uint64_t kLevels = 10;  // latency = 10 * STAGES, as ist.v
+constexpr uint64_t kLevels = 14;  // latency = 14 * STAGES (systemc/config.h kIstWatertightLevels)
 
 struct Res {
-  uint32_t exit = 0, t = 0, den = 0;
-  bool operator==(const Res& x) const { return exit == x.exit && t == x.t && den == x.den; }
+  uint32_t exit = 0, t = 0, den = 0, tk = 0;
+  bool operator==(const Res& x) const { return exit == x.exit && t == x.t && den == x.den && tk == x.tk; }
 };
 
 template <class F>
@@ -51,12 +53,13 @@ std::string describe(const IstIn& x) {
   for (int i = 0; i < 12; ++i) s << (i ? " " : "") << fptest::show<F>(x.c[i]);
   s << "] o=[" << fptest::show<F>(x.o[0]) << " " << fptest::show<F>(x.o[1]) << " " << fptest::show<F>(x.o[2])
     << "] d=[" << fptest::show<F>(x.d[0]) << " " << fptest::show<F>(x.d[1]) << " " << fptest::show<F>(x.d[2])
-    << "] tmin=" << fptest::show<F>(x.tmin) << " tmax=" << fptest::show<F>(x.tmax);
+    << "] tmin=" << fptest::show<F>(x.tmin) << " tmax key=" << fptest::show<hls::KeyFormat<F>>(x.tmax);
   return s.str();
 }
 template <class F>
 std::string describe(const Res& r) {
-  return "exit=" + std::to_string(r.exit) + " t=" + fptest::show<F>(r.t) + " den=" + fptest::show<F>(r.den);
+  return "exit=" + std::to_string(r.exit) + " t=" + fptest::show<F>(r.t) + " key=" + fptest::show<hls::KeyFormat<F>>(r.tk) +
+         " den=" + fptest::show<F>(r.den);
 }
 
 // A {z, y, x} port of three W-bit fields.
@@ -95,7 +98,7 @@ void run_variant(const std::string& name, int stages) {
       IstIn x;
       Res expected;
     };
-    const StreamSpec spec{name, count, full, kLevels * uint64_t(stages), "10*STAGES",
+    const StreamSpec spec{name, count, full, kLevels * uint64_t(stages), "14*STAGES",
                           2000u + 64u * uint64_t(stages), 1};
     uint64_t mismatches = 0;
     V& m = *dut;
@@ -104,8 +107,11 @@ void run_variant(const std::string& name, int stages) {
         [&](uint64_t) {
           Item it;
           it.x = stim.next();
+          it.x.tmax = hls::t_key<F>(it.x.tmax);  // the interval's end is a key
+          constexpr uint32_t ext = (1u << (hls::KeyFormat<F>::man_bits - F::man_bits)) - 1u;
+          if ((rng() & 1u) && (it.x.tmax & hls::KeyFormat<F>::exp_mask)) it.x.tmax |= uint32_t(rng()) & ext;
           const hls::IstOut e = hls::ist_watertight<A>(it.x.k, it.x.c, it.x.o, it.x.d, it.x.tmin, it.x.tmax);
-          it.expected = Res{uint32_t(e.exit), e.t, e.den};
+          it.expected = Res{uint32_t(e.exit), e.t, e.den, e.tk};
           drive<V, F>(m, it.x);
           return it;
         },
@@ -113,11 +119,11 @@ void run_variant(const std::string& name, int stages) {
           IstIn junk;
           junk.k = uint32_t(rng() & 3u);
           for (uint32_t& c : junk.c) c = uint32_t(rng()) & F::mask;
-          junk.tmax = uint32_t(rng()) & F::mask;
+          junk.tmax = uint32_t(rng()) & hls::KeyFormat<F>::mask;
           drive<V, F>(m, junk);
         },
         [&](const Item& it, uint16_t seq, uint64_t cycle) {
-          const Res got{uint32_t(m.out_exit_o), uint32_t(m.out_t_o), uint32_t(m.out_den_o)};
+          const Res got{uint32_t(m.out_exit_o), uint32_t(m.out_t_o), uint32_t(m.out_den_o), uint32_t(m.out_tk_o)};
           if (it.expected.exit < 5) ++by_exit[it.expected.exit];
           if (!(got == it.expected)) {
             ++mismatches;
