@@ -34,15 +34,15 @@ IstOut ist_today(uint32_t k, const uint32_t c[9], const uint32_t o[3], const uin
   const uint32_t num =
       A::sub(A::sub(c[kND], o[k]), A::add(A::mul(c[kNU], o[u]), A::mul(c[kNV], o[v])));
   const uint32_t t = A::mul(num, A::rcp(den));
-  if (!(A::lt(tmin, t) && A::lt(t, tmax))) return {IstExit::distance, t, den};
+  if (!(A::lt(tmin, t) && A::lt(t, tmax))) return {IstExit::distance, t, den, t_key<typename A::Fmt>(t)};
   const uint32_t hu = A::add(o[u], A::mul(t, d[u]));
   const uint32_t hv = A::add(o[v], A::mul(t, d[v]));
   const uint32_t beta = A::add3(A::mul(c[kBNU], hu), A::mul(c[kBNV], hv), c[kBD]);
-  if (A::sign(beta) && !A::is_zero(beta)) return {IstExit::beta, t, den};
+  if (A::sign(beta) && !A::is_zero(beta)) return {IstExit::beta, t, den, t_key<typename A::Fmt>(t)};
   const uint32_t gamma = A::add3(A::mul(c[kCNU], hu), A::mul(c[kCNV], hv), c[kCD]);
-  if (A::sign(gamma) && !A::is_zero(gamma)) return {IstExit::gamma, t, den};
-  if (A::lt(A::one, A::add(beta, gamma))) return {IstExit::sum, t, den};
-  return {IstExit::hit, t, den};
+  if (A::sign(gamma) && !A::is_zero(gamma)) return {IstExit::gamma, t, den, t_key<typename A::Fmt>(t)};
+  if (A::lt(A::one, A::add(beta, gamma))) return {IstExit::sum, t, den, t_key<typename A::Fmt>(t)};
+  return {IstExit::hit, t, den, t_key<typename A::Fmt>(t)};
 }
 
 template <class A>

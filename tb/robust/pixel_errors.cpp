@@ -187,7 +187,7 @@ void analyse(const sim::RunOptions& o, bool literal, bool stored, const std::vec
         const double dist = hitd ? th.t * hls::length(wdir) : NAN;
         const double bmin = hitd ? std::min({th.b0, th.b1, th.b2}) : NAN;
         const auto woi = wt.find(uint32_t(b.shadow_tri));
-        hls::IstOut io{hls::IstExit::distance, 0, 0}, io0 = io;
+        hls::IstOut io{hls::IstExit::distance, 0, 0, 0}, io0 = io;
         if (woi != wt.end()) {
           const auto& wo = woi->second;
           io = hls::ist_test<A>(wo, ss.ray.o, ss.ray.d, ss.ray.tmin, ss.ray.tmax);
