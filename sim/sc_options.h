@@ -96,7 +96,7 @@ inline void add_sim_options(CLI::App& c, SimOptions& o) {
       });
   opt("--ist-units", &SimConfig::ist_units, "intersection pipelines per RTU (tests per cycle)", 1u, 16u);
   opt("--ist-latency", &SimConfig::ist_latency,
-      "ist pipeline latency (sum of stages; 0: the record kind's at STAGES 2, 20 for --ist wald, 28 for "
+      "ist pipeline latency (sum of stages; 0: the record kind's at STAGES 2, 20 for --ist wald, 36 for "
       "watertight)",
       0u, 1000u);
   opt("--hit-latency", &SimConfig::hit_latency, "hit unit latency", 1u, 1000u);

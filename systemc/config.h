@@ -16,8 +16,8 @@ namespace raycore::sc {
 // 47 registers for 95 FO4, plus the hit unit's registered slot read: 48, so 24 per STAGES).
 inline constexpr uint32_t kVtuLevels = 2, kIstLevels = 10, kHitLevels = 24, kRguLevels = 15;
 // ist_watertight.v's: the shear, the edge functions, det, Woop's T and its division, the key
-// compares (rtl/units/ist_watertight.v: 28 registers at STAGES 2).
-inline constexpr uint32_t kIstWatertightLevels = 14;
+// compares (rtl/units/ist_watertight.v: 36 registers at STAGES 2, 14 of them the shear format's divider).
+inline constexpr uint32_t kIstWatertightLevels = 18;
 // The ist pipeline of a record kind: its levels (ist.v's or ist_watertight.v's).
 inline constexpr uint32_t ist_levels(hls::IstKind k) {
   return k == hls::IstKind::watertight ? kIstWatertightLevels : kIstLevels;
@@ -115,7 +115,7 @@ struct SimConfig {
   uint32_t ist_units = 4;        // intersection pipelines per RTU (tests issued per cycle),
                                  //   sharing the triangle cache's ports
   uint32_t ist_latency = 0;      // 0: the record kind's pipeline at STAGES 2 (resolved_ist_latency:
-                                 //   ist.v's 10 levels, 20 cycles; ist_watertight.v's 14, 28)
+                                 //   ist.v's 10 levels, 20 cycles; ist_watertight.v's 18, 36)
   UnitView ist_view = UnitView::model;
   // trv: the transaction model (systemc/trv.h) or rtl/units/trv_unit.v Verilated (no pin-level
   // twin: the transaction model is its twin; systemc/trv_rtl.h).

@@ -106,7 +106,7 @@ class Rtu : public sc_core::sc_module {
       vtu_unit.bind(vtu_port_.get());
     }
     if (cfg.ist_view == UnitView::rtl) {  // the whole unit: rtl/units/ist_unit.v
-      const hls::IstKind kind = hls::IstKind(fc.header.ist);  // ist.v (10 levels) or ist_watertight.v (14)
+      const hls::IstKind kind = hls::IstKind(fc.header.ist);  // ist.v (10 levels) or ist_watertight.v (18)
       const bool wt = kind == hls::IstKind::watertight;
       const unsigned stages = pin_stages("ist", cfg.ist_latency, ist_levels(kind), "--ist-latency");
       ist_rtl_ = make_rtl_ist_unit(hls::format_id<F>(), R, stages, kind, fc, ch_, cfg);

@@ -2,11 +2,12 @@
 # miss, the triangle-cache accesses, IST ist.v pipelines, the result delay). Included by
 # rtl/CMakeLists.txt. Verilated with --cc into the frame's library (raycore_rtl_frame) for
 # `raycore simulate --rtl ist` (systemc/ist_rtl.cpp steps it from C++); one model per format and
-# rounding at STAGES 2 (--ist-latency 20, the default) and the parameters the cycle model's defaults
+# rounding at STAGES 2 (the default --ist-latency: 20, Wald's) and the parameters the cycle model's defaults
 # need: 128 slots, 4 ist units, 5 trv pipes' hand-offs of up to 16 list words (64-byte list lines),
 # an ist queue of up to 64 entries, the default triangle line (2 FP24 records, 1 FP32 record) and a
 # triangle-cache hit latency below 16; and FP24 rtz with the watertight test (--ist watertight:
-# WATERTIGHT 1, ist_watertight.v, 48-byte records, one per default line).
+# WATERTIGHT 1, ist_watertight.v, latency 36, tmax and t as 31-bit keys, 48-byte records, one per
+# default line).
 # rtl_ist_unit_variants.h: RAYCORE_RTL_ISTU_VARIANT(prefix, fmt, mode, stages, width, slot_bits,
 # ist, pipes, words, qbits, rpl, hlbits, watertight), one line per model.
 if(TARGET raycore_rtl_frame)

@@ -41,7 +41,7 @@
 // list position, the record's id, k and plane) as its tag. Parameters: SLOT_BITS, IST, PIPES and
 // WORDS (the hand-off: trv_unit's), RPL (triangle records per cache line, a power of two),
 // WATERTIGHT (0: Wald's records and ist.v, latency 10 x STAGES; 1: watertight records, the plane
-// and the vertices, and ist_watertight.v: --ist watertight, latency 14 x STAGES, the margin
+// and the vertices, and ist_watertight.v: --ist watertight, latency 18 x STAGES, the margin
 // registers unused, tmax and the results' t as keys of 7 more mantissa bits for FP24: TX_).
 // lint: also SLOT_BITS=7 IST=4 PIPES=4 WORDS=16 QBITS=6 RPL=2 HLBITS=4 STAGES=2
 // lint: also EXP_BITS=8 MAN_BITS=23 RNE=1 SLOT_BITS=7 IST=4 PIPES=4 WORDS=16 QBITS=6 RPL=1 HLBITS=4 STAGES=2
@@ -122,7 +122,7 @@ module ist_unit #(
 
   localparam integer W   = W_;
   localparam integer KW  = KW_;
-  localparam integer LV  = (WATERTIGHT != 0) ? 14 : 10;  // ist_watertight.v's or ist.v's levels
+  localparam integer LV  = (WATERTIGHT != 0) ? 18 : 10;  // ist_watertight.v's or ist.v's levels
   localparam integer BW  = 67 + 4 * W + KW;
   localparam integer QN  = 1 << QBITS;
   localparam integer HN  = 1 << HLBITS;

@@ -21,18 +21,19 @@
 // top W bits (hls::key_t).
 //
 // Levels (the operators of a level side by side with the same number of pipeline registers, S1 ..
-// S7 below: the level's share of the 14 x STAGES by its logic; a per-level fp_delay of the same
+// S7 below: the level's share of the 18 x STAGES by its logic; a per-level fp_delay of the same
 // depth carries the values needed later and the tag):
 //    1  den = sop(d_k, -0, n_u, d_u, n_v, d_v) (in the format); ox = sop(-0, -0, dz, o_kx, -dx,
-//       o_kz), oy (ky); pz_j = P_kz - o_kz (sub) for the vertices j = A, B, C
-//    2  px_j = sop(-ox, -0, dz, P_kx, -dx, P_kz), py_j (ky, -oy)
+//       o_kz), oy (ky)
+//    2  px_j = sop(-ox, -0, dz, P_kx, -dx, P_kz), py_j (ky, -oy); pz_j = P_kz - o_kz (sub) for the
+//       vertices j = A, B, C (here, not at level 1: the shear axes' selects fan out less there)
 //    3  U = E(B, C), V = E(C, A), W = E(A, B), E(P, Q) = sop(-0, -0, qx, py, -qy, px)
 //    4  out = some of U, V, W < 0 and some > 0 (signs and zero tests); det = add3(U, V, W);
 //       wc = W * pz_C
 //    5  T = sop(wc, -0, U, pz_A, V, pz_B); dd = det * dz; det = 0
-//    6  t = T / dd (fp_div)
+//    6  t = T / dd (fp_div: 28 restoring steps for the 23-bit mantissa, two per register)
 //    7  the key = narrow(t); lt(tmin, key), lt(key, tmax) (fp_cmp in the key format)
-// Latency = 14 * STAGES cycles (STAGES = 0: combinational), one test per cycle.
+// Latency = 18 * STAGES cycles (STAGES = 0: combinational), one test per cycle.
 //
 // Handshake: as ist.v's (valid/ready; the operators of a level in lockstep with its carry pipe,
 // whose in_ready and out_valid stand for the level; back-pressure stalls the whole chain).
@@ -86,16 +87,17 @@ module ist_watertight #(
   localparam [SW-1:0] SNEG = {1'b1, {(SW-1){1'b0}}};
   localparam integer KM = KW - 1 - E;  // = SM
   // Registers per level, as ist.v: the levels' weights (the registers each needs at STAGES 2 for
-  // 95 FO4: one add, mul or compare 1, an add3 3, a sop 4, the divider 7; level 7's narrowing and
-  // compares 2), cumulated in Q; 28 in all, so the latency is 14 x STAGES.
-  localparam integer Q1 = 4, Q2 = 8, Q3 = 12, Q4 = 15, Q5 = 19, Q6 = 26;
+  // 95 FO4: one add, mul or compare 1, an add3 3 (level 4: 4, its multiply beside it), a sop 4, the
+  // shear format's divider 14 (fp_div's 28 steps, two per register: 7 registers gave 138.5 FO4);
+  // level 7's narrowing and compares 2), cumulated in Q; 36 in all, so the latency is 18 x STAGES.
+  localparam integer Q1 = 4, Q2 = 8, Q3 = 12, Q4 = 16, Q5 = 20, Q6 = 34;
   localparam integer S1 = (STAGES * Q1) / 2;
   localparam integer S2 = (STAGES * Q2) / 2 - (STAGES * Q1) / 2;
   localparam integer S3 = (STAGES * Q3) / 2 - (STAGES * Q2) / 2;
   localparam integer S4 = (STAGES * Q4) / 2 - (STAGES * Q3) / 2;
   localparam integer S5 = (STAGES * Q5) / 2 - (STAGES * Q4) / 2;
   localparam integer S6 = (STAGES * Q6) / 2 - (STAGES * Q5) / 2;
-  localparam integer S7 = 14 * STAGES - (STAGES * Q6) / 2;
+  localparam integer S7 = 18 * STAGES - (STAGES * Q6) / 2;
 
   // Level handshakes: v[L] / r[L] = valid / ready at the output of level L (index 0 = the input).
   wire [7:0] v;
@@ -168,21 +170,20 @@ module ist_watertight #(
 
   genvar gj;
 
-  // ---- level 1: den (one sop), the ray's sheared origin, the vertices' pz ---------------------------
+  // ---- level 1: den (one sop), the ray's sheared origin -------------------------------------------------
   wire [W-1:0]   l1_den;
   wire [SW-1:0]  l1_ox, l1_oy;
-  wire [3*SW-1:0] l1_pz;  // {C, B, A}
-  wire [5:0]     l1_unused_v, l1_unused_r;
-  localparam integer C1_W = TAG_BITS + KW + 13 * W;
+  wire [2:0]     l1_unused_v, l1_unused_r;
+  localparam integer C1_W = TAG_BITS + KW + 14 * W;
   wire [TAG_BITS-1:0] c1_tag;
-  wire [W-1:0] c1_tmin, c1_dz, c1_ndx, c1_ndy;
+  wire [W-1:0] c1_tmin, c1_dz, c1_ndx, c1_ndy, c1_okz;
   wire [KW-1:0] c1_tmax;
   wire [9*W-1:0] c1_vs;
   fp_delay #(.WIDTH(C1_W), .STAGES(S1), .FREE(FREE)) u_carry1 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(r[1]),
-    .in_data_i({in_tag_i, in_tmin_i, in_tmax_i, dz, ndx, ndy, vs}),
+    .in_data_i({in_tag_i, in_tmin_i, in_tmax_i, dz, ndx, ndy, o_kz, vs}),
     .out_valid_o(v[1]), .out_ready_i(r[2]),
-    .out_data_o({c1_tag, c1_tmin, c1_tmax, c1_dz, c1_ndx, c1_ndy, c1_vs}));
+    .out_data_o({c1_tag, c1_tmin, c1_tmax, c1_dz, c1_ndx, c1_ndy, c1_okz, c1_vs}));
   fp_sop_nt #(.EXP_BITS(E), .MAN_BITS(M), .RNE(RNE), .RAYCORE(RAYCORE), .STAGES(S1)) u_l1_den (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[0]),
     .in_a_i(d_k), .in_b_i(NEG), .in_x1_i(in_nu_i), .in_y1_i(d_u), .in_x2_i(in_nv_i), .in_y2_i(d_v),
@@ -197,28 +198,19 @@ module ist_watertight #(
     .in_a_i(SNEG), .in_b_i(SNEG), .in_x1_i(widen(dz)), .in_y1_i(widen(o_ky)), .in_x2_i(widen(ndy)),
     .in_y2_i(widen(o_kz)),
     .out_valid_o(l1_unused_v[2]), .out_ready_i(r[2]), .out_res_o(l1_oy));
-  generate
-    for (gj = 0; gj < 3; gj = gj + 1) begin : g_l1_pz
-      fp_op2_nt #(.OP("sub"), .EXP_BITS(SE), .MAN_BITS(SM), .RNE(RNE), .RAYCORE(0), .STAGES(S1)) u_pz (
-        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[0]), .in_ready_o(l1_unused_r[3+gj]),
-        .in_a_i(widen(vs[(3*gj+2)*W +: W])), .in_b_i(widen(o_kz)), .out_valid_o(l1_unused_v[3+gj]),
-        .out_ready_i(r[2]), .out_res_o(l1_pz[gj*SW +: SW]));
-    end
-  endgenerate
 
-  // ---- level 2: the vertices' sheared x and y -----------------------------------------------------
-  wire [3*SW-1:0] l2_px, l2_py;  // {C, B, A}
-  wire [5:0]     l2_unused_v, l2_unused_r;
-  localparam integer C2_W = TAG_BITS + KW + 3 * W + 3 * SW;
+  // ---- level 2: the vertices' sheared x, y and z --------------------------------------------------
+  wire [3*SW-1:0] l2_px, l2_py, l2_pz;  // {C, B, A}
+  wire [8:0]     l2_unused_v, l2_unused_r;
+  localparam integer C2_W = TAG_BITS + KW + 3 * W;
   wire [TAG_BITS-1:0] c2_tag;
   wire [W-1:0] c2_tmin, c2_den, c2_dz;
   wire [KW-1:0] c2_tmax;
-  wire [3*SW-1:0] c2_pz;
   fp_delay #(.WIDTH(C2_W), .STAGES(S2), .FREE(FREE)) u_carry2 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(r[2]),
-    .in_data_i({c1_tag, c1_tmin, c1_tmax, l1_den, c1_dz, l1_pz}),
+    .in_data_i({c1_tag, c1_tmin, c1_tmax, l1_den, c1_dz}),
     .out_valid_o(v[2]), .out_ready_i(r[3]),
-    .out_data_o({c2_tag, c2_tmin, c2_tmax, c2_den, c2_dz, c2_pz}));
+    .out_data_o({c2_tag, c2_tmin, c2_tmax, c2_den, c2_dz}));
   generate
     for (gj = 0; gj < 3; gj = gj + 1) begin : g_l2_shear
       fp_sop_nt #(.EXP_BITS(SE), .MAN_BITS(SM), .RNE(RNE), .RAYCORE(0), .STAGES(S2)) u_px (
@@ -231,6 +223,10 @@ module ist_watertight #(
         .in_a_i(l1_oy ^ SNEG), .in_b_i(SNEG), .in_x1_i(widen(c1_dz)), .in_y1_i(widen(c1_vs[(3*gj+1)*W +: W])),
         .in_x2_i(widen(c1_ndy)), .in_y2_i(widen(c1_vs[(3*gj+2)*W +: W])),
         .out_valid_o(l2_unused_v[1+2*gj]), .out_ready_i(r[3]), .out_res_o(l2_py[gj*SW +: SW]));
+      fp_op2_nt #(.OP("sub"), .EXP_BITS(SE), .MAN_BITS(SM), .RNE(RNE), .RAYCORE(0), .STAGES(S2)) u_pz (
+        .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[1]), .in_ready_o(l2_unused_r[6+gj]),
+        .in_a_i(widen(c1_vs[(3*gj+2)*W +: W])), .in_b_i(widen(c1_okz)), .out_valid_o(l2_unused_v[6+gj]),
+        .out_ready_i(r[3]), .out_res_o(l2_pz[gj*SW +: SW]));
     end
   endgenerate
 
@@ -245,7 +241,7 @@ module ist_watertight #(
   wire [3*SW-1:0] c3_pz;
   fp_delay #(.WIDTH(C3_W), .STAGES(S3), .FREE(FREE)) u_carry3 (
     .clk_i(clk_i), .rst_ni(rst_ni), .in_valid_i(v[2]), .in_ready_o(r[3]),
-    .in_data_i({c2_tag, c2_tmin, c2_tmax, c2_den, c2_dz, c2_pz}),
+    .in_data_i({c2_tag, c2_tmin, c2_tmax, c2_den, c2_dz, l2_pz}),
     .out_valid_o(v[3]), .out_ready_i(r[4]),
     .out_data_o({c3_tag, c3_tmin, c3_tmax, c3_den, c3_dz, c3_pz}));
   generate

@@ -4,7 +4,7 @@
 //
 // One test per Verilated variant (format, rounding, STAGES), listed once in rtl/CMakeLists.txt
 // (RAYCORE_RTL_IST_WATERTIGHT_VARIANTS). Each streams, through the valid/ready handshake:
-//   1. fullrate: 4096 tests with no stalls (one test per cycle, latency == 14*STAGES),
+//   1. fullrate: 4096 tests with no stalls (one test per cycle, latency == 18*STAGES),
 //   2. random: RAYCORE_RTL_IST_N / 4 tests (default 125,000) with random input gaps and output
 //      back-pressure.
 // Stimulus: tb/rtl/stimulus.h's, with watertight records (hls::make_wald(.., IstKind::watertight):
@@ -39,7 +39,7 @@ namespace {
 
 using hls::Rounding;
 
-constexpr uint64_t kLevels = 14;  // latency = 14 * STAGES (systemc/config.h kIstWatertightLevels)
+constexpr uint64_t kLevels = 18;  // latency = 18 * STAGES (systemc/config.h kIstWatertightLevels)
 
 struct Res {
   uint32_t exit = 0, t = 0, den = 0, tk = 0;
@@ -98,7 +98,7 @@ void run_variant(const std::string& name, int stages) {
       IstIn x;
       Res expected;
     };
-    const StreamSpec spec{name, count, full, kLevels * uint64_t(stages), "14*STAGES",
+    const StreamSpec spec{name, count, full, kLevels * uint64_t(stages), "18*STAGES",
                           2000u + 64u * uint64_t(stages), 1};
     uint64_t mismatches = 0;
     V& m = *dut;

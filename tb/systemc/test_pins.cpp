@@ -404,7 +404,7 @@ TEST(IstRtlFrame, Fp32RneAndFp24RaycoreOneUnit) {
   cfg.ist_view = UnitView::rtl;
   expect_same_counts(model, expect_match(corridor(), tc, cfg), "raycore, 1 ist unit");
 }
-// The watertight test (--ist watertight): ist_unit.v with ist_watertight.v (14 levels: latency 28),
+// The watertight test (--ist watertight): ist_unit.v with ist_watertight.v (18 levels: latency 36),
 // 48-byte records one per triangle line; small caches and randomised latency too (misses
 // looping), the trv as the model and as RTL.
 TEST(IstRtlFrame, Watertight) {
