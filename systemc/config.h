@@ -170,9 +170,14 @@ struct RtuStats {
   CacheStats node, list, tri;
 };
 
-// cfg with ist_latency 0 resolved to the record kind's pipeline at STAGES 2 (ist_levels x 2).
+// The ist's latency for records of `kind`: cfg.ist_latency, or with 0 the kind's pipeline at
+// STAGES 2 (ist_levels x 2).
+inline uint32_t ist_latency_for(const SimConfig& cfg, hls::IstKind kind) {
+  return cfg.ist_latency != 0 ? cfg.ist_latency : 2 * ist_levels(kind);
+}
+// cfg with ist_latency 0 resolved so (the report's configuration).
 inline SimConfig resolved_ist_latency(SimConfig cfg, hls::IstKind kind) {
-  if (cfg.ist_latency == 0) cfg.ist_latency = 2 * ist_levels(kind);
+  cfg.ist_latency = ist_latency_for(cfg, kind);
   return cfg;
 }
 

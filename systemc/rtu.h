@@ -44,10 +44,10 @@ class Rtu : public sc_core::sc_module {
             fc.tri_line_records * uint32_t(fc.header.tri_bytes)),
         vtu_unit("vtu", vtu_on, vtu, cfg.vtu_depth, fc.header, {&node, &list, &tri},
                  cfg.node_cache.mshrs + cfg.list_cache.mshrs + cfg.tri_cache.mshrs),
-        ch_(make_channels(cfg)),
+        ch_(make_channels(cfg, ist_latency_for(cfg, hls::IstKind(fc.header.ist)))),
         rgu("rgu", fc, ch_, st_, index, cfg.rtus, cfg.tile, cfg.rgu_latency),
         trv("trv", fc, ch_, st_, cfg.trv_latency, cfg.trv_pipes, cfg.trv_fuse),
-        ist("ist", fc, ch_, st_, cfg.ist_latency, cfg.ist_units),
+        ist("ist", fc, ch_, st_, ist_latency_for(cfg, hls::IstKind(fc.header.ist)), cfg.ist_units),
         hit("hit", fc, ch_, st_, cfg.hit_latency),
         slots_(cfg.rays_in_flight) {
     ch_.node = &node;
@@ -108,7 +108,7 @@ class Rtu : public sc_core::sc_module {
     if (cfg.ist_view == UnitView::rtl) {  // the whole unit: rtl/units/ist_unit.v
       const hls::IstKind kind = hls::IstKind(fc.header.ist);  // ist.v (10 levels) or ist_watertight.v (18)
       const bool wt = kind == hls::IstKind::watertight;
-      const unsigned stages = pin_stages("ist", cfg.ist_latency, ist_levels(kind), "--ist-latency");
+      const unsigned stages = pin_stages("ist", ist_latency_for(cfg, kind), ist_levels(kind), "--ist-latency");
       ist_rtl_ = make_rtl_ist_unit(hls::format_id<F>(), R, stages, kind, fc, ch_, cfg);
       if (!ist_rtl_)
         throw ConfigError(std::string("no Verilated ist_unit for ") +
@@ -118,7 +118,7 @@ class Rtu : public sc_core::sc_module {
       ist.bind_rtl(ist_rtl_.get());
     }
     if (cfg.ist_view == UnitView::twin) {  // one SystemC twin of rtl/units/ist.v per ist unit
-      const unsigned stages = pin_stages("ist", cfg.ist_latency, kIstLevels, "--ist-latency");
+      const unsigned stages = pin_stages("ist", ist_latency_for(cfg, hls::IstKind::wald), kIstLevels, "--ist-latency");
       std::vector<pins::IstPort*> ports;
       for (uint32_t u = 0; u < cfg.ist_units; ++u) {
         const std::string n = u == 0 ? std::string("ist") : "ist" + std::to_string(u);
@@ -245,7 +245,7 @@ class Rtu : public sc_core::sc_module {
                       pins::rtl_models_built());
   }
 
-  static RtuChannels make_channels(const SimConfig& cfg) {
+  static RtuChannels make_channels(const SimConfig& cfg, uint32_t ist_latency) {
     if (cfg.rays_in_flight == 0 || cfg.rays_in_flight > 65535)
       throw std::invalid_argument("rays in flight must be 1..65535");
     RtuChannels ch;
@@ -254,7 +254,7 @@ class Rtu : public sc_core::sc_module {
     ch.trv_q.reset(cfg.rays_in_flight);
     ch.ist_q.reset(std::max<uint32_t>(cfg.ist_queue, 1));
     ch.ist_pipe.reset(size_t(std::max<uint32_t>(cfg.ist_units, 1)) *
-                      (cfg.ist_latency + cfg.tri_cache.hit_latency + 2));
+                      (ist_latency + cfg.tri_cache.hit_latency + 2));
     ch.hit_q.reset(cfg.rays_in_flight);
     ch.shadow_q.reset(cfg.rays_in_flight);
     return ch;

@@ -240,7 +240,7 @@ class RtuRtlRunner {
                std::to_string(b.mshrs) + " MSHRs per cache");
     need(fc_.tri_line_records * (W <= 24 ? 32u : 48u) == b.line,
          std::to_string(b.line) + "-byte triangle lines");
-    need(cfg_.vtu_depth == kVtuLevels * b.stages && cfg_.ist_latency == kIstLevels * b.stages &&
+    need(cfg_.vtu_depth == kVtuLevels * b.stages && ist_latency_for(cfg_, hls::IstKind::wald) == kIstLevels * b.stages &&
              cfg_.hit_latency == kHitLevels * b.stages && cfg_.rgu_latency == kRguLevels * b.stages,
          "pipeline depths of STAGES " + std::to_string(b.stages) + " (--vtu-depth " +
              std::to_string(kVtuLevels * b.stages) + ", --ist-latency " +

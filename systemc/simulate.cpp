@@ -134,7 +134,7 @@ SimResult simulate(const hls::Image& image, const scenes::Camera& cam, const sce
   return hls::visit_format(tc.format, tc.rounding, [&](auto f, auto r) {
     using F = decltype(f);
     constexpr hls::Rounding R = decltype(r)::value;
-    return run<hls::Arith<F, R>>(image, cam, light, tc, resolved_ist_latency(cfg, tc.ist));
+    return run<hls::Arith<F, R>>(image, cam, light, tc, cfg);
   });
 }
 
