@@ -68,7 +68,6 @@ constexpr bool key_lt(uint32_t a, uint32_t b) {
   return lt<KeyFormat<F>>(a, b);
 }
 
-
 // Phase 1 of Wald's test: t on the record's plane n_u, n_v, n_d (c[0..2]), den = n . d; exit
 // distance unless tmin < t < tmax (else exit hit: phase 1 passed).
 template <class A>
@@ -137,7 +136,7 @@ inline IstOut ist_wald(uint32_t k, const uint32_t c[9], const uint32_t o[3], con
 // negation. A ray through the shared edge is inside one of the two triangles or on the edge of
 // both (E = 0, inside for both); no ray passes between them, nor through a shared vertex. The sop
 // rounds an edge function once from exact products, so its sign is the exact sign for the sheared
-// points. Why t from the vertices, in G (since 2026-12-08; before: Wald's plane distance in F):
+// points. Why t from the vertices, in G (since 2026-12-07; before: Wald's plane distance in F):
 // the closest of two hits is decided at 23 bits on a t computed from the same sheared vertices the
 // inside test used, so two surfaces an F ulp of t apart are ordered, and a ray that is inside
 // meets the plane it was tested against (docs/results.md, "The next lever, built"). Per test: 1 sop

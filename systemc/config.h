@@ -114,7 +114,7 @@ struct SimConfig {
                                  //   a miss misses again, a hit is not closer than the best)
   uint32_t ist_units = 4;        // intersection pipelines per RTU (tests issued per cycle),
                                  //   sharing the triangle cache's ports
-  uint32_t ist_latency = 0;      // 0: the record kind's pipeline at STAGES 2 (resolved_ist_latency:
+  uint32_t ist_latency = 0;      // 0: the record kind's pipeline at STAGES 2 (ist_latency_for:
                                  //   ist.v's 10 levels, 20 cycles; ist_watertight.v's 18, 36)
   UnitView ist_view = UnitView::model;
   // trv: the transaction model (systemc/trv.h) or rtl/units/trv_unit.v Verilated (no pin-level

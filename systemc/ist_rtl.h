@@ -50,7 +50,7 @@ class IstRtl {
 };
 
 // The Verilated ist_unit of that format, rounding, STAGES (ist_latency = ist_levels(kind) x STAGES:
-// ist.v's 10, ist_watertight.v's 14) and record kind (ist.v or ist_watertight.v inside) bound to
+// ist.v's 10, ist_watertight.v's 18) and record kind (ist.v or ist_watertight.v inside) bound to
 // an RTU's frame context, channels and triangle cache (ch.tri). Throws ConfigError for a
 // configuration the built model cannot run (more ist units, slots, pipes or queue entries than its
 // parameters, another triangle line, a longer triangle-cache hit latency, the mailbox); nullptr
