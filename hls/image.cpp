@@ -257,7 +257,15 @@ Image build_t(const std::vector<Tri>& tris, const BuildOptions& opt, TreeStats* 
   }
   const Quantizer q{&from_double<F, R>, &to_double<F>, &next_up<F>, &next_down<F>};
   ImageHeader h;
-  const KdTree tree = build_kdtree(tris, skip, q, opt, h.box_lo, h.box_hi, &st);
+  // Watertight records hold the rounded vertices: the tree lists each triangle wherever the stored
+  // one reaches (kdtree.h).
+  std::vector<Tri> stored;
+  if (opt.ist == IstKind::watertight) {
+    stored.reserve(tris.size());
+    for (const Tri& t : tris) stored.push_back(stored_vertices<F, R>(t));
+  }
+  const KdTree tree = build_kdtree(tris, skip, q, opt, h.box_lo, h.box_hi, &st,
+                                   opt.ist == IstKind::watertight ? &stored : nullptr);
 
   std::memcpy(h.magic, image_magic, 8);
   h.version = image_version;

@@ -12,10 +12,12 @@ namespace {
 
 constexpr uint64_t index_limit = uint64_t(1) << 24;  // 24-bit node and list indices
 
-// A triangle's reference in a node: its index and its box clipped to the node's cell.
+// A triangle's reference in a node: its index, its box clipped to the node's cell, and the box of
+// the triangle the hardware tests (its stored vertices) clipped to the cell; a box is empty where
+// its triangle misses the cell (sb always, when the records hold no vertices).
 struct Ref {
   uint32_t tri;
-  Box b;
+  Box b, sb;
 };
 
 Box tri_box(const Tri& t) {
@@ -56,6 +58,7 @@ double area(const Box& b) { return b.empty() ? 0.0 : b.area(); }
 
 struct Builder {
   const std::vector<Tri>& tris;
+  const std::vector<Tri>* stored;  // null: the records hold no vertices (the tree is over tris)
   const Quantizer& q;
   const BuildOptions& opt;
   int max_depth;
@@ -94,7 +97,13 @@ struct Builder {
     Split best;
     best.cost = opt.split_ratio * opt.cost_intersect * double(n);  // a split must beat the leaf
     if (!(a0 > 0)) return best;
-    std::vector<double> los(n), his(n);
+    // A reference goes left when its scene box's lo <= s or its stored box's lo < s (build), so
+    // its left bound is the smaller of the two, compared non-strictly (los) or, when the stored
+    // one is smaller, strictly (slos); the same for the right (his: hi < s does not go right;
+    // shis: hi <= s does not). Without stored triangles slos and shis stay empty.
+    std::vector<double> los, his, slos, shis;
+    los.reserve(n);
+    his.reserve(n);
     struct Cand {
       double s;
       uint32_t bits;
@@ -103,12 +112,21 @@ struct Builder {
     cands.reserve(4 * n);
     for (int a = 0; a < 3; ++a) {
       if (!(cell.lo[a] < cell.hi[a])) continue;
-      for (size_t i = 0; i < n; ++i) {
-        los[i] = refs[i].b.lo[a];
-        his[i] = refs[i].b.hi[a];
+      los.clear();
+      his.clear();
+      slos.clear();
+      shis.clear();
+      for (const Ref& r : refs) {
+        const bool sc = !r.b.empty(), sd = !r.sb.empty();
+        if (sd && (!sc || r.sb.lo[a] < r.b.lo[a])) slos.push_back(r.sb.lo[a]);
+        else los.push_back(sc ? r.b.lo[a] : r.sb.lo[a]);
+        if (sd && (!sc || r.sb.hi[a] > r.b.hi[a])) shis.push_back(r.sb.hi[a]);
+        else his.push_back(sc ? r.b.hi[a] : r.sb.hi[a]);
       }
       std::sort(los.begin(), los.end());
       std::sort(his.begin(), his.end());
+      std::sort(slos.begin(), slos.end());
+      std::sort(shis.begin(), shis.end());
       // Candidates: the representable planes on both sides of every bound (the rounded bound and,
       // if rounding moved it, its neighbour across the bound), so that the cost can choose the
       // plane that separates a triangle cleanly whatever the rounding policy.
@@ -125,14 +143,20 @@ struct Builder {
           cands.push_back({q.value(d), d});
         }
       };
-      for (size_t i = 0; i < n; ++i) {
-        add(los[i]);
-        add(his[i]);
-      }
+      for (double b : los) add(b);
+      for (double b : his) add(b);
+      for (double b : slos) add(b);
+      for (double b : shis) add(b);
+      if (stored)  // the stored boxes' own bounds, where the scene's bound was kept
+        for (const Ref& r : refs)
+          if (!r.sb.empty() && !r.b.empty()) {
+            if (r.sb.lo[a] >= r.b.lo[a]) add(r.sb.lo[a]);
+            if (r.sb.hi[a] <= r.b.hi[a]) add(r.sb.hi[a]);
+          }
       std::sort(cands.begin(), cands.end(), [](const Cand& x, const Cand& y) { return x.s < y.s; });
       const int b1 = (a + 1) % 3, b2 = (a + 2) % 3;
       const double d1 = cell.hi[b1] - cell.lo[b1], d2 = cell.hi[b2] - cell.lo[b2];
-      size_t nl = 0, nb = 0;  // #lo <= s, #hi < s (true bounds)
+      size_t nl = 0, nb = 0, snl = 0, snb = 0;  // #los <= s, #his < s, #slos < s, #shis <= s
       double prev = -HUGE_VAL;
       for (const Cand& c : cands) {
         const uint32_t bits = c.bits;
@@ -141,9 +165,11 @@ struct Builder {
         prev = s;
         if (!(s > cell.lo[a])) continue;
         if (!(s < cell.hi[a])) break;
-        while (nl < n && los[nl] <= s) ++nl;
-        while (nb < n && his[nb] < s) ++nb;
-        const size_t nL = nl, nR = n - nb;
+        while (nl < los.size() && los[nl] <= s) ++nl;
+        while (nb < his.size() && his[nb] < s) ++nb;
+        while (snl < slos.size() && slos[snl] < s) ++snl;
+        while (snb < shis.size() && shis[snb] <= s) ++snb;
+        const size_t nL = nl + snl, nR = n - nb - snb;
         const double wl = s - cell.lo[a], wr = cell.hi[a] - s;
         const double al = 2 * (d1 * d2 + wl * (d1 + d2)), ar = 2 * (d1 * d2 + wr * (d1 + d2));
         const double lambda = (nL == 0 || nR == 0) ? 1.0 - opt.empty_bonus : 1.0;
@@ -158,6 +184,33 @@ struct Builder {
       }
     }
     return best;
+  }
+
+  // Whether a triangle with this box goes to the side below (or above) the plane s on axis a: the
+  // scene's triangle when it reaches or touches that side, the stored one when it crosses into it
+  // (its part on the plane is in the closed cell of the side the scene's triangle goes to). An
+  // empty box (the triangle misses the cell) goes nowhere.
+  static bool goes(const Box& box, int a, double s, bool below, bool scene) {
+    if (scene) return below ? box.lo[a] <= s : box.hi[a] >= s;
+    return below ? box.lo[a] < s : box.hi[a] > s;
+  }
+
+  // A triangle's box in the closed child cell c (the side below the plane s on axis a, or above
+  // it): box itself when it lies on that side, else the triangle clipped to c; empty when it does
+  // not reach c.
+  static Box part(const Tri& t, const Box& box, const Box& c, int a, double s, bool below) {
+    if (!goes(box, a, s, below, true)) return Box{};
+    if (below ? box.hi[a] <= s : box.lo[a] >= s) return box;
+    const Box nb = intersect(clip_box(t, c), box);
+    return nb.empty() ? intersect(box, c) : nb;
+  }
+
+  // The reference in a child: both triangles clipped to it, touching included (a stored triangle
+  // on the plane stays in the child the scene's triangle took the reference to).
+  Ref child(const Ref& r, const Box& c, int a, double s, bool below) const {
+    Ref n{r.tri, part(tris[r.tri], r.b, c, a, s, below), {}};
+    if (stored) n.sb = part((*stored)[r.tri], r.sb, c, a, s, below);
+    return n;
   }
 
   void build(std::vector<Ref> refs, const Box& cell, int depth) {
@@ -176,22 +229,13 @@ struct Builder {
     cr.lo[a] = sp.pos;
     std::vector<Ref> left, right;
     for (const Ref& r : refs) {
-      if (r.b.lo[a] <= sp.pos) {
-        if (r.b.hi[a] <= sp.pos) {
-          left.push_back(r);
-        } else {
-          const Box nb = intersect(clip_box(tris[r.tri], cl), r.b);
-          left.push_back({r.tri, nb.empty() ? intersect(r.b, cl) : nb});
-        }
-      }
-      if (r.b.hi[a] >= sp.pos) {
-        if (r.b.lo[a] >= sp.pos) {
-          right.push_back(r);
-        } else {
-          const Box nb = intersect(clip_box(tris[r.tri], cr), r.b);
-          right.push_back({r.tri, nb.empty() ? intersect(r.b, cr) : nb});
-        }
-      }
+      const double s = sp.pos;
+      // (A stored triangle whose scene triangle misses the cell, lying in the plane: left.)
+      const bool flat = r.b.empty() && r.sb.lo[a] == s && r.sb.hi[a] == s;
+      if (goes(r.b, a, s, true, true) || (stored && goes(r.sb, a, s, true, false)) || flat)
+        left.push_back(child(r, cl, a, s, true));
+      if (goes(r.b, a, s, false, true) || (stored && goes(r.sb, a, s, false, false)))
+        right.push_back(child(r, cr, a, s, false));
     }
     std::vector<Ref>().swap(refs);
     const size_t me = tree.nodes.size();
@@ -248,13 +292,15 @@ Box clip_box(const Tri& t, const Box& cell) {
 
 KdTree build_kdtree(const std::vector<Tri>& tris, const std::vector<uint8_t>& skip,
                     const Quantizer& q, const BuildOptions& opt, uint32_t root_lo[3],
-                    uint32_t root_hi[3], TreeStats* stats) {
+                    uint32_t root_hi[3], TreeStats* stats, const std::vector<Tri>* stored) {
+  if (stored && stored->size() != tris.size())
+    throw std::invalid_argument("kd-tree: the stored triangles do not match the scene's");
   std::vector<Ref> refs;
   Box scene;
   for (size_t i = 0; i < tris.size(); ++i) {
     if (!skip.empty() && skip[i]) continue;
     const Box b = tri_box(tris[i]);
-    refs.push_back({uint32_t(i), b});
+    refs.push_back({uint32_t(i), b, stored ? tri_box((*stored)[i]) : Box{}});
     scene.extend(b);
   }
   if (tris.size() > UINT32_MAX) throw std::runtime_error("kd-tree: more than 2^32 triangles");
@@ -271,9 +317,14 @@ KdTree build_kdtree(const std::vector<Tri>& tris, const std::vector<uint8_t>& sk
     cell.hi[a] = q.value(hi);
   }
   // Triangles beyond the format's range are clipped to the (saturated) root cell.
-  for (Ref& r : refs) r.b = intersect(r.b, cell);
+  // (A stored vertex is the scene's rounded with the format's monotone rounding, so the outward
+  // rounded box holds it too.)
+  for (Ref& r : refs) {
+    r.b = intersect(r.b, cell);
+    if (stored) r.sb = intersect(r.sb, cell);
+  }
 
-  Builder b{tris, q, opt, opt.max_depth > 0 ? std::min(opt.max_depth, max_tree_depth)
+  Builder b{tris, stored, q, opt, opt.max_depth > 0 ? std::min(opt.max_depth, max_tree_depth)
                                             : auto_max_depth(refs.size()),
             area(cell), {}, {}};
   b.tree.cell = cell;

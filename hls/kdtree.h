@@ -4,7 +4,8 @@
 // Havran; Wald & Havran 2006). Each candidate is rounded to the image's number format with the
 // image's rounding policy BEFORE the triangles are classified, because the hardware compares
 // against the rounded plane. A triangle goes left if its clipped box's lo <= split and right if its
-// hi >= split: a triangle touching the plane (or lying in it) goes to both sides. A node becomes a
+// hi >= split: a triangle touching the plane (or lying in it) goes to both sides. With vertex
+// records, also to a side its stored triangle crosses into (build_kdtree's stored). A node becomes a
 // leaf when it holds <= leaf_size triangles, when no split beats the leaf's cost, or at max_depth.
 // The sweep sorts the bounds per node and axis (O(N log^2 N) overall); the build is single-threaded
 // and deterministic: the same input gives the same tree, bit for bit.
@@ -94,9 +95,17 @@ struct Quantizer {
 // Builds the tree over the triangles with skip[i] == 0 (skip may be empty: all triangles).
 // root_lo/root_hi receive the root cell's bounds as format bits. Fills the tree fields of stats
 // (not the constant counts, not build_seconds).
+//
+// stored (may be null): the triangles the hardware tests, when the records hold vertices (the
+// watertight kind: each vertex rounded to the format, hls/wald.h stored_vertices), index for index
+// with tris. The candidates and costs stay the scene's; a stored triangle that crosses a split
+// plane (lo < split < hi, clipped to the cell) the scene's does not reach is listed on that side
+// too, so every leaf whose cell a stored triangle enters lists it (far from the origin the rounding
+// moves a vertex by units: the scene's triangle alone left it out of cells it enters).
 KdTree build_kdtree(const std::vector<Tri>& tris, const std::vector<uint8_t>& skip,
                     const Quantizer& q, const BuildOptions& opt, uint32_t root_lo[3],
-                    uint32_t root_hi[3], TreeStats* stats);
+                    uint32_t root_hi[3], TreeStats* stats,
+                    const std::vector<Tri>* stored = nullptr);
 
 // The box of triangle t clipped to cell (conservative: it contains the exact box of t intersected
 // with cell, widened by a relative 2^-36 against rounding in the clipper, and never exceeds t's

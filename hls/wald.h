@@ -209,18 +209,28 @@ uint32_t watertight_nd(const WaldTri<F>& w) {
 // counted as saturated. A shared vertex rounds to the same bits in every triangle that has it:
 // watertight records keep the scene's mesh closed, which the watertight test then keeps closed for
 // every ray.
+// The triangle a watertight record holds: each vertex coordinate rounded to the format (the
+// triangle the test and the kd-tree builder's classification see).
+template <class F, Rounding R>
+Tri stored_vertices(const Tri& t) {
+  Tri s;
+  for (size_t j = 0; j < 3; ++j)
+    for (int a = 0; a < 3; ++a) s[j][a] = to_double<F>(from_double<F, R>(t[j][a]));
+  return s;
+}
+
 template <class F, Rounding R>
 WaldTri<F> make_wald(const Tri& t, uint32_t id, IstKind kind = IstKind::wald, WaldInfo* info = nullptr) {
   const double maxv = to_double<F>(F::max_mag);
   const bool watertight = kind == IstKind::watertight;
   bool degenerate = false;
   Tri stored = t;  // watertight: the rounded vertices
-  if (watertight)
+  if (watertight) {
     for (size_t j = 0; j < 3; ++j)
-      for (int a = 0; a < 3; ++a) {
+      for (int a = 0; a < 3; ++a)
         if (!(std::fabs(t[j][a]) <= maxv)) degenerate = true;
-        stored[j][a] = to_double<F>(from_double<F, R>(t[j][a]));
-      }
+    stored = stored_vertices<F, R>(t);
+  }
   const WaldDouble d = wald_double(degenerate ? t : stored);
   double x[12] = {};
   const int n = tri_const_count(kind);
