@@ -247,11 +247,11 @@ TEST(ErrorStages, FarCameraZeroWithTheVerticesT) {
 // split planes; the kd-tree lists each stored triangle where it crosses (hls/kdtree.h). Before
 // (2026-12-07, 200 x 120) world had 146 primary errors against anchored's 0 (800 x 480: 2,586 of
 // which 1,339 deep against 6).
-TEST(ErrorStages, FarWorldWithTheVtuWithinTwiceAnchored) {
+TEST(ErrorStages, FarWorldZeroConfigurationWithinTwiceAnchored) {
   const ZeroRun world("far:1e6", "rtz", 200, 120, "watertight", "on", "world");
   const ZeroRun anchored("far:1e6", "rtz", 200, 120, "watertight", "on", "anchored");
-  const reference::ErrorMetrics& w = world.e.stored;
-  const reference::ErrorMetrics& a = anchored.e.stored;
+  const auto& w = world.e.stored;
+  const auto& a = anchored.e.stored;
   EXPECT_LE(w.primary_errors, 2 * a.primary_errors + 2) << budget_line(world.e.stages);
   EXPECT_LE(w.shadow_errors, 2 * a.shadow_errors + 2) << budget_line(world.e.stages);
   EXPECT_EQ(w.self_intersections, 0u);
